@@ -1,0 +1,27 @@
+#pragma once
+// The Bekker-Wong-Janosi parameters that the calibrator infers, in Chrono's SCM units:
+// Kc [Pa/m^(n-1)], Kphi [Pa/m^n], n [-], cohesion c [Pa], friction angle phi [deg], Janosi k [m].
+#include <array>
+#include <string_view>
+
+namespace terracal::bayes {
+
+enum Param : int { kKc = 0, kKphi, kN, kCohesion, kFriction, kJanosi, kNumParams };
+
+// Names exactly as in Chrono's SCM JSON "Soil parameters" block (DESIGN.md section 3).
+inline constexpr std::array<std::string_view, kNumParams> kChronoNames = {
+    "Bekker Kc", "Bekker Kphi", "Bekker n exponent", "Mohr cohesive limit", "Mohr friction limit",
+    "Janosi shear coefficient"};
+
+// Short names: priors files, the posterior file and the summary table.
+inline constexpr std::array<std::string_view, kNumParams> kShortNames = {"Kc", "Kphi", "n", "c", "phi", "k"};
+inline constexpr std::array<std::string_view, kNumParams> kUnits = {"Pa/m^(n-1)", "Pa/m^n", "1", "Pa", "deg", "m"};
+
+using ParamVector = std::array<double, kNumParams>;
+
+}  // namespace terracal::bayes
+
+namespace terracal::bayes {
+// Index of a parameter by its short name ("Kphi") or Chrono name ("Bekker Kphi"); -1 if unknown.
+int param_index(std::string_view short_or_chrono_name);
+}  // namespace terracal::bayes
