@@ -1,0 +1,179 @@
+#include "bayes/calibration_problem.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include <fmt/format.h>
+
+namespace terracal::bayes {
+namespace {
+constexpr double kNegInf = -std::numeric_limits<double>::infinity();
+// Defaults for parameters the data cannot identify (Chrono's "soft" SCM preset values).
+constexpr double kDefaultCohesion = 0.0, kDefaultFriction = 30.0, kDefaultJanosi = 0.01;
+}  // namespace
+
+CalibrationProblem::CalibrationProblem(const PlateData& plate, const std::optional<ShearData>& shear, Priors priors,
+                                       NoiseModel noise)
+    : priors_(priors), noise_(noise) {
+  for (int i = 0; i < kNumParams; ++i)
+    if (priors_[i].fixed()) fixed_[i] = priors_[i].value;
+
+  add_plate(plate);
+  radii_ = plate.radii;
+  // One plate size: Kc/r + Kphi is known at a single r only, so Kc and Kphi cannot be separated.
+  if (radii_.size() < 2 && !priors_[kKc].fixed() && !priors_[kKc].user_given && !priors_[kKphi].user_given)
+    fix(kKc, 0.0, fmt::format("{}: only one plate radius ({} m): Kc and Kphi cannot be separated; Kc is fixed at 0 "
+                              "(give a prior for Kc or Kphi, or a second plate size, to change this)",
+                              plate.path, radii_.front()));
+
+  if (shear) {
+    add_shear(*shear);
+    const bool any_transient = std::any_of(shear->points.begin(), shear->points.end(), [](const ShearPoint& p) { return !p.developed; });
+    if (!any_transient && !priors_[kJanosi].fixed())
+      fix(kJanosi, kDefaultJanosi,
+          fmt::format("{}: only fully developed torques (no angle): the Janosi k is not identified; fixed at {} m", shear->path, kDefaultJanosi));
+  } else {
+    if (!priors_[kCohesion].fixed()) fix(kCohesion, kDefaultCohesion, fmt::format("no shear data: cohesion fixed at {} Pa", kDefaultCohesion));
+    if (!priors_[kFriction].fixed()) fix(kFriction, kDefaultFriction, fmt::format("no shear data: friction angle fixed at {} deg", kDefaultFriction));
+    if (!priors_[kJanosi].fixed()) fix(kJanosi, kDefaultJanosi, fmt::format("no shear data: Janosi k fixed at {} m", kDefaultJanosi));
+  }
+  for (int i = 0; i < kNumParams; ++i)
+    if (!priors_[i].fixed()) free_.push_back(i);
+}
+
+void CalibrationProblem::fix(int i, double value, const std::string& why) {
+  priors_[i].kind = Prior::Kind::kFixed;
+  priors_[i].value = priors_[i].lower = priors_[i].upper = value;
+  fixed_[i] = value;
+  notes_.push_back(why);
+}
+
+void CalibrationProblem::add_plate(const PlateData& plate) {
+  ObservationSet s;
+  s.name = "plate";
+  s.unit = "N";
+  std::map<double, int> curve_of;
+  for (const auto& p : plate.points) {
+    if (!p.fitted) continue;
+    if (!curve_of.count(p.radius)) {
+      curve_of[p.radius] = static_cast<int>(s.curve_labels.size());
+      s.curve_labels.push_back(fmt::format("plate r = {:g} m", p.radius));
+    }
+    s.y.push_back(p.force);
+    s.r.push_back(p.radius);
+    s.log_z.push_back(std::log(p.sinkage));
+    s.x_axis.push_back(p.sinkage);
+    s.curve.push_back(curve_of[p.radius]);
+  }
+  set_weights(s);
+  sets_.push_back(std::move(s));
+}
+
+void CalibrationProblem::add_shear(const ShearData& shear) {
+  ObservationSet s;
+  s.name = "shear";
+  s.unit = "N m";
+  std::map<std::tuple<double, double, double>, int> curve_of;
+  for (const auto& p : shear.points) {
+    const auto key = std::make_tuple(p.inner_radius, p.outer_radius, p.normal_load);
+    if (!curve_of.count(key)) {
+      curve_of[key] = static_cast<int>(s.curve_labels.size());
+      s.curve_labels.push_back(fmt::format("W = {:g} N", p.normal_load));
+    }
+    s.y.push_back(p.torque);
+    s.r_in.push_back(p.inner_radius);
+    s.r_out.push_back(p.outer_radius);
+    s.load.push_back(p.normal_load);
+    s.angle.push_back(p.developed ? -1.0 : p.angle);
+    s.x_axis.push_back(p.developed ? std::numeric_limits<double>::quiet_NaN() : p.angle);
+    s.curve.push_back(curve_of[key]);
+  }
+  set_weights(s);
+  sets_.push_back(std::move(s));
+}
+
+void CalibrationProblem::set_weights(ObservationSet& s) const {
+  s.w.assign(s.size(), 1.0);
+  if (noise_ == NoiseModel::kAbsolute) return;
+  std::vector<double> curve_max(s.curve_labels.size(), 0.0);
+  for (std::size_t i = 0; i < s.size(); ++i) curve_max[s.curve[i]] = std::max(curve_max[s.curve[i]], std::abs(s.y[i]));
+  for (std::size_t i = 0; i < s.size(); ++i) s.w[i] = std::max(std::abs(s.y[i]), 0.01 * curve_max[s.curve[i]]);
+  for (double& w : s.w)
+    if (!(w > 0)) w = 1.0;  // an all-zero curve: fall back to absolute weights
+}
+
+ParamVector CalibrationProblem::expand(const Eigen::VectorXd& x) const {
+  ParamVector p = fixed_;
+  for (std::size_t j = 0; j < free_.size(); ++j) p[free_[j]] = x[static_cast<int>(j)];
+  return p;
+}
+
+Eigen::VectorXd CalibrationProblem::reduce(const ParamVector& p) const {
+  Eigen::VectorXd x(dim());
+  for (std::size_t j = 0; j < free_.size(); ++j) x[static_cast<int>(j)] = p[free_[j]];
+  return x;
+}
+
+std::vector<double> CalibrationProblem::predict_all(int t, const ParamVector& p) const {
+  std::vector<double> f(sets_[t].size());
+  for (std::size_t i = 0; i < f.size(); ++i) f[i] = predict(t, i, p.data());
+  return f;
+}
+
+double CalibrationProblem::weighted_sse(int t, const ParamVector& p) const {
+  const ObservationSet& s = sets_[t];
+  double sse = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const double r = (s.y[i] - predict(t, i, p.data())) / s.w[i];
+    sse += r * r;
+  }
+  return std::isfinite(sse) ? sse : std::numeric_limits<double>::quiet_NaN();
+}
+
+bool CalibrationProblem::feasible(const ParamVector& p) const {
+  for (int i = 0; i < kNumParams; ++i)
+    if (!priors_[i].fixed() && !priors_[i].contains(p[i])) return false;
+  for (double r : radii_)
+    if (!(p[kKc] / r + p[kKphi] > 0)) return false;
+  return true;
+}
+
+double CalibrationProblem::log_prior(const ParamVector& p) const {
+  if (!feasible(p)) return kNegInf;
+  double lp = 0;
+  for (int i : free_) lp += priors_[i].log_density(p[i]);
+  return lp;
+}
+
+double CalibrationProblem::log_posterior(const ParamVector& p, const Eigen::VectorXd& noise_var) const {
+  const double lp = log_prior(p);
+  if (lp == kNegInf) return kNegInf;
+  double ll = lp;
+  for (int t = 0; t < num_types(); ++t) {
+    const double n = static_cast<double>(sets_[t].size());
+    // Jeffreys prior on s^2 contributes -log s^2.
+    ll += -0.5 * weighted_sse(t, p) / noise_var[t] - (0.5 * n + 1.0) * std::log(noise_var[t]);
+  }
+  return ll;
+}
+
+void CalibrationProblem::draw_noise(const ParamVector& p, Eigen::VectorXd& noise_var, Rng& rng) const {
+  for (int t = 0; t < num_types(); ++t) {
+    // s^2 | theta ~ InvGamma(N/2, SSE/2): draw Gamma(N/2, 1) g and set s^2 = (SSE/2) / g.
+    const double sse = weighted_sse(t, p);
+    noise_var[t] = 0.5 * sse / rng.gamma(0.5 * static_cast<double>(sets_[t].size()));
+  }
+}
+
+Target CalibrationProblem::target() const {
+  Target t;
+  t.dim = dim();
+  t.nuisance_dim = num_types();
+  t.log_density = [this](const Eigen::VectorXd& x, const Eigen::VectorXd& nv) { return log_posterior(expand(x), nv); };
+  t.gibbs = [this](const Eigen::VectorXd& x, Eigen::VectorXd& nv, Rng& rng) { draw_noise(expand(x), nv, rng); };
+  return t;
+}
+
+}  // namespace terracal::bayes

@@ -1,0 +1,97 @@
+#pragma once
+// The calibration problem: observations, forward models, priors and the noise model, assembled
+// once. Everything downstream (global search, least squares, samplers, outputs) asks this class
+// for predictions, residuals and densities, so the statistics live in one place.
+//
+// Noise model. Each test type t (plate force, shear torque) has its own unknown noise scale s_t:
+//   y_i = f_i(theta) + s_t w_i eps_i,  eps_i ~ N(0, 1),
+// with fixed weights w_i taken from the data: relative noise (default) w_i = max(|y_i|, 1 % of the
+// largest |y| of its curve) -- measurement error grows with the signal, and the floor keeps the
+// weight finite at zero force -- or absolute noise w_i = 1. The variances s_t^2 get the Jeffreys
+// prior p(s^2) ~ 1/s^2, so given theta they are inverse-gamma(N_t/2, SSE_t/2): a conjugate Gibbs step.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "bayes/forward_models.hpp"
+#include "bayes/observations.hpp"
+#include "bayes/priors.hpp"
+#include "bayes/target.hpp"
+
+namespace terracal::bayes {
+
+enum class NoiseModel { kRelative, kAbsolute };
+
+// The fitted observations of one test type, flattened.
+struct ObservationSet {
+  std::string name;               // "plate" or "shear"
+  std::string unit;               // "N" or "N m"
+  std::vector<double> y, w;       // observed value, noise weight
+  // Plate rows: radius, log sinkage. Shear rows: radii, load, angle (developed rows: angle < 0).
+  std::vector<double> r, log_z, r_in, r_out, load, angle;
+  std::vector<double> x_axis;     // sinkage or angle, for plots
+  std::vector<int> curve;         // which curve (plate radius / shear load) a row belongs to
+  std::vector<std::string> curve_labels;
+  std::size_t size() const { return y.size(); }
+};
+
+class CalibrationProblem {
+ public:
+  CalibrationProblem(const PlateData& plate, const std::optional<ShearData>& shear, Priors priors,
+                     NoiseModel noise = NoiseModel::kRelative);
+
+  // Free (inferred) parameters, in ParamVector order; the others are fixed.
+  const std::vector<int>& free_indices() const { return free_; }
+  int dim() const { return static_cast<int>(free_.size()); }
+  ParamVector expand(const Eigen::VectorXd& x) const;
+  Eigen::VectorXd reduce(const ParamVector& p) const;
+  const ParamVector& fixed_values() const { return fixed_; }
+
+  int num_types() const { return static_cast<int>(sets_.size()); }
+  const ObservationSet& set(int t) const { return sets_[t]; }
+  const Priors& priors() const { return priors_; }
+  NoiseModel noise_model() const { return noise_; }
+  const std::vector<double>& plate_radii() const { return radii_; }
+  // Things the user must know: parameters fixed because the data cannot identify them, etc.
+  const std::vector<std::string>& notes() const { return notes_; }
+
+  // Prediction of row i of test type t; p is a full parameter array (6 values) of scalar T.
+  template <typename T>
+  T predict(int t, std::size_t i, const T* p) const {
+    const ObservationSet& s = sets_[t];
+    if (s.name == "plate") return plate_force_log(s.r[i], s.log_z[i], p[kKc], p[kKphi], p[kN]);
+    if (s.angle[i] < 0) return annulus_torque_developed(s.r_in[i], s.r_out[i], s.load[i], p[kCohesion], p[kFriction]);
+    return annulus_torque(s.r_in[i], s.r_out[i], s.load[i], s.angle[i], p[kCohesion], p[kFriction], p[kJanosi]);
+  }
+  std::vector<double> predict_all(int t, const ParamVector& p) const;
+
+  // Sum of squared weighted residuals ((y - f)/w)^2 of test type t (NaN if a prediction is not finite).
+  double weighted_sse(int t, const ParamVector& p) const;
+  // Inside every prior's support, and Kc/r + Kphi > 0 for every plate radius in the data.
+  bool feasible(const ParamVector& p) const;
+  double log_prior(const ParamVector& p) const;
+  // log p(theta, s^2 | y) up to a constant; noise_var holds s_t^2 per test type.
+  double log_posterior(const ParamVector& p, const Eigen::VectorXd& noise_var) const;
+  // The sampler's view: x = free parameters, nuisance = noise variances with their Gibbs step.
+  Target target() const;
+  // Draws s_t^2 | theta (inverse gamma); used by target().gibbs.
+  void draw_noise(const ParamVector& p, Eigen::VectorXd& noise_var, Rng& rng) const;
+
+ private:
+  void add_plate(const PlateData& plate);
+  void add_shear(const ShearData& shear);
+  void fix(int i, double value, const std::string& why);
+  void set_weights(ObservationSet& s) const;
+
+  Priors priors_;
+  NoiseModel noise_;
+  std::vector<ObservationSet> sets_;
+  std::vector<double> radii_;
+  std::vector<int> free_;
+  ParamVector fixed_{};
+  std::vector<std::string> notes_;
+};
+
+}  // namespace terracal::bayes

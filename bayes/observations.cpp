@@ -1,0 +1,109 @@
+#include "bayes/observations.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include <fmt/format.h>
+
+#include "core/csv.hpp"
+#include "core/errors.hpp"
+
+namespace terracal::bayes {
+namespace {
+
+// A bevameter plate sinks centimetres to decimetres and has a radius of centimetres to decimetres.
+// Values this large are almost surely millimetres: refuse them rather than fit nonsense.
+constexpr double kMaxPlausibleSinkage = 1.0;  // m
+constexpr double kMaxPlausibleRadius = 2.0;   // m
+
+void require_positive(const CsvTable& t, std::size_t row, const std::string& col, double v) {
+  if (!(v > 0)) throw InputError(fmt::format("{}: {} must be > 0", t.where(row, col), v));
+}
+
+void reject_millimetres(const CsvTable& t, std::size_t row, const std::string& col, double v, double limit,
+                        const char* what) {
+  if (v > limit)
+    throw InputError(fmt::format("{}: {} = {} m is implausible for a bevameter {} (expected at most {} m); "
+                                 "the file looks like it is in millimetres: convert to metres",
+                                 t.where(row, col), col, v, what, limit));
+}
+
+PlatePhase parse_phase(const CsvTable& t, std::size_t row) {
+  const std::string s = t.text(row, "phase");
+  if (s.empty() || s == "load") return PlatePhase::kLoad;
+  if (s == "unload") return PlatePhase::kUnload;
+  if (s == "reload") return PlatePhase::kReload;
+  throw InputError(fmt::format("{}: '{}' is not a phase; expected load, unload or reload (or empty)", t.where(row, "phase"), s));
+}
+
+}  // namespace
+
+int PlateData::fitted_count() const {
+  return static_cast<int>(std::count_if(points.begin(), points.end(), [](const PlatePoint& p) { return p.fitted; }));
+}
+
+PlateData load_plate_csv(const std::string& path) {
+  const CsvTable t = CsvTable::read(path);
+  t.require_columns({"plate_radius_m", "sinkage_m", "force_N"});
+  PlateData d;
+  d.path = path;
+  std::map<double, double> max_sinkage;  // per plate radius: the deepest sinkage so far
+  for (std::size_t i = 0; i < t.rows(); ++i) {
+    PlatePoint p;
+    p.line = t.line_of(i);
+    p.radius = t.number(i, "plate_radius_m");
+    p.sinkage = t.number(i, "sinkage_m");
+    p.force = t.number(i, "force_N");
+    p.phase = t.has_column("phase") ? parse_phase(t, i) : PlatePhase::kLoad;
+    require_positive(t, i, "plate_radius_m", p.radius);
+    if (p.sinkage < 0) throw InputError(fmt::format("{}: sinkage {} m is negative; expected >= 0", t.where(i, "sinkage_m"), p.sinkage));
+    reject_millimetres(t, i, "plate_radius_m", p.radius, kMaxPlausibleRadius, "plate radius");
+    reject_millimetres(t, i, "sinkage_m", p.sinkage, kMaxPlausibleSinkage, "plate sinkage");
+    // The Bekker law describes loading beyond the deepest sinkage so far (virgin loading).
+    double& deepest = max_sinkage[p.radius];
+    p.fitted = p.phase != PlatePhase::kUnload && p.sinkage > 0 && p.sinkage > deepest;
+    if (p.phase == PlatePhase::kLoad && p.sinkage > 0) p.fitted = true;
+    deepest = std::max(deepest, p.sinkage);
+    d.points.push_back(p);
+  }
+  for (const auto& [r, z] : max_sinkage) d.radii.push_back(r);
+  if (d.fitted_count() == 0)
+    throw InputError(fmt::format("{}: no loading rows with sinkage > 0; nothing to fit the Bekker law to", path));
+  return d;
+}
+
+ShearData load_shear_csv(const std::string& path) {
+  const CsvTable t = CsvTable::read(path);
+  t.require_columns({"inner_radius_m", "outer_radius_m", "normal_load_N", "angle_rad", "torque_Nm"});
+  ShearData d;
+  d.path = path;
+  for (std::size_t i = 0; i < t.rows(); ++i) {
+    ShearPoint p;
+    p.line = t.line_of(i);
+    p.inner_radius = t.number(i, "inner_radius_m");
+    p.outer_radius = t.number(i, "outer_radius_m");
+    p.normal_load = t.number(i, "normal_load_N");
+    p.torque = t.number(i, "torque_Nm");
+    const auto angle = t.optional_number(i, "angle_rad");
+    p.developed = !angle.has_value();
+    p.angle = angle.value_or(0.0);
+    if (p.inner_radius < 0)
+      throw InputError(fmt::format("{}: {} m is negative; expected >= 0", t.where(i, "inner_radius_m"), p.inner_radius));
+    require_positive(t, i, "outer_radius_m", p.outer_radius);
+    if (p.outer_radius <= p.inner_radius)
+      throw InputError(fmt::format("{}: outer radius {} m must exceed the inner radius {} m", t.where(i, "outer_radius_m"),
+                                   p.outer_radius, p.inner_radius));
+    reject_millimetres(t, i, "outer_radius_m", p.outer_radius, kMaxPlausibleRadius, "annulus radius");
+    require_positive(t, i, "normal_load_N", p.normal_load);
+    if (p.angle < 0)
+      throw InputError(fmt::format("{}: shear angle {} rad is negative; expected >= 0 (or empty for the developed torque)",
+                                   t.where(i, "angle_rad"), p.angle));
+    if (!p.developed && p.angle == 0) continue;  // zero displacement carries no information (torque model is 0)
+    d.points.push_back(p);
+  }
+  if (d.points.empty()) throw InputError(fmt::format("{}: no rows with a shear angle > 0 or a developed torque", path));
+  return d;
+}
+
+}  // namespace terracal::bayes

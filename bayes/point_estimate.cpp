@@ -1,0 +1,290 @@
+#include "bayes/point_estimate.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <memory>
+
+#include <ceres/ceres.h>
+#include <fmt/format.h>
+#include <nlopt.hpp>
+
+#include "core/errors.hpp"
+
+namespace terracal::bayes {
+namespace {
+
+constexpr double kHuge = 1e300;
+
+// The global search works in coordinates where the data are informative and scales are even:
+// plate stiffness as log K(r) = log(Kc/r + Kphi) at the smallest and largest plate radius (what
+// each plate measures, and positive by construction), log k, and c, phi, n as they are.
+class SearchSpace {
+ public:
+  explicit SearchSpace(const CalibrationProblem& pb) : pb_(pb) {
+    const auto& pr = pb.priors();
+    const auto is_free = [&](int i) { return !pr[i].fixed(); };
+    r1_ = pb.plate_radii().front();
+    r2_ = pb.plate_radii().back();
+    kc_free_ = is_free(kKc);
+    kphi_free_ = is_free(kKphi);
+    if (kc_free_ || kphi_free_) add(std::log(1.0), std::log(1e12));   // log K(r1)
+    if (kc_free_ && kphi_free_) {
+      if (r2_ > r1_) add(std::log(1.0), std::log(1e12));              // log K(r2)
+      else add(pr[kKc].lower, pr[kKc].upper);                          // one radius, Kc has a prior
+    }
+    if (is_free(kN)) add(pr[kN].lower, pr[kN].upper);
+    if (is_free(kCohesion)) add(pr[kCohesion].lower, std::min(pr[kCohesion].upper, std::max(pr[kCohesion].lower + 1.0, 3.0 * max_shear_stress())));
+    if (is_free(kFriction)) add(pr[kFriction].lower, pr[kFriction].upper);
+    if (is_free(kJanosi)) add(std::log(pr[kJanosi].lower), std::log(pr[kJanosi].upper));
+  }
+
+  int dim() const { return static_cast<int>(lo_.size()); }
+  const std::vector<double>& lower() const { return lo_; }
+  const std::vector<double>& upper() const { return hi_; }
+
+  ParamVector decode(const std::vector<double>& u) const {
+    ParamVector p = pb_.fixed_values();
+    std::size_t j = 0;
+    if (kc_free_ || kphi_free_) {
+      const double k1 = std::exp(u[j++]);
+      if (kc_free_ && kphi_free_) {
+        if (r2_ > r1_) {
+          const double k2 = std::exp(u[j++]);
+          p[kKc] = (k1 - k2) / (1.0 / r1_ - 1.0 / r2_);
+        } else {
+          p[kKc] = u[j++];
+        }
+        p[kKphi] = k1 - p[kKc] / r1_;
+      } else if (kc_free_) {
+        p[kKc] = (k1 - p[kKphi]) * r1_;
+      } else {
+        p[kKphi] = k1 - p[kKc] / r1_;
+      }
+    }
+    const auto& pr = pb_.priors();
+    if (!pr[kN].fixed()) p[kN] = u[j++];
+    if (!pr[kCohesion].fixed()) p[kCohesion] = u[j++];
+    if (!pr[kFriction].fixed()) p[kFriction] = u[j++];
+    if (!pr[kJanosi].fixed()) p[kJanosi] = std::exp(u[j++]);
+    return p;
+  }
+
+ private:
+  void add(double lo, double hi) { lo_.push_back(lo); hi_.push_back(hi); }
+  // The largest mean shear stress any shear row implies (torque over the developed-torque lever).
+  double max_shear_stress() const {
+    double m = 0;
+    for (int t = 0; t < pb_.num_types(); ++t) {
+      const auto& s = pb_.set(t);
+      if (s.name != "shear") continue;
+      for (std::size_t i = 0; i < s.size(); ++i)
+        m = std::max(m, std::abs(s.y[i]) / (2.0 * kPi * (std::pow(s.r_out[i], 3) - std::pow(s.r_in[i], 3)) / 3.0));
+    }
+    return m;
+  }
+
+  const CalibrationProblem& pb_;
+  double r1_ = 0, r2_ = 0;
+  bool kc_free_ = false, kphi_free_ = false;
+  std::vector<double> lo_, hi_;
+};
+
+// Negative log posterior with the noise variances profiled out: sum_t N_t/2 log SSE_t - log prior.
+double profile_objective(const CalibrationProblem& pb, const ParamVector& p) {
+  const double lp = pb.log_prior(p);
+  if (!std::isfinite(lp)) return kHuge;
+  double f = -lp;
+  for (int t = 0; t < pb.num_types(); ++t) {
+    const double sse = pb.weighted_sse(t, p);
+    if (!std::isfinite(sse)) return kHuge;
+    f += 0.5 * static_cast<double>(pb.set(t).size()) * std::log(std::max(sse, 1e-300));
+  }
+  return f;
+}
+
+ParamVector global_search(const CalibrationProblem& pb, const PointEstimateOptions& opt, int& evaluations) {
+  SearchSpace space(pb);
+  if (space.dim() == 0) return pb.fixed_values();
+  std::function<double(const std::vector<double>&)> f = [&](const std::vector<double>& u) {
+    ++evaluations;
+    return profile_objective(pb, space.decode(u));
+  };
+  auto thunk = [](const std::vector<double>& u, std::vector<double>&, void* data) {
+    return (*static_cast<std::function<double(const std::vector<double>&)>*>(data))(u);
+  };
+  nlopt::srand(opt.seed);
+  std::vector<double> u(space.dim());
+  for (int j = 0; j < space.dim(); ++j) u[j] = 0.5 * (space.lower()[j] + space.upper()[j]);
+  double best = kHuge;
+  // Controlled random search with local mutation explores the box; BOBYQA then converges locally.
+  nlopt::opt crs(nlopt::GN_CRS2_LM, space.dim());
+  crs.set_lower_bounds(space.lower());
+  crs.set_upper_bounds(space.upper());
+  crs.set_min_objective(thunk, &f);
+  crs.set_maxeval(opt.global_evaluations);
+  crs.set_population(static_cast<unsigned>(30 * (space.dim() + 1)));
+  crs.set_xtol_rel(1e-8);
+  try { crs.optimize(u, best); } catch (const std::exception&) { /* keep the best point found */ }
+  nlopt::opt local(nlopt::LN_BOBYQA, space.dim());
+  local.set_lower_bounds(space.lower());
+  local.set_upper_bounds(space.upper());
+  local.set_min_objective(thunk, &f);
+  local.set_maxeval(5000);
+  local.set_xtol_rel(1e-10);
+  try { local.optimize(u, best); } catch (const std::exception&) {}
+  if (best >= kHuge) throw RunError("global search: no parameter set inside the priors explains the data (every evaluation failed)");
+  return space.decode(u);
+}
+
+// Ceres works on scaled parameters u = p / scale (scale ~ |p| at the start): the raw parameters
+// span thirteen orders of magnitude (Kphi ~ 1e6 Pa/m^n, k ~ 1e-2 m), which would make the
+// Jacobian so ill-conditioned that DENSE_SVD's rank cut drops real directions and the covariance
+// comes out too small.
+using Scale = std::array<double, kNumParams>;
+
+template <typename T>
+std::array<T, kNumParams> unscale(const T* u, const Scale& scale) {
+  std::array<T, kNumParams> p;
+  for (int i = 0; i < kNumParams; ++i) p[i] = u[i] * scale[i];
+  return p;
+}
+
+// Weighted residuals (y - f) / (s_t w_i) of one test type, for Ceres' automatic differentiation.
+struct TypeResiduals {
+  const CalibrationProblem* pb;
+  int t;
+  double noise_sd;
+  Scale scale;
+  template <typename T>
+  bool operator()(T const* const* u, T* residuals) const {
+    const auto p = unscale(u[0], scale);
+    const ObservationSet& s = pb->set(t);
+    for (std::size_t i = 0; i < s.size(); ++i) residuals[i] = (s.y[i] - pb->predict(t, i, p.data())) / (noise_sd * s.w[i]);
+    return true;
+  }
+};
+
+// Gaussian priors enter the least-squares problem as one more residual (lognormal: on the log).
+struct PriorResidual {
+  int i;
+  Prior prior;
+  double scale;
+  template <typename T>
+  bool operator()(const T* u, T* r) const {
+    using std::log;
+    const T p = u[i] * scale;
+    r[0] = prior.kind == Prior::Kind::kLogNormal ? (log(p) - prior.mean) / prior.sd : (p - prior.mean) / prior.sd;
+    return true;
+  }
+};
+
+void polish(const CalibrationProblem& pb, PointEstimate& est) {
+  Scale scale;
+  for (int i = 0; i < kNumParams; ++i) {
+    const Prior& pr = pb.priors()[i];
+    scale[i] = std::abs(est.map[i]) > 0 ? std::abs(est.map[i]) : std::max(1e-3 * (pr.upper - pr.lower), 1e-12);
+  }
+  double u[kNumParams];
+  for (int i = 0; i < kNumParams; ++i) u[i] = est.map[i] / scale[i];
+  ceres::Problem problem;
+  for (int t = 0; t < pb.num_types(); ++t) {
+    auto* cost = new ceres::DynamicAutoDiffCostFunction<TypeResiduals, 8>(
+        new TypeResiduals{&pb, t, std::sqrt(est.noise_var[t]), scale});
+    cost->AddParameterBlock(kNumParams);
+    cost->SetNumResiduals(static_cast<int>(pb.set(t).size()));
+    problem.AddResidualBlock(cost, nullptr, u);
+  }
+  for (int i : pb.free_indices()) {
+    const Prior& pr = pb.priors()[i];
+    if (pr.kind == Prior::Kind::kNormal || pr.kind == Prior::Kind::kLogNormal)
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PriorResidual, 1, kNumParams>(new PriorResidual{i, pr, scale[i]}),
+                               nullptr, u);
+    problem.SetParameterLowerBound(u, i, pr.lower / scale[i]);
+    problem.SetParameterUpperBound(u, i, pr.upper / scale[i]);
+  }
+  std::vector<int> fixed;
+  for (int i = 0; i < kNumParams; ++i)
+    if (pb.priors()[i].fixed()) fixed.push_back(i);
+  if (!fixed.empty()) problem.SetManifold(u, new ceres::SubsetManifold(kNumParams, fixed));
+
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::DENSE_QR;
+  options.max_num_iterations = 200;
+  options.function_tolerance = 1e-12;
+  options.parameter_tolerance = 1e-12;
+  options.num_threads = 1;  // deterministic
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &problem, &summary);
+  est.ceres_report = summary.BriefReport();
+  const auto candidate = unscale(u, scale);
+  // Keep the polished point only if it is feasible and no worse (Ceres cannot see Kc/r + Kphi > 0).
+  if (pb.feasible(candidate) && profile_objective(pb, candidate) <= profile_objective(pb, est.map) + 1e-9) est.map = candidate;
+
+  // Covariance of the free parameters: DENSE_SVD tolerates a rank-deficient Jacobian.
+  ceres::Covariance::Options copt;
+  copt.algorithm_type = ceres::DENSE_SVD;
+  copt.null_space_rank = -1;
+  copt.num_threads = 1;
+  for (int i = 0; i < kNumParams; ++i) u[i] = est.map[i] / scale[i];
+  ceres::Covariance covariance(copt);
+  const int d = pb.dim();
+  est.covariance = Eigen::MatrixXd::Zero(d, d);
+  est.covariance_ok = false;
+  const std::vector<std::pair<const double*, const double*>> blocks = {{u, u}};
+  if (covariance.Compute(blocks, &problem)) {
+    Eigen::Matrix<double, kNumParams, kNumParams, Eigen::RowMajor> full;
+    covariance.GetCovarianceBlock(u, u, full.data());
+    int n_total = 0;
+    for (int t = 0; t < pb.num_types(); ++t) n_total += static_cast<int>(pb.set(t).size());
+    double cost = 0;
+    problem.Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr, nullptr);
+    // Scaled by the residual variance: 1 when the noise scales are right, more when the fit is poor.
+    const double variance_factor = n_total > d ? 2.0 * cost / (n_total - d) : 1.0;
+    for (int a = 0; a < d; ++a)
+      for (int b = 0; b < d; ++b) {
+        const int i = pb.free_indices()[a], j = pb.free_indices()[b];
+        est.covariance(a, b) = variance_factor * full(i, j) * scale[i] * scale[j];
+      }
+    est.covariance_ok = est.covariance.allFinite() && est.covariance.diagonal().minCoeff() > 0;
+  }
+  if (!est.covariance_ok) {
+    // A singular Jacobian (a parameter the data do not constrain): a small diagonal proposal lets
+    // the adaptive sampler learn the rest.
+    est.covariance = Eigen::MatrixXd::Zero(d, d);
+    for (int a = 0; a < d; ++a) {
+      const Prior& pr = pb.priors()[pb.free_indices()[a]];
+      const double v = est.map[pb.free_indices()[a]];
+      est.covariance(a, a) = std::pow(std::max(1e-3 * std::abs(v), 1e-4 * (pr.upper - pr.lower)), 2);
+    }
+  }
+}
+
+void update_noise(const CalibrationProblem& pb, PointEstimate& est) {
+  est.noise_var.resize(pb.num_types());
+  est.weighted_rss = 0;
+  for (int t = 0; t < pb.num_types(); ++t) {
+    const double sse = pb.weighted_sse(t, est.map);
+    est.weighted_rss += sse;
+    est.noise_var[t] = std::max(sse / static_cast<double>(pb.set(t).size()), 1e-24);
+  }
+}
+
+}  // namespace
+
+PointEstimate estimate_point(const CalibrationProblem& pb, const PointEstimateOptions& options) {
+  PointEstimate est;
+  est.map = global_search(pb, options, est.global_evaluations);
+  update_noise(pb, est);
+  for (int round = 0; round < options.polish_rounds && pb.dim() > 0; ++round) {
+    polish(pb, est);
+    update_noise(pb, est);
+  }
+  est.x = pb.reduce(est.map);
+  if (pb.dim() == 0) est.covariance = Eigen::MatrixXd::Zero(0, 0);
+  return est;
+}
+
+}  // namespace terracal::bayes

@@ -1,0 +1,131 @@
+#include "bayes/priors.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "core/errors.hpp"
+
+namespace terracal::bayes {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Hard physical limits: a priors file may narrow them, never widen them.
+struct Limits { double lower, upper; bool lower_open; };
+constexpr std::array<Limits, kNumParams> kPhysical = {{
+    {-1e9, 1e9, false},  // Kc
+    {0.0, 1e11, false},  // Kphi
+    {0.0, 2.0, true},    // n: 0 < n <= 2
+    {0.0, 1e7, false},   // c
+    {0.0, 60.0, false},  // phi [deg]
+    {0.0, 10.0, true},   // k > 0
+}};
+
+std::string range_text(int i) {
+  const auto& l = kPhysical[i];
+  return fmt::format("{}{}, {}]", l.lower_open ? "(" : "[", l.lower, l.upper);
+}
+
+bool physically_allowed(int i, double x) {
+  const auto& l = kPhysical[i];
+  return (l.lower_open ? x > l.lower : x >= l.lower) && x <= l.upper;
+}
+
+double get_number(const nlohmann::json& j, const std::string& path, const std::string& key, const char* field) {
+  if (!j.contains(field)) throw InputError(fmt::format("{}: key '{}': missing field '{}'", path, key, field));
+  if (!j[field].is_number()) throw InputError(fmt::format("{}: key '{}.{}': {} is not a number", path, key, field, j[field].dump()));
+  return j[field].get<double>();
+}
+
+}  // namespace
+
+double Prior::log_density(double x) const {
+  if (kind == Kind::kFixed) return x == value ? 0.0 : -kInf;
+  if (!contains(x)) return -kInf;
+  switch (kind) {
+    case Kind::kNormal: return -0.5 * std::pow((x - mean) / sd, 2);
+    case Kind::kLogNormal: return x > 0 ? -0.5 * std::pow((std::log(x) - mean) / sd, 2) - std::log(x) : -kInf;
+    default: return 0.0;
+  }
+}
+
+std::string Prior::describe() const {
+  switch (kind) {
+    case Kind::kFixed: return fmt::format("fixed at {}", value);
+    case Kind::kNormal: return fmt::format("normal(mean {}, sd {}) on [{}, {}]", mean, sd, lower, upper);
+    case Kind::kLogNormal: return fmt::format("lognormal(log-mean {}, log-sd {}) on [{}, {}]", mean, sd, lower, upper);
+    default: return fmt::format("uniform on [{}, {}]", lower, upper);
+  }
+}
+
+Priors default_priors() {
+  Priors p;
+  const std::array<std::pair<double, double>, kNumParams> bounds = {{
+      {-1e7, 1e7},   // Kc [Pa/m^(n-1)]
+      {0.0, 1e9},    // Kphi [Pa/m^n]
+      {1e-3, 2.0},   // n
+      {0.0, 2e5},    // c [Pa]
+      {0.0, 60.0},   // phi [deg]
+      {1e-5, 1.0},   // k [m]
+  }};
+  for (int i = 0; i < kNumParams; ++i) {
+    p[i].lower = bounds[i].first;
+    p[i].upper = bounds[i].second;
+  }
+  return p;
+}
+
+Priors load_priors(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(fmt::format("{}: cannot open the priors file", path));
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError(fmt::format("{}: not valid JSON: {}", path, e.what()));
+  }
+  if (!j.is_object()) throw InputError(fmt::format("{}: expected a JSON object keyed by parameter name", path));
+  Priors p = default_priors();
+  for (const auto& [key, spec] : j.items()) {
+    const int i = param_index(key);
+    if (i < 0)
+      throw InputError(fmt::format("{}: unknown key '{}'; expected one of Kc, Kphi, n, c, phi, k (or their Chrono names)", path, key));
+    if (!spec.is_object() || !spec.contains("type") || !spec["type"].is_string())
+      throw InputError(fmt::format("{}: key '{}': expected an object with a string field 'type'", path, key));
+    Prior& pr = p[i];
+    pr.user_given = true;
+    const std::string type = spec["type"];
+    if (spec.contains("lower")) pr.lower = get_number(spec, path, key, "lower");
+    if (spec.contains("upper")) pr.upper = get_number(spec, path, key, "upper");
+    if (type == "uniform") {
+      pr.kind = Prior::Kind::kUniform;
+    } else if (type == "normal" || type == "lognormal") {
+      pr.kind = type == "normal" ? Prior::Kind::kNormal : Prior::Kind::kLogNormal;
+      pr.mean = get_number(spec, path, key, "mean");
+      pr.sd = get_number(spec, path, key, "sd");
+      if (!(pr.sd > 0)) throw InputError(fmt::format("{}: key '{}.sd': {} must be > 0", path, key, pr.sd));
+    } else if (type == "fixed") {
+      pr.kind = Prior::Kind::kFixed;
+      pr.value = get_number(spec, path, key, "value");
+      if (!physically_allowed(i, pr.value))
+        throw InputError(fmt::format("{}: key '{}.value': {} is outside the physical range {}", path, key, pr.value, range_text(i)));
+      pr.lower = pr.upper = pr.value;
+      continue;
+    } else {
+      throw InputError(fmt::format("{}: key '{}.type': '{}' is not a prior type; expected uniform, normal, lognormal or fixed", path, key, type));
+    }
+    if (!(pr.lower < pr.upper))
+      throw InputError(fmt::format("{}: key '{}': lower {} must be below upper {}", path, key, pr.lower, pr.upper));
+    if (!physically_allowed(i, pr.lower) && !(kPhysical[i].lower_open && pr.lower == kPhysical[i].lower))
+      throw InputError(fmt::format("{}: key '{}.lower': {} is outside the physical range {}", path, key, pr.lower, range_text(i)));
+    if (!physically_allowed(i, pr.upper))
+      throw InputError(fmt::format("{}: key '{}.upper': {} is outside the physical range {}", path, key, pr.upper, range_text(i)));
+  }
+  return p;
+}
+
+}  // namespace terracal::bayes

@@ -1,0 +1,31 @@
+#pragma once
+// Synthetic bevameter curves from known SCM parameters: the recovery tests, the demo data set and
+// the benchmarks all draw their data from here, through the same forward models the fit uses.
+#include <string>
+#include <vector>
+
+#include "bayes/observations.hpp"
+#include "bayes/scm_parameters.hpp"
+#include "core/rng.hpp"
+
+namespace terracal::bayes {
+
+struct SyntheticDesign {
+  std::vector<double> plate_radii{0.1, 0.2};   // m
+  double max_sinkage = 0.1;                    // m
+  int plate_points = 20;                       // per plate, evenly spaced in (0, max_sinkage]
+  double annulus_inner = 0.15, annulus_outer = 0.20;  // m
+  std::vector<double> shear_pressures{2e3, 8e3, 14e3, 20e3};  // normal pressure W/A [Pa]
+  double max_angle = 0.8;                      // rad
+  int shear_points = 30;                       // per load, evenly spaced in (0, max_angle]
+  double relative_noise = 0.02;                // sd of multiplicative Gaussian noise: y = f (1 + sd eps)
+};
+
+PlateData synthesize_plate(const ParamVector& truth, const SyntheticDesign& design, Rng& rng);
+ShearData synthesize_shear(const ParamVector& truth, const SyntheticDesign& design, Rng& rng);
+
+// CSV in the formats of DESIGN.md section 3, written atomically.
+void write_plate_csv(const std::string& path, const PlateData& data);
+void write_shear_csv(const std::string& path, const ShearData& data);
+
+}  // namespace terracal::bayes
