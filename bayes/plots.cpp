@@ -27,6 +27,7 @@ constexpr const char* kColours[] = {"#0072B2", "#D55E00", "#009E73", "#CC79A7", 
 constexpr std::size_t kNumColours = sizeof(kColours) / sizeof(kColours[0]);
 
 constexpr std::size_t kMaxScatterPoints = 2000;  // more only hides structure and slows gnuplot
+constexpr int kPairsSize = 1000;                 // pixels; square, so that every panel is square
 
 // A private folder for gnuplot's data files and script, removed with everything in it on exit.
 class TempFolder {
@@ -164,25 +165,44 @@ Range padded_range(const std::vector<std::vector<double>>& draws, std::size_t p,
   return {lo - pad, hi + pad};
 }
 
-// About four ticks at round values (1, 2 or 5 times a power of ten): narrow panels cannot hold
-// the dense ticks gnuplot would choose on its own.
-std::string tics(const char* axis, const Range& r) {
-  const double raw = (r.hi - r.lo) / 4.0;
-  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
-  const double f = raw / mag;
-  const double step = (f < 1.5 ? 1.0 : f < 3.0 ? 2.0 : f < 7.0 ? 5.0 : 10.0) * mag;
-  const double start = std::ceil(r.lo / step) * step;
-  return fmt::format("set {}tics {}, {}, {}\n", axis, num(start), num(step), num(r.hi));
+// Ticks at round values (1, 2, 2.5 or 5 times a power of ten), as many as fit without the labels
+// touching: in narrow panels gnuplot's own choice overlaps them. `panel_px` is the panel's length
+// along the axis, `font_pt` the tick font. Labels of the x axis stand side by side, so their
+// width counts; those of the y axis are stacked, so only their height does.
+std::string tics(char axis, const Range& r, double panel_px, double font_pt) {
+  const double span = r.hi - r.lo;
+  const double char_px = 0.65 * font_pt;  // digit width of the Sans font at pngcairo's scale
+  const int first = static_cast<int>(std::floor(std::log10(span / 10.0)));
+  // (options repeated: `unset ytics` on the diagonal and a new tic series reset them)
+  const auto command = [&](double start, double step) {
+    return fmt::format("set {}tics nomirror out font \",{}\" {}, {}, {}\n", axis, font_pt, num(start), num(step),
+                       num(r.hi));
+  };
+  for (int e = first; e <= first + 3; ++e) {
+    for (const double m : {1.0, 2.0, 2.5, 5.0}) {
+      const double step = m * std::pow(10.0, e);
+      const double start = std::ceil(r.lo / step) * step;
+      const int n = static_cast<int>(std::floor((r.hi - start) / step + 1e-9)) + 1;
+      if (n > 5) continue;
+      std::size_t chars = 0;
+      for (int i = 0; i < n; ++i) chars = std::max(chars, fmt::format("{:g}", start + i * step).size());
+      const double needed_px = axis == 'x' ? (double(chars) + 2.0) * char_px : 2.5 * font_pt;
+      if (step / span * panel_px >= needed_px) return command(start, step);
+    }
+  }
+  return command(r.lo, span);  // not reached for spans of ordinary numbers
 }
 
-// Histogram of column p over its range: rows "centre count width" for `with boxes`.
-std::string histogram_data(const std::vector<std::vector<double>>& draws, std::size_t p) {
+// Histogram of column p over its range: rows "centre count width" for `with boxes`. About
+// sqrt(draws) bins, between 10 and 40, and no more than bars of 6 pixels allow in narrow panels.
+std::string histogram_data(const std::vector<std::vector<double>>& draws, std::size_t p, double panel_px) {
   std::vector<double> v;
   for (const auto& d : draws)
     if (std::isfinite(d[p])) v.push_back(d[p]);
   const auto [mn, mx] = std::minmax_element(v.begin(), v.end());
   const double lo = *mn, hi = *mx;
-  const std::size_t bins = hi > lo ? std::clamp<std::size_t>(std::lround(std::sqrt(double(v.size()))), 10, 40) : 1;
+  const std::size_t most = std::clamp<std::size_t>(static_cast<std::size_t>(panel_px / 6.0), 10, 40);
+  const std::size_t bins = hi > lo ? std::clamp<std::size_t>(std::lround(std::sqrt(double(v.size()))), 10, most) : 1;
   const double width = hi > lo ? (hi - lo) / double(bins) : (lo != 0 ? 0.02 * std::abs(lo) : 0.1);
   std::vector<std::size_t> count(bins, 0);
   for (const double x : v) {
@@ -211,13 +231,20 @@ void plot_fit(const std::string& png_path, const std::string& title, const std::
     any_band = any_band || !series[i].lo.empty();
   }
 
+  const std::size_t legend_entries = series.size() + (any_band ? 3 : 2);
   std::ostringstream gp;
   gp << "set title " << quoted(title) << " font \",17\"\n"
      << "set xlabel " << quoted(xlabel) << "\n"
      << "set ylabel " << quoted(ylabel) << "\n"
-     << "set grid lc rgb \"#dddddd\" lw 1\n"
+     << "set grid lt 1 lc rgb \"#e3e3e3\" lw 1\n"
      << "set border lc rgb \"#444444\"\n"
-     << "set key outside right top box lc rgb \"#bbbbbb\" spacing 1.3 width 1\n"
+     // The legend goes below the plot, in rows of three: the curves keep the full width, and no
+     // place inside the axes is free for every data set. It is placed by hand with a bottom margin
+     // sized for its rows, because gnuplot's own `key below` box overlaps the x label.
+     << "set key at screen 0.5, screen 0.015 center bottom horizontal maxcols 3 samplen 3 box lc rgb \"#bbbbbb\"\n"
+     << fmt::format("set bmargin {}\n", num(4.3 + 1.35 * double((legend_entries + 2) / 3)))
+     // x range exactly the data plus 2 %, so no point sits on the frame
+     << "set autoscale xfix\n"
      << "set offsets graph 0.02, graph 0.02, graph 0.05, graph 0.02\n";
   // Draw order: all bands, then all lines, then all points, so no band hides another series'
   // data. The legend names each series once (by its line); the grey entries explain the styles.
@@ -271,12 +298,13 @@ void plot_pairs(const std::string& png_path, const std::vector<std::string>& nam
     }
     write_data_file(work.path() / "draws.dat", scatter);
   }
-  for (std::size_t p = 0; p < P; ++p) write_data_file(work.path() / fmt::format("hist{}.dat", p), histogram_data(draws, p));
-
   // Panels placed by explicit screen margins so that columns share x ranges and rows share y
   // ranges exactly; axis names and tick labels only on the outer edges (bottom row, left column).
   const double left = P > 1 ? 0.11 : 0.08, right = 0.97, bottom = 0.09, top = 0.92, gap = 0.006;
   const double w = (right - left) / double(P), h = (top - bottom) / double(P);
+  for (std::size_t p = 0; p < P; ++p)
+    write_data_file(work.path() / fmt::format("hist{}.dat", p), histogram_data(draws, p, w * kPairsSize));
+
   const int tick_font = P > 4 ? 10 : 12;
   std::ostringstream gp;
   gp << "set multiplot title " << quoted(fmt::format("Pairwise posterior marginals ({} draws)", draws.size()))
@@ -295,7 +323,7 @@ void plot_pairs(const std::string& png_path, const std::vector<std::string>& nam
       const double x0 = left + double(j) * w, y1 = top - double(i) * h;
       gp << fmt::format("set lmargin at screen {}\nset rmargin at screen {}\n", num(x0 + gap), num(x0 + w - gap))
          << fmt::format("set bmargin at screen {}\nset tmargin at screen {}\n", num(y1 - h + gap), num(y1 - gap))
-         << fmt::format("set xrange [{}:{}]\n", num(range[j].lo), num(range[j].hi)) << tics("x", range[j])
+         << fmt::format("set xrange [{}:{}]\n", num(range[j].lo), num(range[j].hi)) << tics('x', range[j], w * kPairsSize, tick_font)
          << (i + 1 == P ? "set format x \"%g\"\nset xlabel " + quoted(names[j]) + "\n"
                         : std::string("set format x \"\"\nunset xlabel\n"));
       if (i == j) {
@@ -303,9 +331,8 @@ void plot_pairs(const std::string& png_path, const std::vector<std::string>& nam
            << fmt::format("plot 'hist{}.dat' using 1:2:3 with boxes fs solid 0.55 border lc rgb \"#ffffff\" "
                           "lc rgb \"{}\"\n",
                           j, kColours[0]);
-        gp << "set ytics\n";
       } else {
-        gp << fmt::format("set yrange [{}:{}]\n", num(range[i].lo), num(range[i].hi)) << tics("y", range[i])
+        gp << fmt::format("set yrange [{}:{}]\n", num(range[i].lo), num(range[i].hi)) << tics('y', range[i], h * kPairsSize, tick_font)
            << (j == 0 ? "set format y \"%g\"\nset ylabel " + quoted(names[i]) + "\n"
                       : std::string("set format y \"\"\nunset ylabel\n"))
            << fmt::format("plot 'draws.dat' using {}:{} with points pt 7 ps 0.35 lc rgb \"#99{}\"\n", j + 1, i + 1,
@@ -315,7 +342,7 @@ void plot_pairs(const std::string& png_path, const std::vector<std::string>& nam
     }
   }
   gp << "unset multiplot\n";
-  render(png_path, work, 1000, 1000, 12, gp.str());
+  render(png_path, work, kPairsSize, kPairsSize, 12, gp.str());
 }
 
 }  // namespace terracal::bayes

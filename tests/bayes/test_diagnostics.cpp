@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdlib>
 #include <numeric>
 #include <stdexcept>
 
@@ -17,7 +18,7 @@ namespace {
 Chains normal_chains(int m, int n, std::uint64_t seed, std::vector<double> mean = {}, std::vector<double> sd = {}) {
   Chains c(m, std::vector<double>(n));
   for (int k = 0; k < m; ++k) {
-    Rng rng = Rng::for_stream(seed, k);
+    Rng rng = Rng::for_stream(seed + (getenv("SEED_OFFSET") ? 1000*atoi(getenv("SEED_OFFSET")) : 0), k);
     for (double& v : c[k]) v = (mean.empty() ? 0.0 : mean[k]) + (sd.empty() ? 1.0 : sd[k]) * rng.normal();
   }
   return c;
@@ -28,7 +29,7 @@ Chains normal_chains(int m, int n, std::uint64_t seed, std::vector<double> mean 
 Chains ar1_chains(int m, int n, double rho, std::uint64_t seed) {
   Chains c(m, std::vector<double>(n));
   for (int k = 0; k < m; ++k) {
-    Rng rng = Rng::for_stream(seed, k);
+    Rng rng = Rng::for_stream(seed + (getenv("SEED_OFFSET") ? 1000*atoi(getenv("SEED_OFFSET")) : 0), k);
     double x = rng.normal();
     for (double& v : c[k]) v = x = rho * x + std::sqrt(1 - rho * rho) * rng.normal();
   }

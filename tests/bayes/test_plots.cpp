@@ -21,8 +21,9 @@ namespace {
 
 // The folder for this test's images. TERRACAL_KEEP_PLOTS=1 keeps them for a look by eye.
 struct PlotDir {
-  fs::path path = fs::temp_directory_path() / ("terracal_test_plots_" + std::to_string(::getpid()));
-  PlotDir() {
+  fs::path path;
+  explicit PlotDir(const std::string& tag)
+      : path(fs::temp_directory_path() / ("terracal_test_plots_" + tag + "_" + std::to_string(::getpid()))) {
     fs::remove_all(path);
     fs::create_directories(path);
   }
@@ -78,7 +79,7 @@ TEST_CASE("plots: plot_fit writes a PNG with points, lines and bands", "[plots]"
     WARN("gnuplot not found on PATH: plot test skipped");
     return;
   }
-  PlotDir dir;
+  PlotDir dir("fit");
   const fs::path png = dir.path / "fit_pressure_sinkage.png";
   terracal::bayes::plot_fit(png.string(), "Pressure-sinkage fit (posterior mean, 95 % band)", "sinkage z [m]",
                             "pressure p [kPa]", two_plates());
@@ -93,7 +94,7 @@ TEST_CASE("plots: plot_pairs writes a PNG of pairwise marginals", "[plots]") {
     WARN("gnuplot not found on PATH: plot test skipped");
     return;
   }
-  PlotDir dir;
+  PlotDir dir("pairs");
   const fs::path png = dir.path / "pairs.png";
   terracal::Rng rng(11);
   std::vector<std::vector<double>> draws;
@@ -109,7 +110,7 @@ TEST_CASE("plots: plot_pairs writes a PNG of pairwise marginals", "[plots]") {
 }
 
 TEST_CASE("plots: bad input and a missing folder throw RunError and leave no file", "[plots]") {
-  PlotDir dir;
+  PlotDir dir("bad_input");
   std::vector<FitSeries> series = two_plates();
   series[0].fit.pop_back();
   CHECK_THROWS_AS(terracal::bayes::plot_fit((dir.path / "a.png").string(), "t", "x", "y", series),
@@ -126,7 +127,7 @@ TEST_CASE("plots: a gnuplot error is reported with gnuplot's message", "[plots]"
     WARN("gnuplot not found on PATH: plot test skipped");
     return;
   }
-  PlotDir dir;
+  PlotDir dir("gnuplot_error");
   try {
     terracal::run_gnuplot("plot 'no_such_file.dat' using 1:2\n", dir.path.string());
     FAIL("no exception");

@@ -1,0 +1,16 @@
+#pragma once
+// The subcommands of the terracal program. Each registers its options on the CLI11 app and
+// returns the function that runs it once parsing succeeded.
+#include <functional>
+
+#include <CLI/CLI.hpp>
+
+namespace terracal::app {
+
+using Command = std::function<int()>;
+
+Command add_calibrate(CLI::App& app);
+Command add_demo(CLI::App& app);
+Command add_synthesize(CLI::App& app);
+
+}  // namespace terracal::app

@@ -1,0 +1,231 @@
+#include "bayes/calibration_outputs.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "bayes/plots.hpp"
+#include "core/atomic_file.hpp"
+
+namespace terracal::bayes {
+namespace {
+
+using ordered_json = nlohmann::ordered_json;
+
+// Index of parameter i among the result's free variables, or -1 if it is fixed.
+int free_slot(const CalibrationProblem& pb, int i) {
+  const auto& f = pb.free_indices();
+  const auto it = std::find(f.begin(), f.end(), i);
+  return it == f.end() ? -1 : static_cast<int>(it - f.begin());
+}
+
+double rms(const std::vector<double>& w) {
+  double s = 0;
+  for (double v : w) s += v * v;
+  return w.empty() ? 0 : std::sqrt(s / double(w.size()));
+}
+
+// The data-unit noise sd of test type t: s_t times the rms weight (= s_t for absolute noise).
+double noise_sd_in_units(const CalibrationProblem& pb, const CalibrationResult& res, int t) {
+  return std::sqrt(res.point.noise_var[t]) * rms(pb.set(t).w);
+}
+
+std::vector<std::size_t> thinned_draws(long draws, int keep) {
+  std::vector<std::size_t> idx;
+  const long n = std::min<long>(draws, keep);
+  for (long k = 0; k < n; ++k) idx.push_back(static_cast<std::size_t>((k * draws) / n));
+  return idx;
+}
+
+Variable chain_draw_variable(const std::string& name, const std::string& units, const std::vector<std::vector<double>>& per_chain) {
+  Variable v{name, {"chain", "draw"}, {per_chain.size(), per_chain.empty() ? 0 : per_chain[0].size()}, {}, units};
+  for (const auto& c : per_chain) v.data.insert(v.data.end(), c.begin(), c.end());
+  return v;
+}
+
+}  // namespace
+
+void write_scm_params_json(const std::string& path, const CalibrationProblem& pb, const CalibrationResult& res,
+                           const OutputContext& ctx) {
+  ordered_json j;
+  j["Type"] = "SCM";
+  ordered_json soil;
+  for (int i = 0; i < kNumParams; ++i) soil[std::string(kChronoNames[i])] = res.point.map[i];
+  soil["Elastic stiffness"] = kDefaultElasticStiffness;
+  soil["Damping"] = kDefaultDamping;
+  j["Soil parameters"] = soil;
+  ordered_json post;
+  for (int i = 0; i < kNumParams; ++i) {
+    const int v = free_slot(pb, i);
+    if (v < 0) {
+      const double x = pb.fixed_values()[i];
+      post[std::string(kChronoNames[i])] = {{"mean", x}, {"sd", 0.0}, {"q05", x}, {"q50", x}, {"q95", x},
+                                            {"rhat", 1.0}, {"ess_bulk", 0.0}, {"fixed", true}};
+      continue;
+    }
+    const auto& s = res.summary[v];
+    post[std::string(kChronoNames[i])] = {{"mean", s.mean}, {"sd", s.sd}, {"q05", s.q05}, {"q50", s.q50}, {"q95", s.q95},
+                                          {"rhat", s.rhat}, {"ess_bulk", s.ess_bulk}};
+  }
+  j["Posterior"] = post;
+  ordered_json noise, relative;
+  for (int t = 0; t < pb.num_types(); ++t) {
+    const std::string key = pb.set(t).name == "plate" ? "plate_N" : "shear_Nm";
+    noise[key] = noise_sd_in_units(pb, res, t);
+    relative[pb.set(t).name] = std::sqrt(res.point.noise_var[t]);
+  }
+  ordered_json fit;
+  fit["point_estimate"] = "MAP";
+  fit["residual_sum_squares"] = res.point.weighted_rss;
+  fit["noise_sd"] = noise;
+  fit["noise_model"] = pb.noise_model() == NoiseModel::kRelative ? "relative" : "absolute";
+  if (pb.noise_model() == NoiseModel::kRelative) fit["noise_relative_sd"] = relative;
+  fit["draws"] = res.draws;
+  fit["chains"] = res.chains;
+  fit["seed"] = ctx.seed;
+  fit["sampler"] = ctx.sampler;
+  fit["warmup"] = ctx.warmup;
+  fit["converged"] = res.converged;
+  fit["failed_evaluations"] = res.failed_evaluations;
+  fit["elastic_stiffness_and_damping"] = "Chrono defaults: not identified by the loading curves";
+  fit["notes"] = pb.notes();
+  j["Fit"] = fit;
+  write_text_atomically(path, j.dump(2) + "\n");
+}
+
+InferenceData make_inference_data(const CalibrationProblem& pb, const CalibrationResult& res, std::uint64_t seed,
+                                  int predictive_draws) {
+  InferenceData id;
+  Group posterior{"posterior", {}};
+  for (std::size_t v = 0; v < res.names.size(); ++v) {
+    const Chains ch = res.chains_of(static_cast<int>(v));
+    const int i = v < static_cast<std::size_t>(res.num_params) ? pb.free_indices()[v] : -1;
+    posterior.variables.push_back(chain_draw_variable(res.names[v], i >= 0 ? std::string(kUnits[i]) : "1", ch));
+  }
+  id.groups.push_back(posterior);
+
+  // Running acceptance rate of each chain up to each draw.
+  std::vector<std::vector<double>> rate(res.accepted.size());
+  for (std::size_t c = 0; c < res.accepted.size(); ++c) {
+    double s = 0;
+    for (std::size_t d = 0; d < res.accepted[c].size(); ++d) rate[c].push_back((s += res.accepted[c][d]) / double(d + 1));
+  }
+  id.groups.push_back({"sample_stats", {chain_draw_variable("lp", "1", res.lp), chain_draw_variable("acceptance_rate", "1", rate)}});
+
+  Group observed{"observed_data", {}}, constant{"constant_data", {}}, predictive{"posterior_predictive", {}};
+  Rng rng = Rng::for_stream(seed, 7);
+  const auto keep = thinned_draws(res.draws, predictive_draws);
+  for (int t = 0; t < pb.num_types(); ++t) {
+    const ObservationSet& s = pb.set(t);
+    const std::string obs_dim = s.name + "_obs";
+    const std::string yname = s.name == "plate" ? "plate_force" : "shear_torque";
+    observed.variables.push_back({yname, {obs_dim}, {s.size()}, s.y, s.unit});
+    if (s.name == "plate") {
+      constant.variables.push_back({"plate_radius", {obs_dim}, {s.size()}, s.r, "m"});
+      constant.variables.push_back({"plate_sinkage", {obs_dim}, {s.size()}, s.x_axis, "m"});
+    } else {
+      constant.variables.push_back({"shear_normal_load", {obs_dim}, {s.size()}, s.load, "N"});
+      constant.variables.push_back({"shear_angle", {obs_dim}, {s.size()}, s.x_axis, "rad"});
+    }
+    // y_rep = f(theta) + s_t w_i eps for thinned posterior draws.
+    Variable rep{yname, {"chain", "draw", obs_dim}, {static_cast<std::size_t>(res.chains), keep.size(), s.size()}, {}, s.unit};
+    const int sigma_slot = res.num_params + t;
+    const std::size_t nv = res.names.size();
+    for (int c = 0; c < res.chains; ++c)
+      for (std::size_t d : keep) {
+        Eigen::VectorXd x(res.num_params);
+        for (int v = 0; v < res.num_params; ++v) x[v] = res.values[c][d * nv + v];
+        const double sd = std::sqrt(res.values[c][d * nv + sigma_slot]);
+        const ParamVector p = pb.expand(x);
+        for (std::size_t i = 0; i < s.size(); ++i) rep.data.push_back(pb.predict(t, i, p.data()) + sd * s.w[i] * rng.normal());
+      }
+    predictive.variables.push_back(rep);
+  }
+  id.groups.push_back(observed);
+  id.groups.push_back(constant);
+  id.groups.push_back(predictive);
+  return id;
+}
+
+std::vector<std::string> write_plots(const std::string& dir, const CalibrationProblem& pb, const CalibrationResult& res,
+                                     const InferenceData& idata) {
+  std::vector<std::string> written;
+  const Group& pred = *std::find_if(idata.groups.begin(), idata.groups.end(), [](const Group& g) { return g.name == "posterior_predictive"; });
+  for (int t = 0; t < pb.num_types(); ++t) {
+    const ObservationSet& s = pb.set(t);
+    const Variable& rep = pred.variables[t];
+    const std::size_t samples = rep.shape[0] * rep.shape[1];
+    const std::vector<double> fit = pb.predict_all(t, res.point.map);
+    // One series per curve; developed shear rows (no angle) get their own plot against the load.
+    std::vector<FitSeries> curves(s.curve_labels.size()), developed(1);
+    developed[0].label = "fully developed torque";
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      std::vector<double> col(samples);
+      for (std::size_t k = 0; k < samples; ++k) col[k] = rep.data[k * s.size() + i];
+      const bool is_developed = s.name == "shear" && s.angle[i] < 0;
+      FitSeries& f = is_developed ? developed[0] : curves[s.curve[i]];
+      f.x.push_back(is_developed ? s.load[i] : s.x_axis[i]);
+      f.observed.push_back(s.y[i]);
+      f.fit.push_back(fit[i]);
+      f.lo.push_back(quantile(col, 0.025));
+      f.hi.push_back(quantile(col, 0.975));
+    }
+    for (std::size_t c = 0; c < curves.size(); ++c) curves[c].label = s.curve_labels[c];
+    std::erase_if(curves, [](const FitSeries& f) { return f.x.empty(); });
+    const std::string png = dir + "/" + s.name + "_fit.png";
+    if (s.name == "plate") {
+      plot_fit(png, "Plate sinkage: data, MAP fit and 95 % posterior-predictive band", "sinkage z [m]", "force F [N]", curves);
+    } else if (!curves.empty()) {
+      plot_fit(png, "Annulus shear: data, MAP fit and 95 % posterior-predictive band", "shear angle [rad]", "torque [N m]", curves);
+    }
+    if (!curves.empty()) written.push_back(png);
+    if (!developed[0].x.empty()) {
+      const std::string dev = dir + "/shear_developed.png";
+      plot_fit(dev, "Fully developed annulus torque", "normal load W [N]", "torque [N m]", developed);
+      written.push_back(dev);
+    }
+  }
+  // Pairwise marginals: one row per draw (all chains), one column per free parameter.
+  std::vector<std::string> names;
+  for (int v = 0; v < res.num_params; ++v) names.push_back(fmt::format("{} [{}]", res.names[v], kUnits[pb.free_indices()[v]]));
+  std::vector<std::vector<double>> draws;
+  const std::size_t nv = res.names.size();
+  for (const auto& chain : res.values)
+    for (long d = 0; d < res.draws; ++d) draws.emplace_back(chain.begin() + d * nv, chain.begin() + d * nv + res.num_params);
+  plot_pairs(dir + "/pairs.png", names, draws);
+  written.push_back(dir + "/pairs.png");
+  return written;
+}
+
+std::string summary_report(const CalibrationProblem& pb, const CalibrationResult& res, const OutputContext& ctx) {
+  std::string r = "terracal calibrate: summary\n";
+  for (int t = 0; t < pb.num_types(); ++t)
+    r += fmt::format("  data        {:<6} {} points in {} curves, noise model {}\n", pb.set(t).name, pb.set(t).size(),
+                     pb.set(t).curve_labels.size(), pb.noise_model() == NoiseModel::kRelative ? "relative" : "absolute");
+  r += fmt::format("  stage 1     global search (NLopt CRS2 + BOBYQA): {} evaluations\n", res.point.global_evaluations);
+  r += fmt::format("  stage 2     least squares (Ceres): {}\n", res.point.ceres_report);
+  r += fmt::format("              covariance (DENSE_SVD): {}\n", res.point.covariance_ok ? "ok" : "singular, diagonal fallback used");
+  r += fmt::format("  stage 3     MCMC {}: {} chains x {} draws after {} warm-up, acceptance {:.3f}, failed evaluations {}{}\n",
+                   ctx.sampler, res.chains, res.draws, ctx.warmup, res.acceptance_rate, res.failed_evaluations,
+                   res.resumed ? " (resumed from checkpoint)" : "");
+  r += fmt::format("  termination {}\n\n", res.termination);
+  r += fmt::format("  {:<10} {:>13} {:>13} {:>12} {:>13} {:>13} {:>13} {:>7} {:>8}\n", "parameter", "MAP", "mean", "sd", "5 %", "50 %",
+                   "95 %", "R-hat", "ESS");
+  for (std::size_t v = 0; v < res.names.size(); ++v) {
+    const auto& s = res.summary[v];
+    const bool param = v < static_cast<std::size_t>(res.num_params);
+    const std::string map = param ? fmt::format("{:13.6g}", res.point.map[pb.free_indices()[v]])
+                                  : fmt::format("{:13.6g}", res.point.noise_var[v - res.num_params]);
+    r += fmt::format("  {:<10} {} {:13.6g} {:12.4g} {:13.6g} {:13.6g} {:13.6g} {:7.4f} {:8.0f}\n", res.names[v], map, s.mean, s.sd,
+                     s.q05, s.q50, s.q95, s.rhat, s.ess_bulk);
+  }
+  for (int i = 0; i < kNumParams; ++i)
+    if (free_slot(pb, i) < 0) r += fmt::format("  {:<10} fixed at {:g}\n", kShortNames[i], pb.fixed_values()[i]);
+  for (const auto& n : pb.notes()) r += "  note: " + n + "\n";
+  return r;
+}
+
+}  // namespace terracal::bayes

@@ -1,0 +1,259 @@
+#include "bayes/calibrator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <memory>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "bayes/dram.hpp"
+#include "bayes/ensemble.hpp"
+#include "core/atomic_file.hpp"
+#include "core/errors.hpp"
+
+namespace terracal::bayes {
+namespace {
+
+// Draws recorded per chain: values row-major (draw, variable), log density, moved or not.
+struct ChainRecord {
+  std::vector<double> values, lp, accepted;
+};
+
+// The two samplers behind one face: advance every chain by n iterations, recording if asked.
+class MultiChain {
+ public:
+  virtual ~MultiChain() = default;
+  virtual int chains() const = 0;
+  virtual void advance(int iterations, bool adapt, std::vector<ChainRecord>* record) = 0;
+  virtual long failed_evaluations() const = 0;
+  virtual nlohmann::json save() const = 0;
+  virtual void load(const nlohmann::json& j) = 0;
+};
+
+void record_state(ChainRecord& r, const Eigen::VectorXd& x, const Eigen::VectorXd& nuisance, double lp, bool moved) {
+  r.values.insert(r.values.end(), x.data(), x.data() + x.size());
+  r.values.insert(r.values.end(), nuisance.data(), nuisance.data() + nuisance.size());
+  r.lp.push_back(lp);
+  r.accepted.push_back(moved ? 1.0 : 0.0);
+}
+
+class DramChains : public MultiChain {
+ public:
+  DramChains(const Target& target, const std::vector<Eigen::VectorXd>& starts, const Eigen::VectorXd& noise0,
+             const Eigen::MatrixXd& covariance, std::uint64_t seed) {
+    for (std::size_t c = 0; c < starts.size(); ++c)
+      chains_.emplace_back(target, DramOptions{}, starts[c], noise0, covariance, Rng::for_stream(seed, 100 + c));
+  }
+  int chains() const override { return static_cast<int>(chains_.size()); }
+  void advance(int iterations, bool adapt, std::vector<ChainRecord>* record) override {
+    // Chains are independent: one per thread; each owns its RNG, so the result is thread-count free.
+#pragma omp parallel for schedule(static, 1)
+    for (int c = 0; c < chains(); ++c) {
+      DramChain& ch = chains_[c];
+      for (int i = 0; i < iterations; ++i) {
+        const long before = ch.stats().accepted;
+        ch.step(adapt);
+        if (record) record_state((*record)[c], ch.x(), ch.nuisance(), ch.log_density(), ch.stats().accepted > before);
+      }
+    }
+  }
+  long failed_evaluations() const override {
+    long n = 0;
+    for (const auto& ch : chains_) n += ch.stats().failed_evaluations;
+    return n;
+  }
+  nlohmann::json save() const override {
+    nlohmann::json j = nlohmann::json::array();
+    for (const auto& ch : chains_) j.push_back(ch.save());
+    return j;
+  }
+  void load(const nlohmann::json& j) override {
+    for (std::size_t c = 0; c < chains_.size(); ++c) chains_[c].load(j.at(c));
+  }
+
+ private:
+  std::vector<DramChain> chains_;
+};
+
+class Ensemble : public MultiChain {
+ public:
+  Ensemble(const Target& target, const std::vector<Eigen::VectorXd>& starts, const Eigen::VectorXd& noise0, std::uint64_t seed)
+      : sampler_(target, EnsembleOptions{}, starts, std::vector<Eigen::VectorXd>(starts.size(), noise0), Rng::for_stream(seed, 99)) {}
+  int chains() const override { return static_cast<int>(sampler_.size()); }
+  void advance(int iterations, bool, std::vector<ChainRecord>* record) override {
+    for (int i = 0; i < iterations; ++i) {
+      std::vector<long> before(sampler_.size());
+      for (std::size_t k = 0; k < sampler_.size(); ++k) before[k] = sampler_.stats()[k].accepted;
+      sampler_.step();
+      if (record)
+        for (std::size_t k = 0; k < sampler_.size(); ++k)
+          record_state((*record)[k], sampler_.walkers()[k], sampler_.nuisances()[k], sampler_.log_densities()[k],
+                       sampler_.stats()[k].accepted > before[k]);
+    }
+  }
+  long failed_evaluations() const override {
+    long n = 0;
+    for (const auto& s : sampler_.stats()) n += s.failed_evaluations;
+    return n;
+  }
+  nlohmann::json save() const override { return sampler_.save(); }
+  void load(const nlohmann::json& j) override { sampler_.load(j); }
+
+ private:
+  EnsembleSampler sampler_;
+};
+
+// Starting points dispersed around the MAP: MAP + 2 L z (L the Cholesky factor of the Laplace
+// covariance), redrawn until inside the support, so that R-hat can detect chains that disagree.
+std::vector<Eigen::VectorXd> dispersed_starts(const CalibrationProblem& pb, const PointEstimate& est, int count, std::uint64_t seed) {
+  Rng rng = Rng::for_stream(seed, 1);
+  const Eigen::MatrixXd L = est.covariance.llt().matrixL();
+  std::vector<Eigen::VectorXd> starts;
+  for (int c = 0; c < count; ++c) {
+    Eigen::VectorXd x = est.x;
+    for (int attempt = 0; attempt < 200; ++attempt) {
+      Eigen::VectorXd z(pb.dim());
+      for (int j = 0; j < pb.dim(); ++j) z[j] = rng.normal();
+      const Eigen::VectorXd y = est.x + 2.0 * L * z;
+      if (std::isfinite(pb.log_posterior(pb.expand(y), est.noise_var))) { x = y; break; }
+    }
+    starts.push_back(x);
+  }
+  return starts;
+}
+
+// ---- checkpoint -------------------------------------------------------------------------------
+
+struct Checkpoint {
+  bool warmup_done = false;
+  std::vector<ChainRecord> records;
+  nlohmann::json sampler;
+};
+
+void write_checkpoint(const std::string& path, const std::string& fingerprint, const Checkpoint& cp) {
+  nlohmann::json j;
+  j["format"] = "terracal-mcmc-checkpoint-1";
+  j["fingerprint"] = fingerprint;
+  j["warmup_done"] = cp.warmup_done;
+  j["sampler"] = cp.sampler;
+  j["records"] = nlohmann::json::array();
+  for (const auto& r : cp.records) j["records"].push_back({{"values", r.values}, {"lp", r.lp}, {"accepted", r.accepted}});
+  const std::vector<std::uint8_t> bytes = nlohmann::json::to_cbor(j);
+  write_text_atomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+}
+
+// The checkpoint at `path` if it exists and was written for the same data and options.
+bool read_checkpoint(const std::string& path, const std::string& fingerprint, Checkpoint& cp) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const nlohmann::json j = nlohmann::json::from_cbor(bytes, true, false);
+  if (j.is_discarded() || j.value("format", "") != "terracal-mcmc-checkpoint-1" || j.value("fingerprint", "") != fingerprint)
+    return false;
+  cp.warmup_done = j.at("warmup_done").get<bool>();
+  cp.sampler = j.at("sampler");
+  cp.records.clear();
+  for (const auto& r : j.at("records"))
+    cp.records.push_back({r.at("values").get<std::vector<double>>(), r.at("lp").get<std::vector<double>>(),
+                          r.at("accepted").get<std::vector<double>>()});
+  return true;
+}
+
+}  // namespace
+
+Chains CalibrationResult::chains_of(int v) const {
+  const std::size_t nv = names.size();
+  Chains out(values.size());
+  for (std::size_t c = 0; c < values.size(); ++c) {
+    out[c].resize(draws);
+    for (long d = 0; d < draws; ++d) out[c][d] = values[c][d * nv + v];
+  }
+  return out;
+}
+
+CalibrationResult calibrate(const CalibrationProblem& pb, const CalibrationOptions& opt) {
+  if (pb.dim() == 0) throw InputError("calibrate: every parameter is fixed; nothing to infer");
+  if (opt.chains < 2) throw InputError(fmt::format("--chains {}: at least 2 chains are needed for R-hat", opt.chains));
+  CalibrationResult res;
+  res.point = estimate_point(pb, PointEstimateOptions{.seed = opt.seed, .global_evaluations = opt.global_evaluations});
+  for (int i : pb.free_indices()) res.names.emplace_back(kShortNames[i]);
+  res.num_params = pb.dim();
+  for (int t = 0; t < pb.num_types(); ++t) res.names.push_back("sigma2_" + pb.set(t).name);
+
+  const Target target = pb.target();
+  int count = opt.chains;
+  if (opt.sampler == SamplerKind::kEnsemble) count = std::max(opt.chains, 2 * pb.dim() + 2) + std::max(opt.chains, 2 * pb.dim() + 2) % 2;
+  const auto starts = dispersed_starts(pb, res.point, count, opt.seed);
+  std::unique_ptr<MultiChain> sampler;
+  if (opt.sampler == SamplerKind::kDram)
+    sampler = std::make_unique<DramChains>(target, starts, res.point.noise_var, res.point.covariance, opt.seed);
+  else
+    sampler = std::make_unique<Ensemble>(target, starts, res.point.noise_var, opt.seed);
+
+  Checkpoint cp;
+  cp.records.resize(count);
+  if (!opt.checkpoint_path.empty() && read_checkpoint(opt.checkpoint_path, opt.fingerprint, cp)) {
+    sampler->load(cp.sampler);
+    res.resumed = true;
+  }
+  auto save = [&] {
+    if (opt.checkpoint_path.empty()) return;
+    cp.sampler = sampler->save();
+    write_checkpoint(opt.checkpoint_path, opt.fingerprint, cp);
+  };
+  if (!cp.warmup_done) {
+    sampler->advance(opt.warmup, true, nullptr);
+    cp.warmup_done = true;
+    save();
+    if (opt.progress) opt.progress({"warm-up", 0, 0, 0});
+  }
+
+  res.chains = count;
+  const int nv = static_cast<int>(res.names.size());
+  for (;;) {
+    res.draws = static_cast<long>(cp.records[0].lp.size());
+    if (res.draws >= 4) {
+      res.values.clear();
+      for (const auto& r : cp.records) res.values.push_back(r.values);
+      double max_rhat = 0, min_ess = 1e300;
+      for (int v = 0; v < res.num_params; ++v) {
+        const Chains ch = res.chains_of(v);
+        max_rhat = std::max(max_rhat, rhat_rank(ch));
+        min_ess = std::min(min_ess, ess_bulk(ch));
+      }
+      if (opt.progress) opt.progress({"sampling", res.draws, max_rhat, min_ess});
+      if (max_rhat < opt.max_rhat && min_ess >= opt.min_ess) {
+        res.converged = true;
+        res.termination = fmt::format("converged: max R-hat {:.4f} < {}, min bulk ESS {:.0f} >= {}", max_rhat, opt.max_rhat, min_ess, opt.min_ess);
+        break;
+      }
+      if (res.draws >= opt.max_draws) {
+        res.termination = fmt::format("NOT converged: draw cap {} per chain reached with max R-hat {:.4f} (target < {}) "
+                                      "and min bulk ESS {:.0f} (target >= {})", opt.max_draws, max_rhat, opt.max_rhat, min_ess, opt.min_ess);
+        break;
+      }
+    }
+    const int n = static_cast<int>(std::min<long>(opt.block, std::max<long>(opt.max_draws - res.draws, 1)));
+    sampler->advance(n, false, &cp.records);
+    save();
+  }
+
+  res.lp.clear();
+  res.accepted.clear();
+  double acc = 0;
+  for (const auto& r : cp.records) {
+    res.lp.push_back(r.lp);
+    res.accepted.push_back(r.accepted);
+    for (double a : r.accepted) acc += a;
+  }
+  res.acceptance_rate = acc / double(count * res.draws);
+  res.failed_evaluations = sampler->failed_evaluations();
+  for (int v = 0; v < nv; ++v) res.summary.push_back(summarize(res.chains_of(v)));
+  return res;
+}
+
+}  // namespace terracal::bayes

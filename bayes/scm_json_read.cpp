@@ -1,0 +1,34 @@
+#include "bayes/scm_json_read.hpp"
+
+#include <fstream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "core/errors.hpp"
+
+namespace terracal::bayes {
+
+ParamVector read_scm_soil_parameters(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(fmt::format("{}: cannot open the SCM parameter file", path));
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError(fmt::format("{}: not valid JSON: {}", path, e.what()));
+  }
+  if (!j.contains("Soil parameters") || !j["Soil parameters"].is_object())
+    throw InputError(fmt::format("{}: missing the object 'Soil parameters' (Chrono SCM JSON)", path));
+  const auto& s = j["Soil parameters"];
+  ParamVector p{};
+  for (int i = 0; i < kNumParams; ++i) {
+    const std::string key(kChronoNames[i]);
+    if (!s.contains(key)) throw InputError(fmt::format("{}: key 'Soil parameters.{}' is missing", path, key));
+    if (!s[key].is_number()) throw InputError(fmt::format("{}: key 'Soil parameters.{}': {} is not a number", path, key, s[key].dump()));
+    p[i] = s[key].get<double>();
+  }
+  return p;
+}
+
+}  // namespace terracal::bayes
