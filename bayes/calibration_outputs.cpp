@@ -208,9 +208,10 @@ std::string summary_report(const CalibrationProblem& pb, const CalibrationResult
   r += fmt::format("  stage 1     global search (NLopt CRS2 + BOBYQA): {} evaluations\n", res.point.global_evaluations);
   r += fmt::format("  stage 2     least squares (Ceres): {}\n", res.point.ceres_report);
   r += fmt::format("              covariance (DENSE_SVD): {}\n", res.point.covariance_ok ? "ok" : "singular, diagonal fallback used");
-  r += fmt::format("  stage 3     MCMC {}: {} chains x {} draws after {} warm-up, acceptance {:.3f}, failed evaluations {}{}\n",
-                   ctx.sampler, res.chains, res.draws, ctx.warmup, res.acceptance_rate, res.failed_evaluations,
-                   res.resumed ? " (resumed from checkpoint)" : "");
+  // (Whether the run resumed from a checkpoint is logged, not written: a resumed run's files are
+  // byte-identical to an uninterrupted one's.)
+  r += fmt::format("  stage 3     MCMC {}: {} chains x {} draws after {} warm-up, acceptance {:.3f}, failed evaluations {}\n",
+                   ctx.sampler, res.chains, res.draws, ctx.warmup, res.acceptance_rate, res.failed_evaluations);
   r += fmt::format("  termination {}\n\n", res.termination);
   r += fmt::format("  {:<10} {:>13} {:>13} {:>12} {:>13} {:>13} {:>13} {:>7} {:>8}\n", "parameter", "MAP", "mean", "sd", "5 %", "50 %",
                    "95 %", "R-hat", "ESS");

@@ -237,7 +237,10 @@ CalibrationResult calibrate(const CalibrationProblem& pb, const CalibrationOptio
         break;
       }
     }
-    const int n = static_cast<int>(std::min<long>(opt.block, std::max<long>(opt.max_draws - res.draws, 1)));
+    // Blocks grow with the chain (a quarter of the draws so far), so convergence checks and
+    // checkpoint writes cost O(N log N) overall instead of O(N^2).
+    const long block = std::max<long>(opt.block, res.draws / 4);
+    const int n = static_cast<int>(std::min<long>(block, std::max<long>(opt.max_draws - res.draws, 1)));
     sampler->advance(n, false, &cp.records);
     save();
   }

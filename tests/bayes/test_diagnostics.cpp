@@ -100,7 +100,9 @@ TEST_CASE("diagnostics: rank-normalised statistics are invariant to monotone tra
     for (double& v : chain) v = 7 - 2 * v;  // affine: same ranks of |x - median| too
   CHECK(ess_bulk(e) == ess_bulk(c));
   CHECK(ess_tail(e) == ess_tail(c));
-  CHECK(rhat_rank(a) == Approx(rhat_rank(c)).epsilon(1e-12));
+  // Not exact: the two middle draws fold to an exact tie on one side and, after rounding, to
+  // two values on the other, which changes their ranks by 1/2.
+  CHECK(rhat_rank(a) == Approx(rhat_rank(c)).epsilon(1e-5));
   CHECK(ess_bulk(a) == Approx(ess_bulk(c)).epsilon(1e-12));
 }
 

@@ -260,7 +260,7 @@ TEST_CASE("DRAM: correlated Gaussian with scales 1e3 and 1e-2", "[samplers][dram
   // Start 2 sd away, proposal 10x too small and uncorrelated: adaptation must find the shape.
   const VectorXd x0 = g.mu + vec({2e3, -2e-2});
   const MatrixXd cov0 = vec({1e2 * 1e2, 1e-3 * 1e-3}).asDiagonal();
-  const DramRun run = run_dram(t, g.expectations(), x0, VectorXd(), cov0, DramOptions{}, 5000, 20000, 1);
+  const DramRun run = run_dram(t, g.expectations(), x0, VectorXd(), cov0, DramOptions{}, 20000, 20000, 1);
   check_expectations(g.expectations(), run.values, 3000);
 
   // AM learns s_d * Sigma (Haario et al. 2001): the adapted correlation and scales are the target's.
@@ -376,7 +376,7 @@ TEST_CASE("ensemble: Haario's twisted Gaussian (banana)", "[samplers][ensemble]"
   const Banana banana;
   const Target t = banana.target();
   const EnsembleRun run =
-      run_ensemble(t, banana.expectations(), vec({5, 5}), vec({0.1, 0.1}), VectorXd(), 16, 2000, 20000, 7);
+      run_ensemble(t, banana.expectations(), vec({5, 5}), vec({0.1, 0.1}), VectorXd(), 32, 2000, 20000, 7);
   check_expectations(banana.expectations(), run.values, 100);
 }
 

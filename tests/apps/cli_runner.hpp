@@ -1,0 +1,46 @@
+#pragma once
+// Runs the terracal executable as a child process for the command-line tests.
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+namespace terracal::test {
+
+struct CliResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+inline std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// A fresh, empty scratch folder under the system temp folder.
+inline std::string scratch_dir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("terracal_test_" + name + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir.string();
+}
+
+inline CliResult run_cli(const std::string& args, const std::string& scratch) {
+  const std::string out = scratch + "/stdout.txt", err = scratch + "/stderr.txt";
+  const std::string cmd = std::string(TERRACAL_EXE) + " " + args + " > " + out + " 2> " + err + " < /dev/null";
+  const int status = std::system(cmd.c_str());
+  CliResult r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = read_file(out);
+  r.err = read_file(err);
+  return r;
+}
+
+inline void write(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+
+inline std::string demo_data(const std::string& file) { return std::string(TERRACAL_SOURCE_DIR) + "/studies/demo/" + file; }
+
+}  // namespace terracal::test

@@ -1,0 +1,150 @@
+// Issue 2, points 7, 9 and 12: the outputs of `terracal calibrate`, byte-identical for the same
+// seed, resumable after a kill, and the single-plate case handled and reported.
+#include <catch2/catch.hpp>
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "bayes/posterior_h5.hpp"
+#include "cli_runner.hpp"
+
+using namespace terracal::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* kOutputs[] = {"scm_params.json", "posterior.h5", "summary.txt", "plate_fit.png", "shear_fit.png", "pairs.png"};
+
+std::string calibrate_args(const std::string& out, const std::string& extra = "") {
+  return "calibrate --plate " + demo_data("plate.csv") + " --shear " + demo_data("shear.csv") + " --out " + out + " --seed 11 " + extra;
+}
+
+void require_identical_outputs(const std::string& a, const std::string& b) {
+  for (const char* f : kOutputs) {
+    INFO(f);
+    REQUIRE(fs::exists(a + "/" + f));
+    REQUIRE(read_file(a + "/" + f) == read_file(b + "/" + f));
+  }
+}
+
+}  // namespace
+
+TEST_CASE("calibrate writes the contract outputs; the same seed gives byte-identical files", "[cli][calibrate]") {
+  const std::string dir = scratch_dir("determinism");
+  const CliResult r1 = run_cli(calibrate_args(dir + "/a", "--min-ess 400"), dir);
+  INFO(r1.err);
+  REQUIRE(r1.exit_code == 0);
+  const CliResult r2 = run_cli(calibrate_args(dir + "/b", "--min-ess 400"), dir);
+  REQUIRE(r2.exit_code == 0);
+  require_identical_outputs(dir + "/a", dir + "/b");
+  CHECK(r1.out.find("R-hat") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir + "/a/.checkpoint.cbor"));
+
+  // scm_params.json: Chrono's block at the MAP, the posterior summary, the fit.
+  const auto j = nlohmann::json::parse(read_file(dir + "/a/scm_params.json"));
+  CHECK(j["Type"] == "SCM");
+  for (const char* key : {"Bekker Kphi", "Bekker Kc", "Bekker n exponent", "Mohr cohesive limit", "Mohr friction limit",
+                          "Janosi shear coefficient", "Elastic stiffness", "Damping"})
+    CHECK(j["Soil parameters"].contains(key));
+  // The demo data set is dry sand with 2 % noise: the MAP is near the truth (truth.json).
+  const auto truth = nlohmann::json::parse(read_file(demo_data("truth.json")))["Soil parameters"];
+  CHECK(j["Soil parameters"]["Bekker n exponent"].get<double>() == Approx(truth["Bekker n exponent"].get<double>()).epsilon(0.05));
+  CHECK(j["Soil parameters"]["Mohr friction limit"].get<double>() == Approx(truth["Mohr friction limit"].get<double>()).epsilon(0.05));
+  const auto& kphi = j["Posterior"]["Bekker Kphi"];
+  CHECK(kphi["q05"].get<double>() < kphi["q50"].get<double>());
+  CHECK(kphi["q50"].get<double>() < kphi["q95"].get<double>());
+  CHECK(kphi["rhat"].get<double>() < 1.01);
+  CHECK(kphi["ess_bulk"].get<double>() >= 400);
+  CHECK(j["Fit"]["seed"] == 11);
+  CHECK(j["Fit"]["chains"] == 4);
+
+  // posterior.h5: read back by dimension name.
+  const auto idata = terracal::bayes::read_inference_data_h5(dir + "/a/posterior.h5");
+  bool found_kphi = false;
+  for (const auto& g : idata.groups)
+    for (const auto& v : g.variables)
+      if (g.name == "posterior" && v.name == "Kphi") {
+        found_kphi = true;
+        CHECK(v.dims == std::vector<std::string>{"chain", "draw"});
+        CHECK(v.shape[0] == 4);
+        CHECK(v.shape[1] == j["Fit"]["draws"].get<std::size_t>());
+      }
+  CHECK(found_kphi);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a killed calibration resumes and ends with exactly the draws of an uninterrupted run", "[cli][calibrate][resume]") {
+  const std::string dir = scratch_dir("resume");
+  // A long run (high ESS target) so that the kill lands while sampling.
+  const std::string extra = "--min-ess 6000 --no-plots";
+  const CliResult full = run_cli(calibrate_args(dir + "/full", extra), dir);
+  REQUIRE(full.exit_code == 0);
+
+  const std::string out = dir + "/killed";
+  const std::string checkpoint = out + "/.checkpoint.cbor";
+  const pid_t child = fork();
+  REQUIRE(child >= 0);
+  if (child == 0) {
+    const std::string log = dir + "/child.log";
+    freopen(log.c_str(), "w", stderr);
+    freopen("/dev/null", "w", stdout);
+    execl(TERRACAL_EXE, TERRACAL_EXE, "calibrate", "--plate", demo_data("plate.csv").c_str(), "--shear",
+          demo_data("shear.csv").c_str(), "--out", out.c_str(), "--seed", "11", "--min-ess", "6000", "--no-plots", nullptr);
+    _exit(127);
+  }
+  // Wait for the checkpoint after warm-up and at least one block of draws (the file is replaced,
+  // so its size grows), then kill the child without warning.
+  std::uintmax_t first_size = 0;
+  bool killed = false;
+  for (int i = 0; i < 20000 && !killed; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    std::error_code ec;
+    const auto size = fs::file_size(checkpoint, ec);
+    if (ec) continue;
+    if (first_size == 0) first_size = size;
+    else if (size > first_size) {
+      kill(child, SIGKILL);
+      killed = true;
+    }
+  }
+  int status = 0;
+  waitpid(child, &status, 0);
+  REQUIRE(killed);
+  REQUIRE(WIFSIGNALED(status));
+  REQUIRE(fs::exists(checkpoint));
+  REQUIRE_FALSE(fs::exists(out + "/scm_params.json"));  // nothing under a final name yet
+
+  const CliResult resumed = run_cli(calibrate_args(out, extra), dir);
+  INFO(resumed.err);
+  REQUIRE(resumed.exit_code == 0);
+  CHECK(resumed.err.find("resumed from the checkpoint") != std::string::npos);
+  for (const char* f : {"scm_params.json", "posterior.h5", "summary.txt"}) {
+    INFO(f);
+    CHECK(read_file(dir + "/full/" + f) == read_file(out + "/" + f));
+  }
+  fs::remove_all(dir);
+}
+
+TEST_CASE("one plate size: Kc is fixed at 0, the run goes on and says so", "[cli][calibrate]") {
+  const std::string dir = scratch_dir("oneplate");
+  std::string plate = "plate_radius_m,sinkage_m,force_N\n";
+  for (const auto& line : std::vector<std::string>{"0.1,0.01,310", "0.1,0.02,640", "0.1,0.04,1350", "0.1,0.06,2080", "0.1,0.08,2790", "0.1,0.1,3600"})
+    plate += line + "\n";
+  write(dir + "/plate.csv", plate);
+  const CliResult r = run_cli("calibrate --plate " + dir + "/plate.csv --out " + dir + "/out --min-ess 300 --no-plots", dir);
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.err.find("only one plate radius") != std::string::npos);
+  CHECK(r.out.find("Kc         fixed at 0") != std::string::npos);
+  const auto j = nlohmann::json::parse(read_file(dir + "/out/scm_params.json"));
+  CHECK(j["Soil parameters"]["Bekker Kc"] == 0.0);
+  CHECK(j["Posterior"]["Bekker Kc"]["fixed"] == true);
+  CHECK(j["Fit"]["notes"].size() >= 1);
+  fs::remove_all(dir);
+}
