@@ -139,8 +139,8 @@ InferenceData make_inference_data(const CalibrationProblem& pb, const Calibratio
         Eigen::VectorXd x(res.num_params);
         for (int v = 0; v < res.num_params; ++v) x[v] = res.values[c][d * nv + v];
         const double sd = std::sqrt(res.values[c][d * nv + sigma_slot]);
-        const ParamVector p = pb.expand(x);
-        for (std::size_t i = 0; i < s.size(); ++i) rep.data.push_back(pb.predict(t, i, p.data()) + sd * s.w[i] * rng.normal());
+        const std::vector<double> f = pb.predict_all(t, pb.expand(x));
+        for (std::size_t i = 0; i < s.size(); ++i) rep.data.push_back(f[i] + sd * s.w[i] * rng.normal());
       }
     predictive.variables.push_back(rep);
   }

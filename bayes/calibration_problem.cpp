@@ -52,6 +52,7 @@ void CalibrationProblem::fix(int i, double value, const std::string& why) {
 
 void CalibrationProblem::add_plate(const PlateData& plate) {
   ObservationSet s;
+  s.kind = ObservationSet::Kind::kPlate;
   s.name = "plate";
   s.unit = "N";
   std::map<double, int> curve_of;
@@ -68,11 +69,13 @@ void CalibrationProblem::add_plate(const PlateData& plate) {
     s.curve.push_back(curve_of[p.radius]);
   }
   set_weights(s);
+  index_kernels(s);
   sets_.push_back(std::move(s));
 }
 
 void CalibrationProblem::add_shear(const ShearData& shear) {
   ObservationSet s;
+  s.kind = ObservationSet::Kind::kShear;
   s.name = "shear";
   s.unit = "N m";
   std::map<std::tuple<double, double, double>, int> curve_of;
@@ -91,7 +94,27 @@ void CalibrationProblem::add_shear(const ShearData& shear) {
     s.curve.push_back(curve_of[key]);
   }
   set_weights(s);
+  index_kernels(s);
   sets_.push_back(std::move(s));
+}
+
+void CalibrationProblem::index_kernels(ObservationSet& s) {
+  std::map<std::tuple<double, double, double>, int> index;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const auto key = s.kind == ObservationSet::Kind::kPlate ? std::make_tuple(s.log_z[i], 0.0, 0.0)
+                                                             : std::make_tuple(s.r_in[i], s.r_out[i], s.angle[i]);
+    auto [it, inserted] = index.try_emplace(key, static_cast<int>(index.size()));
+    if (inserted) {
+      if (s.kind == ObservationSet::Kind::kPlate) {
+        s.kernel_log_z.push_back(s.log_z[i]);
+      } else {
+        s.kernel_r_in.push_back(s.r_in[i]);
+        s.kernel_r_out.push_back(s.r_out[i]);
+        s.kernel_angle.push_back(s.angle[i]);
+      }
+    }
+    s.kernel.push_back(it->second);
+  }
 }
 
 void CalibrationProblem::set_weights(ObservationSet& s) const {
@@ -118,15 +141,18 @@ Eigen::VectorXd CalibrationProblem::reduce(const ParamVector& p) const {
 
 std::vector<double> CalibrationProblem::predict_all(int t, const ParamVector& p) const {
   std::vector<double> f(sets_[t].size());
-  for (std::size_t i = 0; i < f.size(); ++i) f[i] = predict(t, i, p.data());
+  predict_set(t, p.data(), f.data());
   return f;
 }
 
 double CalibrationProblem::weighted_sse(int t, const ParamVector& p) const {
   const ObservationSet& s = sets_[t];
+  thread_local std::vector<double> f;
+  f.resize(s.size());
+  predict_set(t, p.data(), f.data());
   double sse = 0;
   for (std::size_t i = 0; i < s.size(); ++i) {
-    const double r = (s.y[i] - predict(t, i, p.data())) / s.w[i];
+    const double r = (s.y[i] - f[i]) / s.w[i];
     sse += r * r;
   }
   return std::isfinite(sse) ? sse : std::numeric_limits<double>::quiet_NaN();

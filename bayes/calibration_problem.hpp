@@ -26,6 +26,8 @@ enum class NoiseModel { kRelative, kAbsolute };
 
 // The fitted observations of one test type, flattened.
 struct ObservationSet {
+  enum class Kind { kPlate, kShear };
+  Kind kind = Kind::kPlate;
   std::string name;               // "plate" or "shear"
   std::string unit;               // "N" or "N m"
   std::vector<double> y, w;       // observed value, noise weight
@@ -34,7 +36,13 @@ struct ObservationSet {
   std::vector<double> x_axis;     // sinkage or angle, for plots
   std::vector<int> curve;         // which curve (plate radius / shear load) a row belongs to
   std::vector<std::string> curve_labels;
+  // Rows share kernels: plates repeat sinkages (z^n), shear tests repeat angles (the development
+  // integral). kernel[i] indexes the distinct kernels; kernel_log_z / kernel_r_in, kernel_r_out,
+  // kernel_angle (< 0: fully developed) describe them.
+  std::vector<int> kernel;
+  std::vector<double> kernel_log_z, kernel_r_in, kernel_r_out, kernel_angle;
   std::size_t size() const { return y.size(); }
+  std::size_t kernels() const { return kind == Kind::kPlate ? kernel_log_z.size() : kernel_angle.size(); }
 };
 
 class CalibrationProblem {
@@ -57,13 +65,24 @@ class CalibrationProblem {
   // Things the user must know: parameters fixed because the data cannot identify them, etc.
   const std::vector<std::string>& notes() const { return notes_; }
 
-  // Prediction of row i of test type t; p is a full parameter array (6 values) of scalar T.
+  // Predictions of every row of test type t into out[0..size); p is a full parameter array (six
+  // values) of scalar T (double, or a Ceres Jet). Each distinct kernel is evaluated once.
   template <typename T>
-  T predict(int t, std::size_t i, const T* p) const {
+  void predict_set(int t, const T* p, T* out) const {
     const ObservationSet& s = sets_[t];
-    if (s.name == "plate") return plate_force_log(s.r[i], s.log_z[i], p[kKc], p[kKphi], p[kN]);
-    if (s.angle[i] < 0) return annulus_torque_developed(s.r_in[i], s.r_out[i], s.load[i], p[kCohesion], p[kFriction]);
-    return annulus_torque(s.r_in[i], s.r_out[i], s.load[i], s.angle[i], p[kCohesion], p[kFriction], p[kJanosi]);
+    thread_local std::vector<T> kern;
+    kern.resize(s.kernels());
+    if (s.kind == ObservationSet::Kind::kPlate) {
+      for (std::size_t k = 0; k < kern.size(); ++k) kern[k] = sinkage_power(s.kernel_log_z[k], p[kN]);
+      for (std::size_t i = 0; i < s.size(); ++i) out[i] = plate_stiffness(s.r[i], p[kKc], p[kKphi]) * kern[s.kernel[i]];
+      return;
+    }
+    for (std::size_t k = 0; k < kern.size(); ++k)
+      kern[k] = s.kernel_angle[k] < 0 ? T(annulus_development_full(s.kernel_r_in[k], s.kernel_r_out[k]))
+                                      : annulus_development(s.kernel_r_in[k], s.kernel_r_out[k], s.kernel_angle[k], p[kJanosi]);
+    const T tan_phi = tan_degrees(p[kFriction]);
+    for (std::size_t i = 0; i < s.size(); ++i)
+      out[i] = annulus_shear_strength(s.r_in[i], s.r_out[i], s.load[i], p[kCohesion], tan_phi) * kern[s.kernel[i]];
   }
   std::vector<double> predict_all(int t, const ParamVector& p) const;
 
@@ -84,6 +103,7 @@ class CalibrationProblem {
   void add_shear(const ShearData& shear);
   void fix(int i, double value, const std::string& why);
   void set_weights(ObservationSet& s) const;
+  static void index_kernels(ObservationSet& s);
 
   Priors priors_;
   NoiseModel noise_;

@@ -162,7 +162,8 @@ struct TypeResiduals {
   bool operator()(T const* const* u, T* residuals) const {
     const auto p = unscale(u[0], scale);
     const ObservationSet& s = pb->set(t);
-    for (std::size_t i = 0; i < s.size(); ++i) residuals[i] = (s.y[i] - pb->predict(t, i, p.data())) / (noise_sd * s.w[i]);
+    pb->predict_set(t, p.data(), residuals);
+    for (std::size_t i = 0; i < s.size(); ++i) residuals[i] = (s.y[i] - residuals[i]) / (noise_sd * s.w[i]);
     return true;
   }
 };
