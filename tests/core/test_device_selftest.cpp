@@ -36,14 +36,17 @@ TEST_CASE("device self-test: CUDA and CPU agree", "[core][device][gpu]") {
   INFO("device: " << info.description);
   std::vector<double> x(1 << 20), y(1 << 20);
   random_inputs(x, y, 6);
+  const std::vector<double> y0 = y;
   std::vector<double> y_cpu = y, y_gpu = y;
   axpy_cpu(-1.75, x, y_cpu);
   axpy_cuda(-1.75, x, y_gpu);
   double max_rel = 0;
   for (std::size_t i = 0; i < x.size(); ++i) {
     REQUIRE(std::isfinite(y_gpu[i]));
-    max_rel = std::max(max_rel, std::abs(y_gpu[i] - y_cpu[i]) / std::max(1e-300, std::abs(y_cpu[i])));
+    // Relative to the size of the terms, not of the result: where a x ~ -y the sum cancels and
+    // the GPU's fused multiply-add (one rounding instead of two) differs by an ulp of the terms.
+    max_rel = std::max(max_rel, std::abs(y_gpu[i] - y_cpu[i]) / (std::abs(1.75 * x[i]) + std::abs(y0[i])));
   }
-  // The GPU may fuse the multiply-add (one rounding instead of two): agreement to a few ulps.
-  CHECK(max_rel < 1e-12);
+  INFO("max difference relative to |a x| + |y|: " << max_rel);
+  CHECK(max_rel < 4e-16);
 }
