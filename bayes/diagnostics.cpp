@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <numeric>
 #include <stdexcept>
@@ -17,8 +18,12 @@ void check_chains(const Chains& chains) {
   if (chains.empty()) throw std::invalid_argument("diagnostics: no chains");
   const std::size_t n = chains.front().size();
   if (n < 2) throw std::invalid_argument("diagnostics: each chain needs at least 2 draws");
-  for (const auto& c : chains)
+  for (const auto& c : chains) {
     if (c.size() != n) throw std::invalid_argument("diagnostics: chains have different lengths");
+    // NaN would break the sorts behind ranks and quantiles; a sampler never stores one.
+    for (double v : c)
+      if (!std::isfinite(v)) throw std::invalid_argument("diagnostics: draws must be finite");
+  }
 }
 
 std::size_t total_draws(const Chains& chains) { return chains.size() * chains.front().size(); }

@@ -4,10 +4,10 @@
 // computed as Stan / ArviZ / the R package `posterior` compute them, so that numbers in our
 // summary table mean what users of those tools expect.
 //
-// Input: chains[c][i] = draw i of chain c. All chains must have the same length >= 2
-// (std::invalid_argument otherwise). Chains of >= 4 draws are split in halves (the middle draw
-// of an odd length is dropped); shorter chains are used whole, since a half of one draw has no
-// variance. A single chain of fewer than 4 draws has nothing to compare and throws.
+// Input: chains[c][i] = draw i of chain c. All chains must have the same length >= 2 and finite
+// draws (std::invalid_argument otherwise). Chains of >= 4 draws are split in halves (the middle
+// draw of an odd length is dropped); shorter chains are used whole, since a half of one draw has
+// no variance. A single chain of fewer than 4 draws has nothing to compare and throws.
 // Constant input gives R-hat = 1 and ESS = number of draws, never NaN.
 #include <vector>
 

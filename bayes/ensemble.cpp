@@ -40,7 +40,8 @@ EnsembleSampler::EnsembleSampler(const Target& target, const EnsembleOptions& op
     : target_(&target), opt_(opt), walkers_(std::move(walkers)), nuisances_(std::move(nuisances)),
       rng_(std::move(rng)) {
   check_walkers(target, opt_, walkers_, nuisances_);
-  for (std::size_t k = 0; k < walkers_.size(); ++k) logp_.push_back(initial_log_density(target, walkers_[k], nuisances_[k]));
+  for (std::size_t k = 0; k < walkers_.size(); ++k)
+    logp_.push_back(initial_log_density(target, walkers_[k], nuisances_[k]));
   stats_.resize(walkers_.size());
 }
 

@@ -3,7 +3,6 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
-#include <cstdlib>
 #include <numeric>
 #include <stdexcept>
 
@@ -18,7 +17,7 @@ namespace {
 Chains normal_chains(int m, int n, std::uint64_t seed, std::vector<double> mean = {}, std::vector<double> sd = {}) {
   Chains c(m, std::vector<double>(n));
   for (int k = 0; k < m; ++k) {
-    Rng rng = Rng::for_stream(seed + (getenv("SEED_OFFSET") ? 1000*atoi(getenv("SEED_OFFSET")) : 0), k);
+    Rng rng = Rng::for_stream(seed, k);
     for (double& v : c[k]) v = (mean.empty() ? 0.0 : mean[k]) + (sd.empty() ? 1.0 : sd[k]) * rng.normal();
   }
   return c;
@@ -29,7 +28,7 @@ Chains normal_chains(int m, int n, std::uint64_t seed, std::vector<double> mean 
 Chains ar1_chains(int m, int n, double rho, std::uint64_t seed) {
   Chains c(m, std::vector<double>(n));
   for (int k = 0; k < m; ++k) {
-    Rng rng = Rng::for_stream(seed + (getenv("SEED_OFFSET") ? 1000*atoi(getenv("SEED_OFFSET")) : 0), k);
+    Rng rng = Rng::for_stream(seed, k);
     double x = rng.normal();
     for (double& v : c[k]) v = x = rho * x + std::sqrt(1 - rho * rho) * rng.normal();
   }
@@ -144,6 +143,7 @@ TEST_CASE("diagnostics: malformed input is rejected", "[diagnostics]") {
   CHECK_THROWS_AS(rhat_rank(Chains{{1.0}, {2.0}}), std::invalid_argument);
   CHECK_THROWS_AS(ess_basic(Chains{{1, 2, 3}, {1, 2}}), std::invalid_argument);
   CHECK_THROWS_AS(summarize(Chains{{1, 2}}), std::invalid_argument);  // one chain: nothing to split or compare
+  CHECK_THROWS_AS(ess_bulk(Chains{{1, 2}, {2, std::nan("")}}), std::invalid_argument);
   CHECK_NOTHROW(rhat_split(Chains{{1, 2}, {2, 4}}));                   // 2 draws per chain: used whole
 }
 

@@ -5,9 +5,9 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
-#include <cstdlib>
 #include <functional>
-#include <sstream>
+#include <limits>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -75,7 +75,7 @@ DramRun run_dram(const Target& t, const std::vector<Expectation>& es, const Vect
                  int n_chains = 4) {
   DramRun run{empty_values(es.size(), n_chains), {}};
   for (int c = 0; c < n_chains; ++c) {
-    DramChain& chain = run.chains.emplace_back(t, opt, x0, nu0, cov0, Rng::for_stream(seed + (getenv("SEED_OFFSET") ? 1000*atoi(getenv("SEED_OFFSET")) : 0), c));
+    DramChain& chain = run.chains.emplace_back(t, opt, x0, nu0, cov0, Rng::for_stream(seed, c));
     for (int i = 0; i < warmup; ++i) chain.step(true);
     for (int i = 0; i < draws; ++i) {
       chain.step(false);
@@ -97,7 +97,7 @@ EnsembleRun run_ensemble(const Target& t, const std::vector<Expectation>& es, co
                          std::uint64_t seed, int n_ensembles = 4) {
   EnsembleRun run{empty_values(es.size(), n_ensembles), {}};
   for (int c = 0; c < n_ensembles; ++c) {
-    Rng init = Rng::for_stream(seed + (getenv("SEED_OFFSET") ? 1000*atoi(getenv("SEED_OFFSET")) : 0), 1000 + c);
+    Rng init = Rng::for_stream(seed, 1000 + c);
     std::vector<VectorXd> walkers, nuisances;
     for (int k = 0; k < n_walkers; ++k) {
       VectorXd w = start;
@@ -105,7 +105,7 @@ EnsembleRun run_ensemble(const Target& t, const std::vector<Expectation>& es, co
       walkers.push_back(w);
       if (nu0.size() > 0) nuisances.push_back(nu0);
     }
-    EnsembleSampler& s = run.samplers.emplace_back(t, EnsembleOptions{}, walkers, nuisances, Rng::for_stream(seed + (getenv("SEED_OFFSET") ? 1000*atoi(getenv("SEED_OFFSET")) : 0), c));
+    EnsembleSampler& s = run.samplers.emplace_back(t, EnsembleOptions{}, walkers, nuisances, Rng::for_stream(seed, c));
     for (int i = 0; i < warmup; ++i) s.step();
     for (int i = 0; i < draws; ++i) {
       s.step();
@@ -217,7 +217,8 @@ struct NormalInverseGamma {
     const double kn = k0 + n, mn = (k0 * m0 + n * ybar) / kn, an = a0 + n / 2;
     const double bn = b0 + ss / 2 + k0 * n * (ybar - m0) * (ybar - m0) / (2 * kn);
     return {{"E mu", [](const VectorXd& x, const VectorXd&) { return x[0]; }, mn},
-            {"Var mu", [mn](const VectorXd& x, const VectorXd&) { return (x[0] - mn) * (x[0] - mn); }, bn / ((an - 1) * kn)},
+            {"Var mu", [mn](const VectorXd& x, const VectorXd&) { return (x[0] - mn) * (x[0] - mn); },
+             bn / ((an - 1) * kn)},
             {"E s2", [](const VectorXd&, const VectorXd& s2) { return s2[0]; }, bn / (an - 1)}};
   }
 };
@@ -235,7 +236,7 @@ struct BrokenGaussian {
     };
     return t;
   }
-  static double phi(double x) { return std::exp(-0.5 * x * x) / std::sqrt(2 * M_PI); }
+  static double phi(double x) { return std::exp(-0.5 * x * x) / std::sqrt(2 * std::numbers::pi); }
   static double Phi(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
   std::vector<Expectation> expectations() const {
     return {{"E x1", [](const VectorXd& x, const VectorXd&) { return x[0]; }, -phi(1) / Phi(1)},
