@@ -1,13 +1,13 @@
 #include "bayes/priors.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <limits>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "core/errors.hpp"
+#include "core/json_file.hpp"
 
 namespace terracal::bayes {
 namespace {
@@ -80,14 +80,7 @@ Priors default_priors() {
 }
 
 Priors load_priors(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(fmt::format("{}: cannot open the priors file", path));
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(fmt::format("{}: not valid JSON: {}", path, e.what()));
-  }
+  const nlohmann::json j = read_json_file(path, "priors file");
   if (!j.is_object()) throw InputError(fmt::format("{}: expected a JSON object keyed by parameter name", path));
   Priors p = default_priors();
   for (const auto& [key, spec] : j.items()) {

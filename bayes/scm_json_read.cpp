@@ -1,23 +1,16 @@
 #include "bayes/scm_json_read.hpp"
 
-#include <fstream>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "core/errors.hpp"
+#include "core/json_file.hpp"
 
 namespace terracal::bayes {
 
 ParamVector read_scm_soil_parameters(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(fmt::format("{}: cannot open the SCM parameter file", path));
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(fmt::format("{}: not valid JSON: {}", path, e.what()));
-  }
+  const nlohmann::json j = read_json_file(path, "SCM parameter file");
   if (!j.contains("Soil parameters") || !j["Soil parameters"].is_object())
     throw InputError(fmt::format("{}: missing the object 'Soil parameters' (Chrono SCM JSON)", path));
   const auto& s = j["Soil parameters"];

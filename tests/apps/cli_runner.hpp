@@ -8,6 +8,8 @@
 #include <iterator>
 #include <string>
 
+#include "../scratch_dir.hpp"
+
 namespace terracal::test {
 
 struct CliResult {
@@ -18,14 +20,6 @@ struct CliResult {
 inline std::string read_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-// A fresh, empty scratch folder under the system temp folder.
-inline std::string scratch_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("terracal_test_" + name + "_" + std::to_string(::getpid()));
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir.string();
 }
 
 inline CliResult run_cli(const std::string& args, const std::string& scratch) {

@@ -35,7 +35,8 @@ const BadCase kCases[] = {
 TEST_CASE("bad plate input: exit 2, the message names file, line and column, no output", "[cli][bad_input]") {
   for (const auto& c : kCases) {
     SECTION(c.name) {
-      const std::string dir = scratch_dir("bad");
+      const ScratchDir scratch("bad");
+      const std::string dir = scratch.str();
       write(dir + "/plate.csv", c.plate_csv);
       const std::string out = dir + "/out";
       const CliResult r = run_cli("calibrate --plate " + dir + "/plate.csv --shear " + demo_data("shear.csv") + " --out " + out, dir);
@@ -45,13 +46,13 @@ TEST_CASE("bad plate input: exit 2, the message names file, line and column, no 
       CHECK(r.err.find(c.expect_line) != std::string::npos);
       CHECK(r.err.find(c.expect_text) != std::string::npos);
       CHECK_FALSE(fs::exists(out));
-      fs::remove_all(dir);
     }
   }
 }
 
 TEST_CASE("bad shear input and bad options: exit 2 naming what is wrong", "[cli][bad_input]") {
-  const std::string dir = scratch_dir("badshear");
+  const ScratchDir scratch("badshear");
+  const std::string dir = scratch.str();
   const std::string out = dir + "/out";
   SECTION("negative angle") {
     write(dir + "/shear.csv", "inner_radius_m,outer_radius_m,normal_load_N,angle_rad,torque_Nm\n0.15,0.2,100,-0.1,5\n");
@@ -88,16 +89,15 @@ TEST_CASE("bad shear input and bad options: exit 2 naming what is wrong", "[cli]
     CHECK(r.exit_code == 2);
   }
   CHECK_FALSE(fs::exists(out));
-  fs::remove_all(dir);
 }
 
 TEST_CASE("--help and --version exit 0", "[cli]") {
-  const std::string dir = scratch_dir("help");
+  const ScratchDir scratch("help");
+  const std::string dir = scratch.str();
   CliResult r = run_cli("--version", dir);
   CHECK(r.exit_code == 0);
   CHECK(r.out.find("terracal ") == 0);
   r = run_cli("calibrate --help", dir);
   CHECK(r.exit_code == 0);
   CHECK(r.out.find("--min-ess") != std::string::npos);
-  fs::remove_all(dir);
 }

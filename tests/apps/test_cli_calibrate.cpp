@@ -36,7 +36,8 @@ void require_identical_outputs(const std::string& a, const std::string& b) {
 }  // namespace
 
 TEST_CASE("calibrate writes the contract outputs; the same seed gives byte-identical files", "[cli][calibrate]") {
-  const std::string dir = scratch_dir("determinism");
+  const ScratchDir scratch("determinism");
+  const std::string dir = scratch.str();
   const CliResult r1 = run_cli(calibrate_args(dir + "/a", "--min-ess 400"), dir);
   INFO(r1.err);
   REQUIRE(r1.exit_code == 0);
@@ -76,11 +77,11 @@ TEST_CASE("calibrate writes the contract outputs; the same seed gives byte-ident
         CHECK(v.shape[1] == j["Fit"]["draws"].get<std::size_t>());
       }
   CHECK(found_kphi);
-  fs::remove_all(dir);
 }
 
 TEST_CASE("a killed calibration resumes and ends with exactly the draws of an uninterrupted run", "[cli][calibrate][resume]") {
-  const std::string dir = scratch_dir("resume");
+  const ScratchDir scratch("resume");
+  const std::string dir = scratch.str();
   // A long run (high ESS target) so that the kill lands while sampling.
   const std::string extra = "--min-ess 6000 --no-plots";
   const CliResult full = run_cli(calibrate_args(dir + "/full", extra), dir);
@@ -128,11 +129,11 @@ TEST_CASE("a killed calibration resumes and ends with exactly the draws of an un
     INFO(f);
     CHECK(read_file(dir + "/full/" + f) == read_file(out + "/" + f));
   }
-  fs::remove_all(dir);
 }
 
 TEST_CASE("one plate size: Kc is fixed at 0, the run goes on and says so", "[cli][calibrate]") {
-  const std::string dir = scratch_dir("oneplate");
+  const ScratchDir scratch("oneplate");
+  const std::string dir = scratch.str();
   std::string plate = "plate_radius_m,sinkage_m,force_N\n";
   for (const auto& line : std::vector<std::string>{"0.1,0.01,310", "0.1,0.02,640", "0.1,0.04,1350", "0.1,0.06,2080", "0.1,0.08,2790", "0.1,0.1,3600"})
     plate += line + "\n";
@@ -146,5 +147,16 @@ TEST_CASE("one plate size: Kc is fixed at 0, the run goes on and says so", "[cli
   CHECK(j["Soil parameters"]["Bekker Kc"] == 0.0);
   CHECK(j["Posterior"]["Bekker Kc"]["fixed"] == true);
   CHECK(j["Fit"]["notes"].size() >= 1);
-  fs::remove_all(dir);
+}
+
+TEST_CASE("hitting the draw cap is reported as not converged (exit 1, outputs written)", "[cli][calibrate]") {
+  const ScratchDir scratch("cap");
+  const std::string dir = scratch.str();
+  const CliResult r = run_cli(calibrate_args(dir + "/out", "--max-draws 50 --no-plots"), dir);
+  CHECK(r.exit_code == 1);
+  CHECK(r.out.find("NOT converged: draw cap 50 per chain reached") != std::string::npos);
+  CHECK(r.err.find("did not converge") != std::string::npos);
+  const auto j = nlohmann::json::parse(read_file(dir + "/out/scm_params.json"));
+  CHECK(j["Fit"]["converged"] == false);
+  CHECK(j["Fit"]["draws"] == 50);
 }

@@ -13,26 +13,13 @@
 #include "core/errors.hpp"
 #include "core/gnuplot.hpp"
 #include "core/rng.hpp"
+#include "../scratch_dir.hpp"
 
 namespace fs = std::filesystem;
 using terracal::bayes::FitSeries;
+using terracal::test::ScratchDir;
 
 namespace {
-
-// The folder for this test's images. TERRACAL_KEEP_PLOTS=1 keeps them for a look by eye.
-struct PlotDir {
-  fs::path path;
-  explicit PlotDir(const std::string& tag)
-      : path(fs::temp_directory_path() / ("terracal_test_plots_" + tag + "_" + std::to_string(::getpid()))) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~PlotDir() {
-    const char* keep = std::getenv("TERRACAL_KEEP_PLOTS");
-    std::error_code ignored;
-    if (!keep || std::string(keep) != "1") fs::remove_all(path, ignored);
-  }
-};
 
 bool has_png_signature(const fs::path& p) {
   static const unsigned char sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
@@ -79,7 +66,7 @@ TEST_CASE("plots: plot_fit writes a PNG with points, lines and bands", "[plots]"
     WARN("gnuplot not found on PATH: plot test skipped");
     return;
   }
-  PlotDir dir("fit");
+  ScratchDir dir("fit");
   const fs::path png = dir.path / "fit_pressure_sinkage.png";
   terracal::bayes::plot_fit(png.string(), "Pressure-sinkage fit (posterior mean, 95 % band)", "sinkage z [m]",
                             "pressure p [kPa]", two_plates());
@@ -94,7 +81,7 @@ TEST_CASE("plots: plot_pairs writes a PNG of pairwise marginals", "[plots]") {
     WARN("gnuplot not found on PATH: plot test skipped");
     return;
   }
-  PlotDir dir("pairs");
+  ScratchDir dir("pairs");
   const fs::path png = dir.path / "pairs.png";
   terracal::Rng rng(11);
   std::vector<std::vector<double>> draws;
@@ -110,7 +97,7 @@ TEST_CASE("plots: plot_pairs writes a PNG of pairwise marginals", "[plots]") {
 }
 
 TEST_CASE("plots: bad input and a missing folder throw RunError and leave no file", "[plots]") {
-  PlotDir dir("bad_input");
+  ScratchDir dir("bad_input");
   std::vector<FitSeries> series = two_plates();
   series[0].fit.pop_back();
   CHECK_THROWS_AS(terracal::bayes::plot_fit((dir.path / "a.png").string(), "t", "x", "y", series),
@@ -127,7 +114,7 @@ TEST_CASE("plots: a gnuplot error is reported with gnuplot's message", "[plots]"
     WARN("gnuplot not found on PATH: plot test skipped");
     return;
   }
-  PlotDir dir("gnuplot_error");
+  ScratchDir dir("gnuplot_error");
   try {
     terracal::run_gnuplot("plot 'no_such_file.dat' using 1:2\n", dir.path.string());
     FAIL("no exception");

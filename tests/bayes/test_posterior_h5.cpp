@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "bayes/posterior_h5.hpp"
+#include "../scratch_dir.hpp"
 #include "core/errors.hpp"
 
 namespace fs = std::filesystem;
@@ -20,22 +21,9 @@ using terracal::RunError;
 using terracal::bayes::Group;
 using terracal::bayes::InferenceData;
 using terracal::bayes::Variable;
+using terracal::test::ScratchDir;
 
 namespace {
-
-// A fresh folder under the system temporary folder, removed when the test ends.
-struct ScratchDir {
-  fs::path path;
-  explicit ScratchDir(const std::string& tag)
-      : path(fs::temp_directory_path() / ("terracal_test_" + tag + "_" + std::to_string(::getpid()))) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~ScratchDir() {
-    std::error_code ignored;
-    fs::remove_all(path, ignored);
-  }
-};
 
 constexpr std::size_t kChains = 2, kDraws = 3, kObs = 4;
 
