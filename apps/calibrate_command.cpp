@@ -12,7 +12,7 @@ Command add_calibrate(CLI::App& app) {
   sub->add_option("--shear", req->shear_csv, "annulus-shear curves: inner_radius_m,outer_radius_m,normal_load_N,angle_rad,torque_Nm")->check(CLI::ExistingFile);
   sub->add_option("--out", req->out_dir, "output folder (scm_params.json, posterior.h5, summary.txt, PNG plots)")->required();
   sub->add_option("--seed", req->seed, "random seed: the same seed gives byte-identical outputs")->capture_default_str();
-  sub->add_option("--chains", req->chains, "independent MCMC chains (>= 2)")->capture_default_str();
+  sub->add_option("--chains", req->chains, "independent MCMC chains (>= 4)")->capture_default_str();
   sub->add_option("--min-ess", req->min_ess, "bulk effective sample size required for every parameter")->capture_default_str();
   sub->add_option("--max-draws", req->max_draws, "draw cap per chain; reaching it is reported as not converged")->capture_default_str();
   sub->add_option("--priors", req->priors_json, "priors file (JSON): bounds, normal/lognormal priors, fixed parameters")->check(CLI::ExistingFile);

@@ -42,7 +42,9 @@ std::string fingerprint(const CalibrationRequest& r) {
 }
 
 void validate(const CalibrationRequest& r) {
-  if (r.chains < 2 || r.chains > 256) throw InputError(fmt::format("--chains {}: expected 2 to 256 chains", r.chains));
+  // At least 4 independent chains, so that split R-hat compares 8 half-chains from dispersed starts.
+  if (r.chains < 4 || r.chains > 256) throw InputError(fmt::format("--chains {}: expected 4 to 256 chains", r.chains));
+  if (r.max_draws < 10) throw InputError(fmt::format("--max-draws {}: expected at least 10 draws per chain", r.max_draws));
   if (!(r.min_ess > 0)) throw InputError(fmt::format("--min-ess {}: expected a positive number", r.min_ess));
   if (r.sampler != "dram" && r.sampler != "ensemble") throw InputError(fmt::format("--sampler '{}': expected dram or ensemble", r.sampler));
   if (r.noise != "relative" && r.noise != "absolute") throw InputError(fmt::format("--noise '{}': expected relative or absolute", r.noise));
@@ -63,6 +65,7 @@ int run_calibration(const CalibrationRequest& req) {
   const Priors priors = req.priors_json.empty() ? default_priors() : load_priors(req.priors_json);
   const CalibrationProblem problem(plate, shear, priors, req.noise == "relative" ? NoiseModel::kRelative : NoiseModel::kAbsolute);
   for (const auto& note : problem.notes()) spdlog::warn("{}", note);
+  if (problem.dim() == 0) throw InputError("every parameter is fixed (by the priors file and the data); nothing to infer");
 
   fs::create_directories(req.out_dir);
   CalibrationOptions opt;
@@ -81,7 +84,11 @@ int run_calibration(const CalibrationRequest& req) {
                shear ? fmt::format(", {} shear points", problem.set(1).size()) : std::string(", no shear data"));
   const CalibrationResult res = calibrate(problem, opt);
   if (res.resumed) spdlog::info("resumed from the checkpoint in {}", req.out_dir);
+  for (const auto& note : res.notes) spdlog::warn("{}", note);
 
+  // Files of an earlier run in the same folder go first: the folder never mixes two runs' outputs.
+  for (const char* old : {"scm_params.json", "posterior.h5", "summary.txt", "plate_fit.png", "shear_fit.png", "shear_developed.png", "pairs.png"})
+    fs::remove(fs::path(req.out_dir) / old);
   const OutputContext ctx{req.sampler, req.seed, opt.warmup};
   write_scm_params_json(req.out_dir + "/scm_params.json", problem, res, ctx);
   const InferenceData idata = make_inference_data(problem, res, req.seed);

@@ -91,7 +91,9 @@ void write_scm_params_json(const std::string& path, const CalibrationProblem& pb
   fit["converged"] = res.converged;
   fit["failed_evaluations"] = res.failed_evaluations;
   fit["elastic_stiffness_and_damping"] = "Chrono defaults: not identified by the loading curves";
-  fit["notes"] = pb.notes();
+  std::vector<std::string> notes = pb.notes();
+  notes.insert(notes.end(), res.notes.begin(), res.notes.end());
+  fit["notes"] = notes;
   j["Fit"] = fit;
   write_text_atomically(path, j.dump(2) + "\n");
 }
@@ -207,7 +209,8 @@ std::string summary_report(const CalibrationProblem& pb, const CalibrationResult
                      pb.set(t).curve_labels.size(), pb.noise_model() == NoiseModel::kRelative ? "relative" : "absolute");
   r += fmt::format("  stage 1     global search (NLopt CRS2 + BOBYQA): {} evaluations\n", res.point.global_evaluations);
   r += fmt::format("  stage 2     least squares (Ceres): {}\n", res.point.ceres_report);
-  r += fmt::format("              covariance (DENSE_SVD): {}\n", res.point.covariance_ok ? "ok" : "singular, diagonal fallback used");
+  r += fmt::format("              covariance (DENSE_SVD): {}\n", res.point.covariance_ok ? "ok"
+                   : fmt::format("{} direction(s) not constrained by the data, given a floor variance", res.point.unconstrained_directions));
   // (Whether the run resumed from a checkpoint is logged, not written: a resumed run's files are
   // byte-identical to an uninterrupted one's.)
   r += fmt::format("  stage 3     MCMC {}: {} chains x {} draws after {} warm-up, acceptance {:.3f}, failed evaluations {}\n",
@@ -226,6 +229,7 @@ std::string summary_report(const CalibrationProblem& pb, const CalibrationResult
   for (int i = 0; i < kNumParams; ++i)
     if (free_slot(pb, i) < 0) r += fmt::format("  {:<10} fixed at {:g}\n", kShortNames[i], pb.fixed_values()[i]);
   for (const auto& n : pb.notes()) r += "  note: " + n + "\n";
+  for (const auto& n : res.notes) r += "  note: " + n + "\n";
   return r;
 }
 

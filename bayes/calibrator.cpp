@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <memory>
 
 #include <fmt/format.h>
@@ -109,21 +110,40 @@ class Ensemble : public MultiChain {
 
 // Starting points dispersed around the MAP: MAP + 2 L z (L the Cholesky factor of the Laplace
 // covariance), redrawn until inside the support, so that R-hat can detect chains that disagree.
-std::vector<Eigen::VectorXd> dispersed_starts(const CalibrationProblem& pb, const PointEstimate& est, int count, std::uint64_t seed) {
+// A start that cannot be dispersed is reported: identical chains would make R-hat meaningless.
+std::vector<Eigen::VectorXd> dispersed_starts(const CalibrationProblem& pb, const PointEstimate& est, int count, std::uint64_t seed,
+                                              std::vector<std::string>& notes) {
   Rng rng = Rng::for_stream(seed, 1);
-  const Eigen::MatrixXd L = est.covariance.llt().matrixL();
+  const Eigen::MatrixXd L = est.covariance.llt().matrixL();  // positive definite by construction (point_estimate)
   std::vector<Eigen::VectorXd> starts;
+  int undispersed = 0;
   for (int c = 0; c < count; ++c) {
     Eigen::VectorXd x = est.x;
-    for (int attempt = 0; attempt < 200; ++attempt) {
+    bool found = false;
+    for (int attempt = 0; attempt < 200 && !found; ++attempt) {
       Eigen::VectorXd z(pb.dim());
       for (int j = 0; j < pb.dim(); ++j) z[j] = rng.normal();
       const Eigen::VectorXd y = est.x + 2.0 * L * z;
-      if (std::isfinite(pb.log_posterior(pb.expand(y), est.noise_var))) { x = y; break; }
+      if (std::isfinite(pb.log_posterior(pb.expand(y), est.noise_var))) {
+        x = y;
+        found = true;
+      }
     }
+    undispersed += !found;
     starts.push_back(x);
   }
+  if (undispersed > 0)
+    notes.push_back(fmt::format("{} of {} chains could not be started away from the MAP point (every dispersed start fell outside "
+                                "the prior support); they start at the MAP", undispersed, count));
   return starts;
+}
+
+// A parameter whose draws never change within some chain has not been explored: R-hat and ESS of
+// constant chains are 1 and N by convention, which must not pass for convergence.
+bool some_chain_is_stuck(const Chains& chains) {
+  for (const auto& c : chains)
+    if (std::all_of(c.begin(), c.end(), [&](double v) { return v == c.front(); })) return true;
+  return false;
 }
 
 // ---- checkpoint -------------------------------------------------------------------------------
@@ -177,7 +197,7 @@ Chains CalibrationResult::chains_of(int v) const {
 
 CalibrationResult calibrate(const CalibrationProblem& pb, const CalibrationOptions& opt) {
   if (pb.dim() == 0) throw InputError("calibrate: every parameter is fixed; nothing to infer");
-  if (opt.chains < 2) throw InputError(fmt::format("--chains {}: at least 2 chains are needed for R-hat", opt.chains));
+  if (opt.chains < 2) throw InputError(fmt::format("chains {}: at least 2 chains are needed for R-hat", opt.chains));
   CalibrationResult res;
   res.point = estimate_point(pb, PointEstimateOptions{.seed = opt.seed, .global_evaluations = opt.global_evaluations});
   for (int i : pb.free_indices()) res.names.emplace_back(kShortNames[i]);
@@ -187,7 +207,11 @@ CalibrationResult calibrate(const CalibrationProblem& pb, const CalibrationOptio
   const Target target = pb.target();
   int count = opt.chains;
   if (opt.sampler == SamplerKind::kEnsemble) count = std::max(opt.chains, 2 * pb.dim() + 2) + std::max(opt.chains, 2 * pb.dim() + 2) % 2;
-  const auto starts = dispersed_starts(pb, res.point, count, opt.seed);
+  if (res.point.unconstrained_directions > 0)
+    res.notes.push_back(fmt::format("the data do not constrain {} combination(s) of the free parameters (the least-squares "
+                                    "covariance is singular): the posterior there is set by the priors and sampling may not "
+                                    "converge; fix a parameter or give an informative prior", res.point.unconstrained_directions));
+  const auto starts = dispersed_starts(pb, res.point, count, opt.seed, res.notes);
   std::unique_ptr<MultiChain> sampler;
   if (opt.sampler == SamplerKind::kDram)
     sampler = std::make_unique<DramChains>(target, starts, res.point.noise_var, res.point.covariance, opt.seed);
@@ -220,11 +244,14 @@ CalibrationResult calibrate(const CalibrationProblem& pb, const CalibrationOptio
       res.values.clear();
       for (const auto& r : cp.records) res.values.push_back(r.values);
       double max_rhat = 0, min_ess = 1e300;
+      bool stuck = false;
       for (int v = 0; v < res.num_params; ++v) {
         const Chains ch = res.chains_of(v);
         max_rhat = std::max(max_rhat, rhat_rank(ch));
         min_ess = std::min(min_ess, ess_bulk(ch));
+        stuck = stuck || some_chain_is_stuck(ch);
       }
+      if (stuck) max_rhat = std::numeric_limits<double>::infinity();
       if (opt.progress) opt.progress({"sampling", res.draws, max_rhat, min_ess});
       if (max_rhat < opt.max_rhat && min_ess >= opt.min_ess) {
         res.converged = true;

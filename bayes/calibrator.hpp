@@ -56,6 +56,7 @@ struct CalibrationResult {
   long failed_evaluations = 0;
   double acceptance_rate = 0;
   std::string termination;             // why sampling stopped, in words
+  std::vector<std::string> notes;      // what the user should know about this run
 
   // All draws of variable v, per chain (for diagnostics and plots).
   Chains chains_of(int v) const;

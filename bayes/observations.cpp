@@ -58,16 +58,28 @@ PlateData load_plate_csv(const std::string& path) {
     p.phase = t.has_column("phase") ? parse_phase(t, i) : PlatePhase::kLoad;
     require_positive(t, i, "plate_radius_m", p.radius);
     if (p.sinkage < 0) throw InputError(fmt::format("{}: sinkage {} m is negative; expected >= 0", t.where(i, "sinkage_m"), p.sinkage));
+    if (p.force < 0)
+      throw InputError(fmt::format("{}: force {} N is negative; a plate pushed into soil meets a force >= 0 "
+                                   "(remove the sensor offset, or check the sign convention)", t.where(i, "force_N"), p.force));
     reject_millimetres(t, i, "plate_radius_m", p.radius, kMaxPlausibleRadius, "plate radius");
     reject_millimetres(t, i, "sinkage_m", p.sinkage, kMaxPlausibleSinkage, "plate sinkage");
     // The Bekker law describes loading beyond the deepest sinkage so far (virgin loading).
     double& deepest = max_sinkage[p.radius];
     p.fitted = p.phase != PlatePhase::kUnload && p.sinkage > 0 && p.sinkage > deepest;
-    if (p.phase == PlatePhase::kLoad && p.sinkage > 0) p.fitted = true;
     deepest = std::max(deepest, p.sinkage);
     d.points.push_back(p);
   }
-  for (const auto& [r, z] : max_sinkage) d.radii.push_back(r);
+  // The plate sizes are those with fitted rows: a radius that only has zero-sinkage or unloading
+  // rows says nothing about Kc/r + Kphi.
+  std::map<double, double> fitted_max_force;
+  for (const auto& p : d.points)
+    if (p.fitted) fitted_max_force[p.radius] = std::max(fitted_max_force[p.radius], p.force);
+  for (const auto& [r, f] : fitted_max_force) {
+    if (!(f > 0))
+      throw InputError(fmt::format("{}: every loading force of the plate of radius {} m is zero; the Bekker law needs a "
+                                   "positive force", path, r));
+    d.radii.push_back(r);
+  }
   if (d.fitted_count() == 0)
     throw InputError(fmt::format("{}: no loading rows with sinkage > 0; nothing to fit the Bekker law to", path));
   return d;
@@ -96,6 +108,8 @@ ShearData load_shear_csv(const std::string& path) {
                                    p.outer_radius, p.inner_radius));
     reject_millimetres(t, i, "outer_radius_m", p.outer_radius, kMaxPlausibleRadius, "annulus radius");
     require_positive(t, i, "normal_load_N", p.normal_load);
+    if (p.torque < 0)
+      throw InputError(fmt::format("{}: torque {} N m is negative; expected >= 0 (check the sign convention)", t.where(i, "torque_Nm"), p.torque));
     if (p.angle < 0)
       throw InputError(fmt::format("{}: shear angle {} rad is negative; expected >= 0 (or empty for the developed torque)",
                                    t.where(i, "angle_rad"), p.angle));
@@ -103,6 +117,8 @@ ShearData load_shear_csv(const std::string& path) {
     d.points.push_back(p);
   }
   if (d.points.empty()) throw InputError(fmt::format("{}: no rows with a shear angle > 0 or a developed torque", path));
+  if (std::all_of(d.points.begin(), d.points.end(), [](const ShearPoint& p) { return p.torque == 0; }))
+    throw InputError(fmt::format("{}: every torque is zero; nothing to fit the shear law to", path));
   return d;
 }
 

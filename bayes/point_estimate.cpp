@@ -186,17 +186,20 @@ void polish(const CalibrationProblem& pb, PointEstimate& est) {
   Scale scale;
   for (int i = 0; i < kNumParams; ++i) {
     const Prior& pr = pb.priors()[i];
-    scale[i] = std::abs(est.map[i]) > 0 ? std::abs(est.map[i]) : std::max(1e-3 * (pr.upper - pr.lower), 1e-12);
+    // |MAP|, but never far below the prior's width: a parameter whose optimum sits near 0 (Kc
+    // often does) would otherwise get a vanishing column and lose its variance to the SVD cut.
+    scale[i] = std::max({std::abs(est.map[i]), 1e-4 * (pr.upper - pr.lower), 1e-12});
   }
   double u[kNumParams];
   for (int i = 0; i < kNumParams; ++i) u[i] = est.map[i] / scale[i];
   ceres::Problem problem;
+  std::vector<ceres::ResidualBlockId> data_blocks;
   for (int t = 0; t < pb.num_types(); ++t) {
     auto* cost = new ceres::DynamicAutoDiffCostFunction<TypeResiduals, 8>(
         new TypeResiduals{&pb, t, std::sqrt(est.noise_var[t]), scale});
     cost->AddParameterBlock(kNumParams);
     cost->SetNumResiduals(static_cast<int>(pb.set(t).size()));
-    problem.AddResidualBlock(cost, nullptr, u);
+    data_blocks.push_back(problem.AddResidualBlock(cost, nullptr, u));
   }
   for (int i : pb.free_indices()) {
     const Prior& pr = pb.priors()[i];
@@ -232,35 +235,43 @@ void polish(const CalibrationProblem& pb, PointEstimate& est) {
   for (int i = 0; i < kNumParams; ++i) u[i] = est.map[i] / scale[i];
   ceres::Covariance covariance(copt);
   const int d = pb.dim();
-  est.covariance = Eigen::MatrixXd::Zero(d, d);
-  est.covariance_ok = false;
   const std::vector<std::pair<const double*, const double*>> blocks = {{u, u}};
+  Eigen::MatrixXd cov_u = Eigen::MatrixXd::Zero(d, d);  // in scaled coordinates
+  bool computed = false;
   if (covariance.Compute(blocks, &problem)) {
     Eigen::Matrix<double, kNumParams, kNumParams, Eigen::RowMajor> full;
     covariance.GetCovarianceBlock(u, u, full.data());
+    // Scaled by the residual variance of the data (the prior residuals are not noise).
     int n_total = 0;
+    ceres::Problem::EvaluateOptions data_only;
+    data_only.residual_blocks = data_blocks;
     for (int t = 0; t < pb.num_types(); ++t) n_total += static_cast<int>(pb.set(t).size());
     double cost = 0;
-    problem.Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr, nullptr);
-    // Scaled by the residual variance: 1 when the noise scales are right, more when the fit is poor.
+    problem.Evaluate(data_only, &cost, nullptr, nullptr, nullptr);
     const double variance_factor = n_total > d ? 2.0 * cost / (n_total - d) : 1.0;
     for (int a = 0; a < d; ++a)
-      for (int b = 0; b < d; ++b) {
-        const int i = pb.free_indices()[a], j = pb.free_indices()[b];
-        est.covariance(a, b) = variance_factor * full(i, j) * scale[i] * scale[j];
-      }
-    est.covariance_ok = est.covariance.allFinite() && est.covariance.diagonal().minCoeff() > 0;
+      for (int b = 0; b < d; ++b) cov_u(a, b) = variance_factor * full(pb.free_indices()[a], pb.free_indices()[b]);
+    computed = cov_u.allFinite();
   }
-  if (!est.covariance_ok) {
-    // A singular Jacobian (a parameter the data do not constrain): a small diagonal proposal lets
-    // the adaptive sampler learn the rest.
-    est.covariance = Eigen::MatrixXd::Zero(d, d);
-    for (int a = 0; a < d; ++a) {
-      const Prior& pr = pb.priors()[pb.free_indices()[a]];
-      const double v = est.map[pb.free_indices()[a]];
-      est.covariance(a, a) = std::pow(std::max(1e-3 * std::abs(v), 1e-4 * (pr.upper - pr.lower)), 2);
-    }
+  // DENSE_SVD leaves (near-)zero variance along directions the data do not constrain, and a
+  // covariance that is not positive definite cannot serve as a proposal. In scaled coordinates
+  // (unit ~ the parameter's size) give every direction at least a variance of (1e-3)^2 and tell
+  // the user when that was needed because the data leave a combination of parameters open.
+  constexpr double kMinScaledVariance = 1e-6;
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(computed ? cov_u : Eigen::MatrixXd::Identity(d, d) * kMinScaledVariance);
+  Eigen::VectorXd lambda = eig.eigenvalues();
+  const double lambda_max = std::max(lambda.maxCoeff(), kMinScaledVariance);
+  int unconstrained = 0;
+  for (int a = 0; a < d; ++a) {
+    if (lambda[a] < 1e-12 * lambda_max) ++unconstrained;
+    lambda[a] = std::max(lambda[a], kMinScaledVariance);
   }
+  cov_u = eig.eigenvectors() * lambda.asDiagonal() * eig.eigenvectors().transpose();
+  est.covariance_ok = computed && unconstrained == 0;
+  est.unconstrained_directions = computed ? unconstrained : d;
+  est.covariance = Eigen::MatrixXd(d, d);
+  for (int a = 0; a < d; ++a)
+    for (int b = 0; b < d; ++b) est.covariance(a, b) = cov_u(a, b) * scale[pb.free_indices()[a]] * scale[pb.free_indices()[b]];
 }
 
 void update_noise(const CalibrationProblem& pb, PointEstimate& est) {

@@ -113,7 +113,7 @@ Priors load_priors(const std::string& path) {
     }
     if (!(pr.lower < pr.upper))
       throw InputError(fmt::format("{}: key '{}': lower {} must be below upper {}", path, key, pr.lower, pr.upper));
-    if (!physically_allowed(i, pr.lower) && !(kPhysical[i].lower_open && pr.lower == kPhysical[i].lower))
+    if (!physically_allowed(i, pr.lower))
       throw InputError(fmt::format("{}: key '{}.lower': {} is outside the physical range {}", path, key, pr.lower, range_text(i)));
     if (!physically_allowed(i, pr.upper))
       throw InputError(fmt::format("{}: key '{}.upper': {} is outside the physical range {}", path, key, pr.upper, range_text(i)));

@@ -44,6 +44,7 @@ CsvTable CsvTable::read(const std::string& path) {
     if (s.empty() || s[0] == '#') continue;
     if (t.header_.empty()) {
       t.header_ = split(s);
+      t.header_line_ = line_no;
       continue;
     }
     t.cells_.push_back(split(s));
@@ -69,7 +70,7 @@ void CsvTable::require_columns(const std::vector<std::string>& names) const {
   for (const auto& n : names)
     if (!has_column(n)) missing.push_back(n);
   if (!missing.empty())
-    throw InputError(fmt::format("{}:1: missing column(s) {}; the header is '{}', expected the columns {}", path_,
+    throw InputError(fmt::format("{}:{}: missing column(s) {}; the header is '{}', expected the columns {}", path_, header_line_,
                                  fmt::join(missing, ", "), fmt::join(header_, ","), fmt::join(names, ",")));
 }
 

@@ -35,6 +35,7 @@ class CsvTable {
  private:
   std::string path_;
   std::vector<std::string> header_;
+  int header_line_ = 0;
   std::vector<std::vector<std::string>> cells_;
   std::vector<int> lines_;
 };

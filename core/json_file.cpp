@@ -13,7 +13,7 @@ nlohmann::json read_json_file(const std::string& path, const std::string& what) 
   if (!in) throw InputError(fmt::format("{}: cannot open the {}", path, what));
   try {
     return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // syntax, and numbers out of range (1e400)
     throw InputError(fmt::format("{}: the {} is not valid JSON: {}", path, what, e.what()));
   }
 }

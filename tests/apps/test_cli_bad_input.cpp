@@ -27,6 +27,9 @@ const BadCase kCases[] = {
     {"empty file", "", "plate.csv", "empty"},
     {"header only", "plate_radius_m,sinkage_m,force_N\n", "plate.csv", "no data rows"},
     {"sinkage in millimetres", "plate_radius_m,sinkage_m,force_N\n0.1,10,100\n0.1,20,200\n", ":2, column 'sinkage_m'", "millimetres"},
+    {"missing column after comments", "# rig 3\n# 2026-11-01\nplate_radius_m,force_N\n0.1,100\n", "plate.csv:3: missing column(s) sinkage_m", "sinkage_m"},
+    {"negative force", "plate_radius_m,sinkage_m,force_N\n0.1,0.01,-5\n", ":2, column 'force_N' (3)", "negative"},
+    {"all-zero forces", "plate_radius_m,sinkage_m,force_N\n0.1,0.01,0\n0.1,0.02,0\n", "plate.csv", "zero"},
     {"unknown phase", "plate_radius_m,sinkage_m,force_N,phase\n0.1,0.01,100,press\n", ":2, column 'phase' (4)", "load, unload or reload"},
 };
 
@@ -76,10 +79,28 @@ TEST_CASE("bad shear input and bad options: exit 2 naming what is wrong", "[cli]
     CHECK(r.exit_code == 2);
     CHECK(r.err.find("'phi.upper': 75 is outside the physical range [0, 60]") != std::string::npos);
   }
-  SECTION("options") {
-    CliResult r = run_cli("calibrate --plate " + demo_data("plate.csv") + " --chains 1 --out " + out, dir);
+  SECTION("priors: open lower bound, number out of range, everything fixed") {
+    write(dir + "/priors.json", R"({"k": {"type": "uniform", "lower": 0, "upper": 0.1}})");
+    CliResult r = run_cli("calibrate --plate " + demo_data("plate.csv") + " --priors " + dir + "/priors.json --out " + out, dir);
     CHECK(r.exit_code == 2);
-    CHECK(r.err.find("--chains 1") != std::string::npos);
+    CHECK(r.err.find("'k.lower': 0 is outside the physical range (0, 10]") != std::string::npos);
+    write(dir + "/priors.json", R"({"c": {"type": "uniform", "lower": 0, "upper": 1e400}})");
+    r = run_cli("calibrate --plate " + demo_data("plate.csv") + " --priors " + dir + "/priors.json --out " + out, dir);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find("priors.json: the priors file is not valid JSON") != std::string::npos);
+    write(dir + "/priors.json", R"({"Kc": {"type": "fixed", "value": 0}, "Kphi": {"type": "fixed", "value": 1e6},
+                                    "n": {"type": "fixed", "value": 1}})");
+    r = run_cli("calibrate --plate " + demo_data("plate.csv") + " --priors " + dir + "/priors.json --out " + out, dir);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find("every parameter is fixed") != std::string::npos);
+  }
+  SECTION("options") {
+    CliResult r = run_cli("calibrate --plate " + demo_data("plate.csv") + " --chains 3 --out " + out, dir);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find("--chains 3: expected 4 to 256 chains") != std::string::npos);
+    r = run_cli("calibrate --plate " + demo_data("plate.csv") + " --max-draws -5 --out " + out, dir);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find("--max-draws -5") != std::string::npos);
     r = run_cli("calibrate --plate " + demo_data("plate.csv") + " --sampler gibbs --out " + out, dir);
     CHECK(r.exit_code == 2);
     CHECK(r.err.find("--sampler 'gibbs'") != std::string::npos);
