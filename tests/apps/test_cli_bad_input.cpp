@@ -57,42 +57,40 @@ TEST_CASE("bad shear input and bad options: exit 2 naming what is wrong", "[cli]
   const ScratchDir scratch("badshear");
   const std::string dir = scratch.str();
   const std::string out = dir + "/out";
-  SECTION("negative angle") {
-    write(dir + "/shear.csv", "inner_radius_m,outer_radius_m,normal_load_N,angle_rad,torque_Nm\n0.15,0.2,100,-0.1,5\n");
-    const CliResult r = run_cli("calibrate --plate " + demo_data("plate.csv") + " --shear " + dir + "/shear.csv --out " + out, dir);
-    CHECK(r.exit_code == 2);
-    CHECK(r.err.find("shear.csv:2, column 'angle_rad' (4)") != std::string::npos);
-  }
-  SECTION("outer radius below inner") {
-    write(dir + "/shear.csv", "inner_radius_m,outer_radius_m,normal_load_N,angle_rad,torque_Nm\n0.2,0.15,100,0.1,5\n");
-    const CliResult r = run_cli("calibrate --plate " + demo_data("plate.csv") + " --shear " + dir + "/shear.csv --out " + out, dir);
-    CHECK(r.exit_code == 2);
-    CHECK(r.err.find("shear.csv:2, column 'outer_radius_m'") != std::string::npos);
-  }
-  SECTION("priors: unknown key and out-of-range bound") {
-    write(dir + "/priors.json", R"({"Kphii": {"type": "uniform", "lower": 0, "upper": 1e7}})");
-    CliResult r = run_cli("calibrate --plate " + demo_data("plate.csv") + " --priors " + dir + "/priors.json --out " + out, dir);
-    CHECK(r.exit_code == 2);
-    CHECK(r.err.find("unknown key 'Kphii'") != std::string::npos);
-    write(dir + "/priors.json", R"({"phi": {"type": "uniform", "lower": 0, "upper": 75}})");
-    r = run_cli("calibrate --plate " + demo_data("plate.csv") + " --priors " + dir + "/priors.json --out " + out, dir);
-    CHECK(r.exit_code == 2);
-    CHECK(r.err.find("'phi.upper': 75 is outside the physical range [0, 60]") != std::string::npos);
-  }
-  SECTION("priors: open lower bound, number out of range, everything fixed") {
-    write(dir + "/priors.json", R"({"k": {"type": "uniform", "lower": 0, "upper": 0.1}})");
-    CliResult r = run_cli("calibrate --plate " + demo_data("plate.csv") + " --priors " + dir + "/priors.json --out " + out, dir);
-    CHECK(r.exit_code == 2);
-    CHECK(r.err.find("'k.lower': 0 is outside the physical range (0, 10]") != std::string::npos);
-    write(dir + "/priors.json", R"({"c": {"type": "uniform", "lower": 0, "upper": 1e400}})");
-    r = run_cli("calibrate --plate " + demo_data("plate.csv") + " --priors " + dir + "/priors.json --out " + out, dir);
-    CHECK(r.exit_code == 2);
-    CHECK(r.err.find("priors.json: the priors file is not valid JSON") != std::string::npos);
-    write(dir + "/priors.json", R"({"Kc": {"type": "fixed", "value": 0}, "Kphi": {"type": "fixed", "value": 1e6},
-                                    "n": {"type": "fixed", "value": 1}})");
-    r = run_cli("calibrate --plate " + demo_data("plate.csv") + " --priors " + dir + "/priors.json --out " + out, dir);
-    CHECK(r.exit_code == 2);
-    CHECK(r.err.find("every parameter is fixed") != std::string::npos);
+  // Bad shear files and priors files: {case, file, content, option that passes it, expected message}.
+  struct FileCase {
+    const char* name;
+    const char* file;
+    const char* content;
+    const char* option;
+    const char* expect;
+  };
+  const FileCase cases[] = {
+      {"negative angle", "shear.csv", "inner_radius_m,outer_radius_m,normal_load_N,angle_rad,torque_Nm\n0.15,0.2,100,-0.1,5\n",
+       "--shear", "shear.csv:2, column 'angle_rad' (4)"},
+      {"outer radius below inner", "shear.csv", "inner_radius_m,outer_radius_m,normal_load_N,angle_rad,torque_Nm\n0.2,0.15,100,0.1,5\n",
+       "--shear", "shear.csv:2, column 'outer_radius_m'"},
+      {"priors: unknown key", "priors.json", R"({"Kphii": {"type": "uniform", "lower": 0, "upper": 1e7}})", "--priors",
+       "unknown key 'Kphii'"},
+      {"priors: bound out of range", "priors.json", R"({"phi": {"type": "uniform", "lower": 0, "upper": 75}})", "--priors",
+       "'phi.upper': 75 is outside the physical range [0, 60]"},
+      {"priors: open lower bound", "priors.json", R"({"k": {"type": "uniform", "lower": 0, "upper": 0.1}})", "--priors",
+       "'k.lower': 0 is outside the physical range (0, 10]"},
+      {"priors: number out of range", "priors.json", R"({"c": {"type": "uniform", "lower": 0, "upper": 1e400}})", "--priors",
+       "priors.json: the priors file is not valid JSON"},
+      {"priors: everything fixed", "priors.json",
+       R"({"Kc": {"type": "fixed", "value": 0}, "Kphi": {"type": "fixed", "value": 1e6}, "n": {"type": "fixed", "value": 1}})",
+       "--priors", "every parameter is fixed"},
+  };
+  for (const auto& c : cases) {
+    SECTION(c.name) {
+      write(dir + "/" + c.file, c.content);
+      const CliResult r =
+          run_cli("calibrate --plate " + demo_data("plate.csv") + " " + c.option + " " + dir + "/" + c.file + " --out " + out, dir);
+      INFO(c.name << ": stderr was: " << r.err);
+      CHECK(r.exit_code == 2);
+      CHECK(r.err.find(c.expect) != std::string::npos);
+    }
   }
   SECTION("options") {
     CliResult r = run_cli("calibrate --plate " + demo_data("plate.csv") + " --chains 3 --out " + out, dir);
