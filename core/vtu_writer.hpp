@@ -1,0 +1,36 @@
+#pragma once
+// Point clouds (SPH particles) as VTK XML UnstructuredGrid files (.vtu) and ParaView collections
+// (.pvd), written with the standard library only so no VTK install is needed to produce them.
+// Data arrays are inline base64 "binary" (header_type UInt32, LittleEndian): about a third larger
+// than raw appended data but still valid XML, and far smaller and faster than ASCII.
+// Both writers go through a hidden temporary file and a rename (core/atomic_file.hpp), so ParaView
+// watching a folder never sees a half-written file.
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace terracal {
+
+// One named field per point.
+struct VtuPointData {
+  std::string name;
+  // 1 (scalar), 3 (vector) or 6 (symmetric tensor in ParaView's order xx, yy, zz, xy, yz, xz).
+  int components = 1;
+  std::vector<float> values;  // n_points * components, point-major
+};
+
+// Writes the points `xyz` (x,y,z triples, stored as Float32) with one VTK_VERTEX cell per point and
+// the point-data arrays; `time` goes into the FieldData array "TimeValue" (read by ParaView).
+// Throws InputError (before touching any file) when xyz.size() is not a multiple of 3, a field's
+// size is not n_points * components, components is not 1, 3 or 6, or a name is empty or repeated;
+// also when an array exceeds the 4 GiB that a UInt32 header can describe. Throws RunError when the
+// file cannot be written; the final name is then untouched and no temporary is left.
+void write_vtu_points(const std::filesystem::path& file, const std::vector<double>& xyz,
+                      const std::vector<VtuPointData>& fields, double time = 0.0);
+
+// Writes a ParaView collection listing (time, file name relative to the .pvd's folder) pairs in
+// the order given. Throws InputError for an empty file name, RunError when the write fails.
+void write_pvd(const std::filesystem::path& file, const std::vector<std::pair<double, std::string>>& entries);
+
+}  // namespace terracal
