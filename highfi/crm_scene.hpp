@@ -1,0 +1,117 @@
+#pragma once
+// A CRM scene, validated once into immutable structs (DESIGN.md §2): soil, bin, bodies, fidelity
+// knobs and the explicit list of effects. Every bad value is an InputError naming key, value and range.
+#include <array>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/quat.hpp"
+#include "core/vec.hpp"
+#include "highfi/sph_engine.hpp"
+
+namespace terracal {
+
+// The CRM material (DESIGN.md §3 "Soil").
+struct CrmSoil {
+  double density = 1700, young_modulus = 1e6, poisson_ratio = 0.3, mu_s = 0.7, mu_2 = 0.7, I0 = 0.03;
+  double grain_diameter = 0.005, cohesion = 0;
+  Vec3<double> gravity{0, 0, -9.81};
+  double shear_modulus() const { return young_modulus / (2 * (1 + poisson_ratio)); }
+  double bulk_modulus() const { return young_modulus / (3 * (1 - 2 * poisson_ratio)); }
+  double sound_speed() const { return std::sqrt(bulk_modulus() / density); }
+};
+
+// Effects a scene may name; anything not named costs nothing.
+struct CrmEffects {
+  bool cohesion = false, artificial_viscosity = false, shifting = false, active_domain = false;
+};
+inline const std::array<const char*, 4> kCrmEffectNames = {"cohesion", "artificial_viscosity", "shifting", "active_domain"};
+
+enum class ShapeType { kBox, kCylinder, kDisc, kAnnulus, kMesh };
+
+struct BodyShape {
+  ShapeType type = ShapeType::kBox;
+  Vec3<double> half_extents{};  // box
+  double radius = 0;            // cylinder (axis = body y), disc and annulus outer radius (axis = body z)
+  double inner_radius = 0;      // annulus
+  double width = 0;             // cylinder width along y; disc/annulus thickness along z
+  int grouser_count = 0;        // cylinder: straight grousers across the width
+  double grouser_height = 0, grouser_thickness = 0;
+  std::vector<Vec3<double>> vertices;       // triangle mesh, body frame
+  std::vector<std::array<int, 3>> triangles;
+};
+
+// Each of the six degrees of freedom is prescribed (constant velocity) or free (dynamic).
+struct BodyMotion {
+  Vec3<double> linear_velocity{}, angular_velocity{};  // world frame; the initial velocity of free DOFs
+  std::array<bool, 6> free{};                          // x, y, z, rx, ry, rz
+  bool moves() const;
+  bool any_free() const;
+};
+
+struct CrmBody {
+  std::string name;
+  BodyShape shape;
+  Vec3<double> position{};
+  Quat orientation{};
+  BodyMotion motion;
+  double mass = 0;
+  Vec3<double> inertia{};              // principal moments in the body frame
+  Vec3<double> applied_force{}, applied_torque{};  // world frame, added to the soil's wrench and gravity
+  double bounding_radius() const;      // of the shape about the body origin
+};
+
+struct CrmBin {
+  Vec3<double> size{1, 1, 0.5};  // inner length x, width y, wall height z
+  double fill_height = 0.2;
+  double fill_length = 0;        // soil occupies x in [0, fill_length]; default the whole bin
+  int boundary_layers = 3;
+};
+
+struct CrmNumerics {
+  double spacing = 0.01;       // d0
+  double h_over_d0 = 1.2;
+  KernelType kernel = KernelType::kWendlandC2;
+  double cfl = 0.3;
+  double time_step = 0;        // resolved: given, or cfl h / (c_s + v_expected)
+  double expected_speed = 0;   // the v_max used in the CFL limit
+  double viscosity_alpha = 0.1;
+  double xsph = 0.5;
+  double active_margin = 0.1;
+  double free_surface_support = 0.8;
+  CrmPrecision cpu_precision = CrmPrecision::kDouble;
+  double smoothing_length() const { return h_over_d0 * spacing; }
+  double cfl_limit(const CrmSoil& soil, double speed) const {
+    return 0.3 * smoothing_length() / (soil.sound_speed() + speed);
+  }
+};
+
+struct CrmOutputSettings {
+  long vtu_every = 0;          // steps between ParaView snapshots; 0 = none
+  long checkpoint_every = 0;   // steps between checkpoints; 0 = only at the end
+  double progress_seconds = 5; // wall seconds between progress lines
+};
+
+struct CrmScene {
+  CrmSoil soil;
+  CrmBin bin;
+  std::vector<CrmBody> bodies;
+  CrmNumerics numerics;
+  CrmEffects effects;
+  CrmOutputSettings output;
+  double duration = 0;         // simulated seconds after settling
+  double settle_time = 0;      // simulated seconds of settling (cached per soil, bin and spacing)
+  std::string source;          // where the scene came from, for messages
+};
+
+// Validates a scene JSON (see docs/crm_scene.md); `where` names the file in messages.
+CrmScene parse_crm_scene(const nlohmann::json& j, const std::string& where);
+CrmScene load_crm_scene(const std::filesystem::path& file);
+CrmSoil parse_crm_soil(const nlohmann::json& j, const std::string& where);
+// Re-checks the invariants of a scene built in code (tests, rigs); throws InputError like the parser.
+void validate_crm_scene(CrmScene& scene);
+
+}  // namespace terracal

@@ -1,0 +1,214 @@
+#include "highfi/crm_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+#include "highfi/body_markers.hpp"
+
+namespace terracal {
+
+SphConstants<double> crm_constants(const CrmScene& sc) {
+  SphConstants<double> k;
+  const CrmSoil& s = sc.soil;
+  const CrmNumerics& n = sc.numerics;
+  k.kernel = SphKernel<double>::make(n.kernel, n.smoothing_length());
+  k.model.shear_modulus = s.shear_modulus();
+  k.model.bulk_modulus = s.bulk_modulus();
+  k.model.mu_s = s.mu_s;
+  k.model.mu_2 = s.mu_2;
+  k.model.I0 = s.I0;
+  k.model.grain_diameter = s.grain_diameter;
+  k.model.rho0 = s.density;
+  k.model.cohesion = sc.effects.cohesion ? s.cohesion : 0.0;
+  k.mass = s.density * n.spacing * n.spacing * n.spacing;
+  k.gravity = s.gravity;
+  k.sound_speed = s.sound_speed();
+  k.viscosity_alpha = sc.effects.artificial_viscosity ? n.viscosity_alpha : 0.0;
+  k.xsph = sc.effects.shifting ? n.xsph : 0.0;
+  k.free_surface_support = n.free_surface_support;
+  return k;
+}
+
+GridGeometry<double> crm_grid(const CrmScene& sc) {
+  // The domain: the bin with its wall layers, one support radius around it, and headroom above the
+  // walls and the bodies. Particles that leave it are lost (reported, never a crash).
+  const double d0 = sc.numerics.spacing, h = sc.numerics.smoothing_length(), cell = 2 * h;
+  const double pad = sc.bin.boundary_layers * d0 + cell;
+  double top = std::max(sc.bin.size.z, sc.bin.fill_height) + 0.25 * sc.bin.size.z;
+  for (const auto& b : sc.bodies) top = std::max(top, b.position.z + b.bounding_radius() + cell);
+  GridGeometry<double> g;
+  g.origin = {-pad, -pad, -pad};
+  g.inv_cell = 1.0 / cell;
+  g.nx = int(std::ceil((sc.bin.size.x + 2 * pad) / cell));
+  g.ny = int(std::ceil((sc.bin.size.y + 2 * pad) / cell));
+  g.nz = int(std::ceil((top + pad) / cell));
+  if (double(g.nx) * g.ny * g.nz > 2e9) throw InputError("the neighbour grid would exceed 2e9 cells: the bin is too large for this spacing");
+  return g;
+}
+
+HostSoil initial_bed(const CrmScene& sc) {
+  const double d0 = sc.numerics.spacing;
+  const int nx = int(std::lround((sc.bin.fill_length > 0 ? sc.bin.fill_length : sc.bin.size.x) / d0));
+  const int ny = int(std::lround(sc.bin.size.y / d0));
+  const int nz = int(std::lround(sc.bin.fill_height / d0));
+  const double H = nz * d0, rho = sc.soil.density, g = std::abs(sc.soil.gravity.z);
+  const double k0 = sc.soil.poisson_ratio / (1 - sc.soil.poisson_ratio);
+  HostSoil s;
+  const std::size_t n = std::size_t(nx) * ny * nz;
+  s.pos.reserve(n); s.vel.reserve(n); s.s0.reserve(n); s.s1.reserve(n); s.ids.reserve(n);
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const double z = (k + 0.5) * d0;
+        const double szz = -rho * g * (H - z);
+        s.pos.push_back({(i + 0.5) * d0, (j + 0.5) * d0, z, rho});
+        s.vel.push_back({0, 0, 0, double(kParticleActive)});
+        s.s0.push_back({k0 * szz, k0 * szz, szz, 0});
+        s.s1.push_back({0, 0, 0, 1});
+        s.ids.push_back(int(s.ids.size()));
+      }
+  return s;
+}
+
+CrmSolver::CrmSolver(const CrmScene& scene, CrmDevice device, const HostSoil* bed) : scene_(scene) {
+  const double d0 = scene_.numerics.spacing;
+  EngineSetup setup;
+  setup.constants = crm_constants(scene_);
+  setup.grid = crm_grid(scene_);
+  setup.soil = bed ? *bed : initial_bed(scene_);
+  setup.viscosity = scene_.effects.artificial_viscosity;
+  setup.shifting = scene_.effects.shifting;
+  setup.bodies = int(scene_.bodies.size()) + 1;
+  const double rho = scene_.soil.density;
+  for (const auto& p : bin_marker_positions(scene_.bin, d0)) {
+    setup.markers.pos.push_back({p.x, p.y, p.z, rho});
+    setup.markers.local.push_back({p.x, p.y, p.z, 0.0});
+    setup.markers.wall_vel.push_back({0, 0, 0, 0});
+  }
+  for (std::size_t b = 0; b < scene_.bodies.size(); ++b) {
+    const CrmBody& body = scene_.bodies[b];
+    body_local_.push_back(body_marker_positions(body.shape, d0, scene_.bin.boundary_layers));
+    BodyState st{body.position, body.orientation, body.motion.linear_velocity, body.motion.angular_velocity};
+    bodies_.push_back(st);
+    for (const auto& l : body_local_.back()) {
+      const Vec3<double> r = body.orientation.rotate(l);
+      const Vec3<double> x = body.position + r, v = st.velocity + cross(st.omega, r);
+      setup.markers.pos.push_back({x.x, x.y, x.z, rho});
+      setup.markers.local.push_back({l.x, l.y, l.z, double(b + 1)});
+      setup.markers.wall_vel.push_back({v.x, v.y, v.z, body.motion.moves() ? 1.0 : 0.0});
+    }
+  }
+  wrenches_.assign(scene_.bodies.size(), {});
+  engine_ = device == CrmDevice::kCuda ? make_cuda_engine(setup) : make_cpu_engine(setup, scene_.numerics.cpu_precision);
+  engine_->set_poses(poses(bodies_));
+  if (!scene_.effects.active_domain) engine_->set_active({});
+}
+
+HostSoil CrmSolver::soil() const {
+  HostSoil s;
+  engine_->download(s);
+  return s;
+}
+
+void CrmSolver::restore(const HostSoil& soil, const std::vector<BodyState>& bodies, double time, long steps) {
+  if (bodies.size() != bodies_.size()) throw RunError("checkpoint: the number of bodies differs from the scene");
+  engine_->upload(soil);
+  bodies_ = bodies;
+  time_ = time;
+  steps_ = steps;
+  engine_->set_poses(poses(bodies_));
+}
+
+std::vector<BodyPose<double>> CrmSolver::poses(const std::vector<BodyState>& states) const {
+  std::vector<BodyPose<double>> p(states.size() + 1);  // 0: the bin's walls, at rest
+  for (std::size_t b = 0; b < states.size(); ++b) {
+    BodyPose<double>& q = p[b + 1];
+    q.center = states[b].position;
+    q.velocity = states[b].velocity;
+    q.omega = states[b].omega;
+    states[b].orientation.to_matrix(q.R);
+    q.moving = scene_.bodies[b].motion.moves() ? 1 : 0;
+  }
+  return p;
+}
+
+// base + h * rate(at): prescribed velocities stay as given; free ones follow Newton-Euler with
+// the soil's wrench, the applied force and torque, and gravity.
+BodyState CrmSolver::advance(const BodyState& base, const BodyState& at, const BodyWrench& w, const CrmBody& body,
+                             double h) const {
+  BodyState out = base;
+  out.position = base.position + h * at.velocity;
+  out.orientation = integrate_rotation(base.orientation, at.omega, h);
+  const auto& f = body.motion.free;
+  if (f[0] || f[1] || f[2]) {
+    const Vec3<double> a = (1.0 / body.mass) * (w.force + body.applied_force) + scene_.soil.gravity;
+    for (int q = 0; q < 3; ++q)
+      if (f[q]) out.velocity[q] = base.velocity[q] + h * a[q];
+  }
+  if (f[3] || f[4] || f[5]) {
+    // Euler's equations in the world frame: I_w domega/dt = tau - omega x I_w omega, I_w = R I R^T.
+    double R[9];
+    at.orientation.to_matrix(R);
+    auto body_to_world_inertia = [&](const Vec3<double>& v) {  // I_w v
+      const Vec3<double> vb{R[0] * v.x + R[3] * v.y + R[6] * v.z, R[1] * v.x + R[4] * v.y + R[7] * v.z,
+                            R[2] * v.x + R[5] * v.y + R[8] * v.z};
+      const Vec3<double> ib{body.inertia.x * vb.x, body.inertia.y * vb.y, body.inertia.z * vb.z};
+      return Vec3<double>{R[0] * ib.x + R[1] * ib.y + R[2] * ib.z, R[3] * ib.x + R[4] * ib.y + R[5] * ib.z,
+                          R[6] * ib.x + R[7] * ib.y + R[8] * ib.z};
+    };
+    const Vec3<double> rhs = w.torque + body.applied_torque - cross(at.omega, body_to_world_inertia(at.omega));
+    // I_w^{-1} rhs = R I^{-1} R^T rhs
+    const Vec3<double> rb{R[0] * rhs.x + R[3] * rhs.y + R[6] * rhs.z, R[1] * rhs.x + R[4] * rhs.y + R[7] * rhs.z,
+                          R[2] * rhs.x + R[5] * rhs.y + R[8] * rhs.z};
+    const Vec3<double> ab{rb.x / body.inertia.x, rb.y / body.inertia.y, rb.z / body.inertia.z};
+    const Vec3<double> alpha{R[0] * ab.x + R[1] * ab.y + R[2] * ab.z, R[3] * ab.x + R[4] * ab.y + R[5] * ab.z,
+                             R[6] * ab.x + R[7] * ab.y + R[8] * ab.z};
+    for (int q = 0; q < 3; ++q)
+      if (f[3 + q]) out.omega[q] = base.omega[q] + h * alpha[q];
+  }
+  return out;
+}
+
+std::vector<ActiveBox<double>> CrmSolver::active_boxes() const {
+  std::vector<ActiveBox<double>> boxes;
+  const double margin = scene_.numerics.active_margin;
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    if (!scene_.bodies[b].motion.moves()) continue;
+    const double r = scene_.bodies[b].bounding_radius() + margin;
+    const Vec3<double> c = bodies_[b].position;
+    boxes.push_back({c - Vec3<double>{r, r, r}, c + Vec3<double>{r, r, r}});
+  }
+  return boxes;
+}
+
+void CrmSolver::step() {
+  const double dt = scene_.numerics.time_step;
+  if (scene_.effects.active_domain) {
+    // No moving body: nothing to focus on, so every particle is integrated.
+    engine_->set_active(active_boxes());
+  }
+  engine_->begin_step();
+  const std::size_t nb = bodies_.size();
+  auto unpack = [&](const std::vector<double>& w, std::size_t b) {
+    const double* p = w.data() + 6 * b;
+    return BodyWrench{{p[0], p[1], p[2]}, {p[3], p[4], p[5]}};
+  };
+  engine_->set_poses(poses(bodies_));
+  const std::vector<double> w0 = engine_->stage(0, dt);
+  std::vector<BodyState> half(nb);
+  for (std::size_t b = 0; b < nb; ++b) half[b] = advance(bodies_[b], bodies_[b], unpack(w0, b + 1), scene_.bodies[b], 0.5 * dt);
+  engine_->set_poses(poses(half));
+  const std::vector<double> w1 = engine_->stage(1, dt);
+  for (std::size_t b = 0; b < nb; ++b) {
+    wrenches_[b] = unpack(w1, b + 1);
+    bodies_[b] = advance(bodies_[b], half[b], wrenches_[b], scene_.bodies[b], dt);
+  }
+  wall_wrench_ = unpack(w1, 0);
+  time_ += dt;
+  ++steps_;
+}
+
+}  // namespace terracal

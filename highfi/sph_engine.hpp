@@ -1,0 +1,72 @@
+#pragma once
+// The CRM particle engine seen from the host: a precision- and device-independent interface in
+// double precision. Implementations: the CPU (OpenMP) backend in float64 or float32 and the CUDA
+// backend in float32; all run the same functors of sph_stage.hpp.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "highfi/sph_stage.hpp"
+
+namespace terracal {
+
+enum class CrmDevice { kCpu, kCuda };
+enum class CrmPrecision { kDouble, kFloat };
+
+struct HostSoil {
+  std::vector<Vec4<double>> pos, vel, s0, s1;  // layout of SoilArrays
+  std::vector<int> ids;                        // original particle numbers (the arrays are kept sorted by cell)
+  std::size_t size() const { return pos.size(); }
+};
+
+struct HostMarkers {
+  std::vector<Vec4<double>> pos;       // world position, w = density the soil sees
+  std::vector<Vec4<double>> local;     // body frame, w = body index
+  std::vector<Vec4<double>> wall_vel;  // w = 1 for markers of moving bodies
+  std::size_t size() const { return pos.size(); }
+};
+
+struct EngineSetup {
+  SphConstants<double> constants;
+  GridGeometry<double> grid;
+  HostSoil soil;
+  HostMarkers markers;
+  int bodies = 1;
+  bool viscosity = false, shifting = false;
+};
+
+// Sums over the soil in double precision (for progress, tests and stability checks).
+struct SoilStats {
+  double mass = 0, kinetic_energy = 0;
+  Vec3<double> momentum{};
+  double max_speed = 0;
+  long nonfinite = 0, lost = 0, frozen = 0;
+};
+
+class SphEngine {
+ public:
+  virtual ~SphEngine() = default;
+  virtual std::string description() const = 0;
+  virtual std::size_t soil_count() const = 0;
+  virtual std::size_t marker_count() const = 0;
+  virtual std::size_t device_bytes() const = 0;
+  // Places body markers at the given poses (index = body) and re-sorts them when any moves.
+  virtual void set_poses(const std::vector<BodyPose<double>>& poses) = 0;
+  // Freezes soil outside the boxes (active_domain); an empty list activates every particle.
+  virtual void set_active(const std::vector<ActiveBox<double>>& boxes) = 0;
+  // Sorts the soil by cell; called once per step before the stages.
+  virtual void begin_step() = 0;
+  // Stage 0: A -> B over dt/2; stage 1: B -> A over dt (midpoint rule). Returns the wrench of the soil
+  // on each body, about the body's pose centre: 6 doubles per body (force, torque).
+  virtual std::vector<double> stage(int which, double dt) = 0;
+  virtual SoilStats stats() const = 0;
+  virtual void download(HostSoil& soil) const = 0;
+  virtual void upload(const HostSoil& soil) = 0;
+};
+
+std::unique_ptr<SphEngine> make_cpu_engine(const EngineSetup& setup, CrmPrecision precision);
+// Throws RunError when the build has no CUDA or no device is present.
+std::unique_ptr<SphEngine> make_cuda_engine(const EngineSetup& setup);
+bool cuda_engine_available(std::string* why = nullptr);
+
+}  // namespace terracal

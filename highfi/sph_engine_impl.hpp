@@ -1,0 +1,264 @@
+#pragma once
+// The step algorithm, written once over a backend B that supplies memory, parallel_for, a stable
+// sort by cell and reductions (sph_engine_cpu.cpp, sph_engine_cuda.cu). Included by both.
+#include <algorithm>
+#include <cstdio>
+#include <initializer_list>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "highfi/sph_engine.hpp"
+
+namespace terracal {
+
+template <typename T>
+inline Vec4<T> to_t(const Vec4<double>& v) { return {T(v.x), T(v.y), T(v.z), T(v.w)}; }
+template <typename T>
+inline Vec3<T> to_t(const Vec3<double>& v) { return {T(v.x), T(v.y), T(v.z)}; }
+
+template <typename T>
+SphConstants<T> constants_in(const SphConstants<double>& c) {
+  SphConstants<T> k;
+  k.kernel.type = c.kernel.type;
+  k.kernel.h = T(c.kernel.h);
+  k.kernel.inv_h = T(c.kernel.inv_h);
+  k.kernel.alpha = T(c.kernel.alpha);
+  k.model = {T(c.model.shear_modulus), T(c.model.bulk_modulus), T(c.model.mu_s), T(c.model.mu_2), T(c.model.I0),
+             T(c.model.grain_diameter), T(c.model.rho0), T(c.model.cohesion)};
+  k.mass = T(c.mass);
+  k.gravity = to_t<T>(c.gravity);
+  k.sound_speed = T(c.sound_speed);
+  k.viscosity_alpha = T(c.viscosity_alpha);
+  k.xsph = T(c.xsph);
+  k.free_surface_support = T(c.free_surface_support);
+  return k;
+}
+template <typename T>
+GridGeometry<T> grid_in(const GridGeometry<double>& g) {
+  return {to_t<T>(g.origin), T(g.inv_cell), g.nx, g.ny, g.nz};
+}
+
+// Device-side storage of one soil state (four Vec4 arrays).
+template <typename T, typename B>
+struct SoilBuffers {
+  SoilArrays<T> a;
+  void allocate(std::size_t n) {
+    a.pos = B::template alloc<Vec4<T>>(n);
+    a.vel = B::template alloc<Vec4<T>>(n);
+    a.s0 = B::template alloc<Vec4<T>>(n);
+    a.s1 = B::template alloc<Vec4<T>>(n);
+  }
+  void release() {
+    B::release(a.pos);
+    B::release(a.vel);
+    B::release(a.s0);
+    B::release(a.s1);
+  }
+};
+
+template <typename T, typename B>
+class SphEngineImpl final : public SphEngine {
+ public:
+  explicit SphEngineImpl(const EngineSetup& s)
+      : k_(constants_in<T>(s.constants)), grid_(grid_in<T>(s.grid)), n_(s.soil.size()), nm_(s.markers.size()),
+        bodies_(s.bodies), viscosity_(s.viscosity), shifting_(s.shifting) {
+    const std::size_t nn = n_ > 0 ? n_ : 1, mm = nm_ > 0 ? nm_ : 1;
+    A_.allocate(nn);
+    B_.allocate(nn);
+    ids_ = B::template alloc<int>(nn);
+    keys_ = B::template alloc<int>(std::max(nn, mm));
+    vals_ = B::template alloc<int>(std::max(nn, mm));
+    keys_alt_ = B::template alloc<int>(std::max(nn, mm));
+    vals_alt_ = B::template alloc<int>(std::max(nn, mm));
+    const std::size_t cells = std::size_t(grid_.cells()) + 2;
+    soil_begin_ = B::template alloc<int>(cells);
+    marker_begin_ = B::template alloc<int>(cells);
+    mk_.pos = B::template alloc<Vec4<T>>(mm);
+    mk_.vel = B::template alloc<Vec4<T>>(mm);
+    mk_.s0 = B::template alloc<Vec4<T>>(mm);
+    mk_.s1 = B::template alloc<Vec4<T>>(mm);
+    mk_.local = B::template alloc<Vec4<T>>(mm);
+    mk_.wall_vel = B::template alloc<Vec4<T>>(mm);
+    mk_.force = B::template alloc<Vec4<T>>(mm);
+    canon_.pos = B::template alloc<Vec4<T>>(mm);
+    canon_.local = B::template alloc<Vec4<T>>(mm);
+    canon_.wall_vel = B::template alloc<Vec4<T>>(mm);
+    poses_ = B::template alloc<BodyPose<T>>(std::size_t(bodies_));
+    boxes_ = B::template alloc<ActiveBox<T>>(16);
+    wrench_ = B::template alloc<double>(6 * std::size_t(bodies_));
+    upload(s.soil);
+    upload_markers(s.markers);
+    std::vector<BodyPose<double>> rest(static_cast<std::size_t>(bodies_));
+    set_poses(rest);
+  }
+  ~SphEngineImpl() override {
+    A_.release();
+    B_.release();
+    for (int* p : {ids_, keys_, vals_, keys_alt_, vals_alt_, soil_begin_, marker_begin_}) B::release(p);
+    Vec4<T>* const marker_fields[] = {mk_.pos, mk_.vel, mk_.s0, mk_.s1, mk_.local, mk_.wall_vel, mk_.force,
+                                        canon_.pos, canon_.local, canon_.wall_vel};
+    for (Vec4<T>* p : marker_fields) B::release(p);
+    B::release(poses_);
+    B::release(boxes_);
+    B::release(wrench_);
+  }
+
+  std::string description() const override { return B::name() + (sizeof(T) == 8 ? " float64" : " float32"); }
+  std::size_t soil_count() const override { return n_; }
+  std::size_t marker_count() const override { return nm_; }
+  std::size_t device_bytes() const override {
+    const std::size_t per_soil = 2 * 4 * sizeof(Vec4<T>) + 5 * sizeof(int);
+    const std::size_t per_marker = 10 * sizeof(Vec4<T>);
+    return n_ * per_soil + nm_ * per_marker + 2 * (std::size_t(grid_.cells()) + 2) * sizeof(int) + B::scratch_bytes();
+  }
+
+  void set_poses(const std::vector<BodyPose<double>>& poses) override {
+    std::vector<BodyPose<T>> p(poses.size());
+    bool any_moving = false;
+    for (std::size_t b = 0; b < poses.size(); ++b) {
+      p[b].center = to_t<T>(poses[b].center);
+      p[b].velocity = to_t<T>(poses[b].velocity);
+      p[b].omega = to_t<T>(poses[b].omega);
+      for (int q = 0; q < 9; ++q) p[b].R[q] = T(poses[b].R[q]);
+      p[b].moving = poses[b].moving;
+      any_moving = any_moving || poses[b].moving;
+    }
+    B::upload(poses_, p.data(), p.size());
+    if (nm_ == 0) {
+      sort_markers();
+      return;
+    }
+    if (any_moving) B::parallel_for(long(nm_), MarkerPoseUpdate<T>{poses_, canon_});
+    if (any_moving || !markers_sorted_) sort_markers();
+  }
+
+  void set_active(const std::vector<ActiveBox<double>>& boxes) override {
+    if (boxes.size() > 16) throw RunError("active_domain: at most 16 moving bodies");
+    std::vector<ActiveBox<T>> b(boxes.size());
+    for (std::size_t q = 0; q < boxes.size(); ++q) b[q] = {to_t<T>(boxes[q].lo), to_t<T>(boxes[q].hi)};
+    if (!b.empty()) B::upload(boxes_, b.data(), b.size());
+    if (b.empty()) {
+      // Everyone active: a single box that covers the whole grid.
+      ActiveBox<T> all{grid_.origin, grid_.origin + (T(1) / grid_.inv_cell) * Vec3<T>{T(grid_.nx), T(grid_.ny), T(grid_.nz)}};
+      B::upload(boxes_, &all, 1);
+    }
+    B::parallel_for(long(n_), MarkActive<T>{boxes_, int(std::max<std::size_t>(b.size(), 1)), A_.a});
+  }
+
+  void begin_step() override {
+    if (n_ == 0) {
+      B::fill_begin(soil_begin_, grid_.cells() + 2, 0);
+      return;
+    }
+    B::parallel_for(long(n_), SoilCellKey<T>{grid_, A_.a, keys_, vals_});
+    const int* perm = B::sort_cells(int(n_), grid_.cells() + 1, keys_, vals_, keys_alt_, vals_alt_, soil_begin_);
+    // Gather A into B in sorted order, then swap: B is scratch between steps.
+    B::parallel_for(long(n_), Gather<Vec4<T>>{A_.a.pos, B_.a.pos, perm});
+    B::parallel_for(long(n_), Gather<Vec4<T>>{A_.a.vel, B_.a.vel, perm});
+    B::parallel_for(long(n_), Gather<Vec4<T>>{A_.a.s0, B_.a.s0, perm});
+    B::parallel_for(long(n_), Gather<Vec4<T>>{A_.a.s1, B_.a.s1, perm});
+    // ids: gathered through the key buffer that the sort no longer needs.
+    int* spare = perm == vals_ ? keys_alt_ : keys_;
+    B::parallel_for(long(n_), Gather<int>{ids_, spare, perm});
+    B::copy(ids_, spare, n_);
+    std::swap(A_, B_);
+  }
+
+  std::vector<double> stage(int which, double dt) override {
+    const SoilArrays<T> eval = which == 0 ? A_.a : B_.a;
+    const SoilArrays<T> out = which == 0 ? B_.a : A_.a;
+    const T h = T(which == 0 ? 0.5 * dt : dt);
+    if (viscosity_) run_stage<true>(eval, out, h);
+    else run_stage<false>(eval, out, h);
+    std::vector<double> w(6 * std::size_t(bodies_), 0.0);
+    if (nm_ > 0) B::wrench_sum(mk_, long(nm_), poses_, bodies_, wrench_, w.data());
+    return w;
+  }
+
+  SoilStats stats() const override { return B::soil_stats(A_.a, long(n_), double(k_.mass)); }
+
+  void download(HostSoil& s) const override {
+    s.pos.resize(n_);
+    s.vel.resize(n_);
+    s.s0.resize(n_);
+    s.s1.resize(n_);
+    s.ids.resize(n_);
+    download_vec4(A_.a.pos, s.pos);
+    download_vec4(A_.a.vel, s.vel);
+    download_vec4(A_.a.s0, s.s0);
+    download_vec4(A_.a.s1, s.s1);
+    B::download(s.ids.data(), ids_, n_);
+  }
+
+  void upload(const HostSoil& s) override {
+    if (s.size() != n_) throw RunError("engine upload: particle count changed");
+    upload_vec4(A_.a.pos, s.pos);
+    upload_vec4(A_.a.vel, s.vel);
+    upload_vec4(A_.a.s0, s.s0);
+    upload_vec4(A_.a.s1, s.s1);
+    B::upload(ids_, s.ids.data(), n_);
+  }
+
+ private:
+  template <bool kVisc>
+  void run_stage(const SoilArrays<T>& eval, const SoilArrays<T>& out, T dt) {
+    if (nm_ > 0) B::parallel_for(long(nm_), MarkerStage<T, kVisc>{k_, grid_, soil_begin_, eval, mk_});
+    if (n_ == 0) return;
+    if (shifting_)
+      B::parallel_for(long(n_), SoilStage<T, kVisc, true>{k_, grid_, soil_begin_, marker_begin_, eval, A_.a, out, mk_, dt});
+    else
+      B::parallel_for(long(n_), SoilStage<T, kVisc, false>{k_, grid_, soil_begin_, marker_begin_, eval, A_.a, out, mk_, dt});
+  }
+
+  // Markers are re-derived from their canonical (construction-order) arrays at every sort, so that
+  // their sorted order depends only on the current poses, never on the history: a run restarted
+  // from a checkpoint sums in exactly the same order as one that went on.
+  void sort_markers() {
+    if (nm_ == 0) {
+      B::fill_begin(marker_begin_, grid_.cells() + 2, 0);
+      markers_sorted_ = true;
+      return;
+    }
+    B::parallel_for(long(nm_), MarkerCellKey<T>{grid_, canon_, keys_, vals_});
+    const int* perm = B::sort_cells(int(nm_), grid_.cells() + 1, keys_, vals_, keys_alt_, vals_alt_, marker_begin_);
+    B::parallel_for(long(nm_), Gather<Vec4<T>>{canon_.pos, mk_.pos, perm});
+    B::parallel_for(long(nm_), Gather<Vec4<T>>{canon_.local, mk_.local, perm});
+    B::parallel_for(long(nm_), Gather<Vec4<T>>{canon_.wall_vel, mk_.wall_vel, perm});
+    markers_sorted_ = true;
+  }
+
+  void upload_markers(const HostMarkers& m) {
+    upload_vec4(canon_.pos, m.pos);
+    upload_vec4(canon_.local, m.local);
+    upload_vec4(canon_.wall_vel, m.wall_vel);
+    markers_sorted_ = false;
+  }
+  void upload_vec4(Vec4<T>* dst, const std::vector<Vec4<double>>& src) {
+    std::vector<Vec4<T>> t(src.size());
+    for (std::size_t i = 0; i < src.size(); ++i) t[i] = to_t<T>(src[i]);
+    B::upload(dst, t.data(), t.size());
+  }
+  void download_vec4(const Vec4<T>* src, std::vector<Vec4<double>>& dst) const {
+    std::vector<Vec4<T>> t(dst.size());
+    B::download(t.data(), src, t.size());
+    for (std::size_t i = 0; i < t.size(); ++i) dst[i] = {double(t[i].x), double(t[i].y), double(t[i].z), double(t[i].w)};
+  }
+
+  SphConstants<T> k_;
+  GridGeometry<T> grid_;
+  std::size_t n_, nm_;
+  int bodies_;
+  bool viscosity_, shifting_;
+  bool markers_sorted_ = false;
+  SoilBuffers<T, B> A_, B_;
+  MarkerArrays<T> mk_;
+  MarkerArrays<T> canon_;  // construction order: pos, local, wall_vel
+  int *ids_ = nullptr, *keys_ = nullptr, *vals_ = nullptr, *keys_alt_ = nullptr, *vals_alt_ = nullptr;
+  int *soil_begin_ = nullptr, *marker_begin_ = nullptr;
+  BodyPose<T>* poses_ = nullptr;
+  ActiveBox<T>* boxes_ = nullptr;
+  double* wrench_ = nullptr;
+};
+
+}  // namespace terracal

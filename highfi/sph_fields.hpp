@@ -1,0 +1,93 @@
+#pragma once
+// Particle storage shared by both backends: structure of arrays of 16-byte Vec4 records, so that
+// a neighbour's field is one 128-bit load on the GPU. Pointers are device pointers on the CUDA
+// backend and host pointers on the CPU one; the physics never knows which.
+#include "core/host_device.hpp"
+#include "core/vec.hpp"
+#include "highfi/sph_kernel.hpp"
+#include "highfi/soil_model.hpp"
+
+namespace terracal {
+
+// Status of a soil particle, kept in vel.w.
+enum ParticleStatus : int { kParticleActive = 0, kParticleFrozen = 1, kParticleLost = 2 };
+
+template <typename T>
+struct SoilArrays {
+  Vec4<T>* pos = nullptr;  // x, y, z, density
+  Vec4<T>* vel = nullptr;  // vx, vy, vz, status (ParticleStatus)
+  Vec4<T>* s0 = nullptr;   // sigma xx, yy, zz, xy (Cauchy stress, compression negative)
+  Vec4<T>* s1 = nullptr;   // sigma xz, yz, accumulated plastic shear strain, kernel support (Shepard sum)
+};
+
+template <typename T>
+struct MarkerArrays {
+  Vec4<T>* pos = nullptr;       // x, y, z, density seen by the soil
+  Vec4<T>* vel = nullptr;       // velocity seen by the soil: 2 v_wall - extrapolated v (Adami 2012)
+  Vec4<T>* s0 = nullptr;        // extrapolated stress, as SoilArrays
+  Vec4<T>* s1 = nullptr;
+  Vec4<T>* local = nullptr;     // position in the body frame; w = body index
+  Vec4<T>* wall_vel = nullptr;  // rigid-body velocity at the marker; w = 1 when the body moves
+  Vec4<T>* force = nullptr;     // force of the soil on the marker (x, y, z)
+};
+
+template <typename T>
+TERRACAL_HD inline Sym3<T> stress_of(const Vec4<T>& s0, const Vec4<T>& s1) {
+  return {s0.x, s0.y, s0.z, s0.w, s1.x, s1.y};
+}
+
+// Uniform grid of cell size >= 2h over the domain; cells ordered x fastest, so the three cells
+// of a row of neighbours are contiguous in the sorted arrays. Key `cells()` is the bin for
+// particles outside the domain (lost), which no neighbour loop visits.
+template <typename T>
+struct GridGeometry {
+  Vec3<T> origin{};
+  T inv_cell = 1;
+  int nx = 1, ny = 1, nz = 1;
+  TERRACAL_HD int cells() const { return nx * ny * nz; }
+  TERRACAL_HD bool cell_coords(const Vec3<T>& p, int& ix, int& iy, int& iz) const {
+    const T fx = (p.x - origin.x) * inv_cell, fy = (p.y - origin.y) * inv_cell, fz = (p.z - origin.z) * inv_cell;
+    // The comparisons are written so that NaN also counts as outside.
+    if (!(fx >= T(0) && fy >= T(0) && fz >= T(0) && fx < T(nx) && fy < T(ny) && fz < T(nz))) return false;
+    ix = int(fx); iy = int(fy); iz = int(fz);
+    if (ix >= nx) ix = nx - 1;
+    if (iy >= ny) iy = ny - 1;
+    if (iz >= nz) iz = nz - 1;
+    return true;
+  }
+  TERRACAL_HD int key(const Vec3<T>& p) const {
+    int ix, iy, iz;
+    if (!cell_coords(p, ix, iy, iz)) return cells();
+    return ix + nx * (iy + ny * iz);
+  }
+  // Calls f(first, last) for the nine contiguous index ranges that cover the 27 cells around p.
+  template <typename F>
+  TERRACAL_HD void for_each_neighbour_range(const Vec3<T>& p, const int* begin, F&& f) const {
+    int ix, iy, iz;
+    if (!cell_coords(p, ix, iy, iz)) return;
+    const int x0 = ix > 0 ? ix - 1 : 0, x1 = ix + 1 < nx ? ix + 1 : nx - 1;
+    for (int z = iz - 1; z <= iz + 1; ++z) {
+      if (z < 0 || z >= nz) continue;
+      for (int y = iy - 1; y <= iy + 1; ++y) {
+        if (y < 0 || y >= ny) continue;
+        const int row = nx * (y + ny * z);
+        f(begin[row + x0], begin[row + x1 + 1]);
+      }
+    }
+  }
+};
+
+// Everything the physics needs besides the particles, in the precision of the particle state.
+template <typename T>
+struct SphConstants {
+  SphKernel<T> kernel;
+  SoilModel<T> model;
+  T mass = 0;                 // particle mass rho0 d0^3 (soil and markers alike)
+  Vec3<T> gravity{};
+  T sound_speed = 0;          // sqrt(K / rho0)
+  T viscosity_alpha = 0;      // Monaghan's alpha; zero unless the scene names artificial_viscosity
+  T xsph = 0;                 // XSPH epsilon; zero unless the scene names shifting
+  T free_surface_support = 0; // kernel support (Shepard sum) below which a particle is on the free surface
+};
+
+}  // namespace terracal

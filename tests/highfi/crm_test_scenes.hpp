@@ -1,0 +1,21 @@
+#pragma once
+// Small CRM scenes for the CPU twins of the validation tests (and the GPU runs of the same scenes).
+#include <nlohmann/json.hpp>
+
+#include "highfi/crm_scene.hpp"
+
+namespace terracal::test {
+
+// A bin of `cells` x `cells` spacings filled `layers` deep with the bevameter study soil.
+inline nlohmann::json bed_scene_json(double d0, int cells, int layers, double settle = 0.1) {
+  return {{"soil", {{"density", 1700}, {"young_modulus", 1e6}, {"poisson_ratio", 0.3}, {"mu_s", 0.7}, {"mu_2", 0.7},
+                    {"I0", 0.03}, {"grain_diameter", 0.005}, {"cohesion", 0}, {"gravity", {0, 0, -9.81}}}},
+          {"bin", {{"size", {cells * d0, cells * d0, (layers + 4) * d0}}, {"fill_height", layers * d0}}},
+          {"resolution", {{"spacing", d0}, {"h_over_d0", 1.2}}},
+          {"effects", {"artificial_viscosity"}},
+          {"settle_time", settle}};
+}
+
+inline CrmScene scene_from(const nlohmann::json& j) { return parse_crm_scene(j, "test scene"); }
+
+}  // namespace terracal::test
