@@ -12,5 +12,6 @@ using Command = std::function<int()>;
 Command add_calibrate(CLI::App& app);
 Command add_demo(CLI::App& app);
 Command add_synthesize(CLI::App& app);
+Command add_crm(CLI::App& app);
 
 }  // namespace terracal::app

@@ -82,6 +82,7 @@ struct CrmNumerics {
   double xsph = 0.5;
   double active_margin = 0.1;
   double free_surface_support = 0.8;
+  int grid_reach = 2;          // neighbour cells of size 2h / reach (1: the 2h grid of DESIGN.md)
   CrmPrecision cpu_precision = CrmPrecision::kDouble;
   double smoothing_length() const { return h_over_d0 * spacing; }
   double cfl_limit(const CrmSoil& soil, double speed) const {

@@ -35,13 +35,16 @@ SphConstants<double> crm_constants(const CrmScene& sc) {
 GridGeometry<double> crm_grid(const CrmScene& sc) {
   // The domain: the bin with its wall layers, one support radius around it, and headroom above the
   // walls and the bodies. Particles that leave it are lost (reported, never a crash).
-  const double d0 = sc.numerics.spacing, h = sc.numerics.smoothing_length(), cell = 2 * h;
-  const double pad = sc.bin.boundary_layers * d0 + cell;
+  const double d0 = sc.numerics.spacing, h = sc.numerics.smoothing_length();
+  const int reach = sc.numerics.grid_reach;
+  const double cell = 2 * h / reach;
+  const double pad = sc.bin.boundary_layers * d0 + 2 * h;
   double top = std::max(sc.bin.size.z, sc.bin.fill_height) + 0.25 * sc.bin.size.z;
-  for (const auto& b : sc.bodies) top = std::max(top, b.position.z + b.bounding_radius() + cell);
+  for (const auto& b : sc.bodies) top = std::max(top, b.position.z + b.bounding_radius() + 2 * h);
   GridGeometry<double> g;
   g.origin = {-pad, -pad, -pad};
   g.inv_cell = 1.0 / cell;
+  g.reach = reach;
   g.nx = int(std::ceil((sc.bin.size.x + 2 * pad) / cell));
   g.ny = int(std::ceil((sc.bin.size.y + 2 * pad) / cell));
   g.nz = int(std::ceil((top + pad) / cell));

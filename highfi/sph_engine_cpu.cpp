@@ -29,6 +29,8 @@ struct CpuBackend {
   static void copy(U* dst, const U* src, std::size_t n) { if (n) std::memcpy(static_cast<void*>(dst), src, n * sizeof(U)); }
   template <typename F>
   static void parallel_for(long n, const F& f) { parallel_for_cpu(n, f); }
+  template <typename F>
+  static void parallel_for_heavy(long n, const F& f) { parallel_for_cpu(n, f); }
   static void fill_begin(int* begin, int count, int value) { std::fill(begin, begin + count, value); }
 
   // Stable counting sort of values by key (keys in [0, bins)); begin[c] is the first sorted index of

@@ -4,6 +4,7 @@
 #include <cub/device/device_radix_sort.cuh>
 
 #include <cmath>
+#include <cstdlib>
 #include <string>
 
 #include "core/cuda_check.hpp"
@@ -12,6 +13,8 @@
 
 namespace terracal {
 namespace {
+
+constexpr int kDefaultMinBlocks = 1;
 
 // Scratch memory of CUB's sort, grown on demand and kept for the engine's lifetime.
 struct CubScratch {
@@ -143,6 +146,22 @@ struct CudaBackend {
   }
   template <typename F>
   static void parallel_for(long n, const F& f) { parallel_for_cuda(n, f); }
+  // The neighbour-loop stages; TERRACAL_CUDA_MIN_BLOCKS (1-4) picks the occupancy/register trade-off
+  // for tuning runs (bench/RESULTS.md); the default is the measured best.
+  template <typename F>
+  static void parallel_for_heavy(long n, const F& f) {
+    static const int min_blocks = [] {
+      const char* e = std::getenv("TERRACAL_CUDA_MIN_BLOCKS");
+      const int v = e ? std::atoi(e) : kDefaultMinBlocks;
+      return v >= 1 && v <= 4 ? v : kDefaultMinBlocks;
+    }();
+    switch (min_blocks) {
+      case 1: parallel_for_cuda_bounded<1>(n, f); break;
+      case 2: parallel_for_cuda_bounded<2>(n, f); break;
+      case 3: parallel_for_cuda_bounded<3>(n, f); break;
+      default: parallel_for_cuda_bounded<4>(n, f); break;
+    }
+  }
   static void fill_begin(int* begin, int count, int value) { parallel_for_cuda(count, FillInt{begin, value}); }
 
   static const int* sort_cells(int n, int bins, int* keys, int* vals, int* keys_alt, int* vals_alt, int* begin) {

@@ -36,7 +36,7 @@ SphConstants<T> constants_in(const SphConstants<double>& c) {
 }
 template <typename T>
 GridGeometry<T> grid_in(const GridGeometry<double>& g) {
-  return {to_t<T>(g.origin), T(g.inv_cell), g.nx, g.ny, g.nz};
+  return {to_t<T>(g.origin), T(g.inv_cell), g.nx, g.ny, g.nz, g.reach};
 }
 
 // Device-side storage of one soil state (four Vec4 arrays).
@@ -203,12 +203,12 @@ class SphEngineImpl final : public SphEngine {
  private:
   template <bool kVisc>
   void run_stage(const SoilArrays<T>& eval, const SoilArrays<T>& out, T dt) {
-    if (nm_ > 0) B::parallel_for(long(nm_), MarkerStage<T, kVisc>{k_, grid_, soil_begin_, eval, mk_});
+    if (nm_ > 0) B::parallel_for_heavy(long(nm_), MarkerStage<T, kVisc>{k_, grid_, soil_begin_, eval, mk_});
     if (n_ == 0) return;
     if (shifting_)
-      B::parallel_for(long(n_), SoilStage<T, kVisc, true>{k_, grid_, soil_begin_, marker_begin_, eval, A_.a, out, mk_, dt});
+      B::parallel_for_heavy(long(n_), SoilStage<T, kVisc, true>{k_, grid_, soil_begin_, marker_begin_, eval, A_.a, out, mk_, dt});
     else
-      B::parallel_for(long(n_), SoilStage<T, kVisc, false>{k_, grid_, soil_begin_, marker_begin_, eval, A_.a, out, mk_, dt});
+      B::parallel_for_heavy(long(n_), SoilStage<T, kVisc, false>{k_, grid_, soil_begin_, marker_begin_, eval, A_.a, out, mk_, dt});
   }
 
   // Markers are re-derived from their canonical (construction-order) arrays at every sort, so that

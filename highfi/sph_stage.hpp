@@ -148,20 +148,20 @@ struct SoilStage {
     };
     grid.for_each_neighbour_range(xi, soil_begin, [&](int first, int last) {
       for (int j = first; j < last; ++j) {
-        const Vec4<T> pj = eval.pos[j];
+        const Vec4<T> pj = load(eval.pos + j);
         const Vec3<T> r = xi - pj.xyz();
         const T r2 = dot(r, r);
         if (r2 >= support2 || j == int(i)) continue;
-        interact(pj.xyz(), pj.w, eval.vel[j].xyz(), stress_of(eval.s0[j], eval.s1[j]), r2, r);
+        interact(pj.xyz(), pj.w, load(eval.vel + j).xyz(), stress_of(load(eval.s0 + j), load(eval.s1 + j)), r2, r);
       }
     });
     grid.for_each_neighbour_range(xi, marker_begin, [&](int first, int last) {
       for (int j = first; j < last; ++j) {
-        const Vec4<T> pj = mk.pos[j];
+        const Vec4<T> pj = load(mk.pos + j);
         const Vec3<T> r = xi - pj.xyz();
         const T r2 = dot(r, r);
         if (r2 >= support2) continue;
-        interact(pj.xyz(), pj.w, mk.vel[j].xyz(), stress_of(mk.s0[j], mk.s1[j]), r2, r);
+        interact(pj.xyz(), pj.w, load(mk.vel + j).xyz(), stress_of(load(mk.s0 + j), load(mk.s1 + j)), r2, r);
       }
     });
     acc = k.mass * acc + k.gravity;

@@ -1,0 +1,106 @@
+// Issue 3, point 14: CRM particle-steps per second (soil particles x full steps / wall second),
+// device memory per particle, and the speed-up of active_domain for a single wheel in a 4 m bin.
+// Each figure is the median of `repeats` timed blocks of `steps` steps after a warm-up.
+// Usage: bench_crm cpu|cuda [particles=1e5,...] [steps=20] [repeats=5] [wheel]
+//   A bed of about N particles fills a square bin to a depth of 1/4 of its side (full domain).
+//   `wheel`: the 4 m x 1 m bin at the same spacing as the first size, with a wheel, full vs active.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "highfi/crm_solver.hpp"
+
+using namespace terracal;
+using Clock = std::chrono::steady_clock;
+
+static double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+static nlohmann::json soil() {
+  return {{"density", 1700}, {"young_modulus", 1e6}, {"poisson_ratio", 0.3}, {"mu_s", 0.7}, {"mu_2", 0.7},
+          {"I0", 0.03}, {"grain_diameter", 0.005}, {"cohesion", 0}, {"gravity", {0, 0, -9.81}}};
+}
+
+struct Timing {
+  double rate;  // particle-steps per second
+  std::size_t particles, markers, bytes;
+  std::string device;
+};
+
+static Timing time_scene(const nlohmann::json& j, CrmDevice device, int steps, int repeats) {
+  CrmScene sc = parse_crm_scene(j, "bench scene");
+  CrmSolver s(sc, device);
+  for (int i = 0; i < 3; ++i) s.step();
+  std::vector<double> rates;
+  for (int r = 0; r < repeats; ++r) {
+    const auto t0 = Clock::now();
+    for (int i = 0; i < steps; ++i) s.step();
+    (void)s.stats();  // synchronises the device
+    const double sec = std::chrono::duration<double>(Clock::now() - t0).count();
+    rates.push_back(double(s.engine().soil_count()) * steps / sec);
+  }
+  const SoilStats st = s.stats();
+  if (st.nonfinite > 0) std::fprintf(stderr, "warning: %ld non-finite particles\n", st.nonfinite);
+  return {median(rates), s.engine().soil_count(), s.engine().marker_count(), s.engine().device_bytes(),
+          s.engine().description()};
+}
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: bench_crm cpu|cuda [particles=1e5,...] [steps=20] [repeats=5] [wheel]\n");
+    return 2;
+  }
+  const CrmDevice device = std::string(argv[1]) == "cuda" ? CrmDevice::kCuda : CrmDevice::kCpu;
+  std::vector<double> sizes;
+  {
+    std::stringstream ss(argc > 2 ? argv[2] : "1e5");
+    std::string tok;
+    while (std::getline(ss, tok, ',')) sizes.push_back(std::stod(tok));
+  }
+  const int steps = argc > 3 ? std::atoi(argv[3]) : 20;
+  const int repeats = argc > 4 ? std::atoi(argv[4]) : 5;
+  const bool wheel = argc > 5 && std::string(argv[5]) == "wheel";
+  const double d0 = 0.01;
+  std::printf("%-12s %-12s %-10s %-16s %-14s %s\n", "particles", "markers", "bytes/p", "particle-steps/s", "ms/step", "device");
+  for (double n : sizes) {
+    // Square bin of side L filled to L/4: n = (L/d0)^2 (L/4d0).
+    const int side = std::max(8, int(std::lround(std::cbrt(4 * n))));
+    const int depth = std::max(4, side / 4);
+    nlohmann::json j = {{"soil", soil()},
+                        {"bin", {{"size", {side * d0, side * d0, (depth + 4) * d0}}, {"fill_height", depth * d0}}},
+                        {"resolution", {{"spacing", d0}, {"h_over_d0", 1.2}, {"cpu_precision", "float"}}},
+                        {"effects", {"artificial_viscosity"}}};
+    const Timing t = time_scene(j, device, steps, repeats);
+    std::printf("%-12zu %-12zu %-10.1f %-16.4g %-14.3f %s\n", t.particles, t.markers, double(t.bytes) / t.particles, t.rate,
+                1e3 * t.particles / t.rate, t.device.c_str());
+    std::fflush(stdout);
+  }
+  if (wheel) {
+    // A wheel (radius 0.25 m, width 0.15 m) crossing a 4 m x 1 m bin 0.3 m deep, at the first size's spacing.
+    const double dw = 0.02;
+    for (bool active : {false, true}) {
+      nlohmann::json j = {{"soil", soil()},
+                          {"bin", {{"size", {4.0, 1.0, 0.4}}, {"fill_height", 0.3}}},
+                          {"resolution", {{"spacing", dw}, {"h_over_d0", 1.2}, {"cpu_precision", "float"}}},
+                          {"effects", active ? nlohmann::json{"artificial_viscosity", "active_domain"} : nlohmann::json{"artificial_viscosity"}},
+                          {"bodies", {{{"name", "wheel"},
+                                       {"shape", {{"type", "cylinder"}, {"radius", 0.25}, {"width", 0.15}}},
+                                       {"position", {0.5, 0.5, 0.3 + 0.25 - 0.02}},
+                                       {"motion", {{"type", "prescribed"}, {"linear_velocity", {0.5, 0, 0}}, {"angular_velocity", {0, 2.0, 0}}}}}}}};
+      if (active) j["active_domain"] = {{"margin", 0.1}};
+      const Timing t = time_scene(j, device, steps, repeats);
+      std::printf("wheel bin 4 m, d0 %.3f, active_domain %-3s: %zu particles, %.4g particle-steps/s (%.3f ms/step)\n", dw,
+                  active ? "on" : "off", t.particles, t.rate, 1e3 * t.particles / t.rate);
+    }
+  }
+  return 0;
+}
