@@ -14,7 +14,7 @@
 namespace terracal {
 namespace {
 
-constexpr int kDefaultMinBlocks = 1;
+constexpr int kDefaultMinBlocks = 4;  // 3.96e8 vs 2.98e8 particle-steps/s at 4M on an H100 (bench/RESULTS.md)
 
 // Scratch memory of CUB's sort, grown on demand and kept for the engine's lifetime.
 struct CubScratch {

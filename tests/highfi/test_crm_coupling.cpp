@@ -49,12 +49,13 @@ TEST_CASE("CRM: soil momentum changes by the impulse of gravity and the walls", 
   for (std::size_t i = 0; i < bed.size(); ++i) bed.vel[i] = {0.1 * std::sin(37.0 * i), 0.05 * std::cos(11.0 * i), 0, 0};
   CrmSolver s(sc, CrmDevice::kCpu, &bed);
   const SoilStats before = s.stats();
-  Vec3<double> impulse{};
+  Vec3<double> impulse{}, walls{};
   double scale = 0;
   for (int k = 0; k < 300; ++k) {
     s.step();
     const Vec3<double> g = s.scene().soil.gravity;
     impulse += s.time_step() * (before.mass * g - s.wall_wrench().force);
+    walls += s.time_step() * s.wall_wrench().force;
     scale += s.time_step() * before.mass * norm(g);
   }
   const SoilStats after = s.stats();
@@ -64,5 +65,7 @@ TEST_CASE("CRM: soil momentum changes by the impulse of gravity and the walls", 
               impulse.x, impulse.y, impulse.z, err);
   CHECK(after.lost == 0);
   CHECK(err < 1e-9);
-  CHECK(norm(dp) > 0.01 * scale);  // the test is not trivial: momentum did change
+  // Not trivial: the walls took up most of the weight, and the soil's momentum did change.
+  CHECK(norm(walls) > 0.5 * scale);
+  CHECK(norm(dp) > 1e-6 * scale);
 }
