@@ -153,7 +153,7 @@ CrmRunSummary run_crm_scene(const CrmScene& scene, const CrmRunOptions& o) {
     std::string line;
     std::getline(in, line);
     while (std::getline(in, line))
-      if (std::stod(line.substr(0, line.find(','))) <= c.time + 1e-12) rows.push_back(line);
+      if (std::stod(line.substr(0, line.find(','))) <= c.time + 0.5 * solver.time_step()) rows.push_back(line);
     spdlog::info("resumed from {} at t = {} s, step {}", ckpt.string(), c.time, c.steps);
   }
   auto write_rows = [&] {
