@@ -62,6 +62,10 @@ template <typename T>
 struct Mat3 {
   T m[3][3]{};
 };
+// a (outer) b
+template <typename T> TERRACAL_HD inline Mat3<T> outer(Vec3<T> a, Vec3<T> b) {
+  return {{{a.x * b.x, a.x * b.y, a.x * b.z}, {a.y * b.x, a.y * b.y, a.y * b.z}, {a.z * b.x, a.z * b.y, a.z * b.z}}};
+}
 // m += a (outer) b
 template <typename T> TERRACAL_HD inline void add_outer(Mat3<T>& m, Vec3<T> a, Vec3<T> b) {
   m.m[0][0] += a.x * b.x; m.m[0][1] += a.x * b.y; m.m[0][2] += a.x * b.z;

@@ -36,6 +36,24 @@ struct SphKernel {
     return alpha * T(0.25) * b * b * b;
   }
 
+  // W(r) and F(r) together, for the hot loop: they share (1 - q/2)^3 (or (2 - q)^2).
+  struct Values {
+    T w, f;
+  };
+  TERRACAL_HD Values values(T r) const {
+    const T q = r * inv_h;
+    if (q >= T(2)) return {T(0), T(0)};
+    const T c = alpha * inv_h * inv_h;
+    if (type == KernelType::kWendlandC2) {
+      const T a = T(1) - T(0.5) * q;
+      const T a3 = a * a * a;
+      return {alpha * a3 * a * (T(2) * q + T(1)), T(-5) * c * a3};
+    }
+    if (q < T(1)) return {alpha * (T(1) - T(1.5) * q * q + T(0.75) * q * q * q), c * (T(-3) + T(2.25) * q)};
+    const T b = T(2) - q;
+    return {alpha * T(0.25) * b * b * b, T(-0.75) * c * b * b / q};
+  }
+
   // F(r) such that grad_i W(|x_i - x_j|) = F * (x_i - x_j).
   TERRACAL_HD T grad_factor(T r) const {
     const T q = r * inv_h;

@@ -12,25 +12,116 @@ namespace terracal {
 // The acceleration that particle i receives from neighbour j per unit neighbour mass:
 // (sigma_i/rho_i^2 + sigma_j/rho_j^2) . grad_i W_ij  -  Pi_ij grad_i W_ij  (Monaghan viscosity).
 // Used by the soil pass and, with the roles of soil and marker fixed, by the marker force pass, so
-// that the forces on bodies are exactly the reaction of those on the soil.
+// that the forces on bodies are exactly the reaction of those on the soil. The caller supplies
+// 1/rho_j^2, which it has from the one division per pair that also gives the volume m/rho_j.
 template <typename T, bool kViscosity>
 TERRACAL_HD inline Vec3<T> pair_acceleration(const SphConstants<T>& k, const Sym3<T>& si, T inv_rho2_i, T rho_i,
-                                             const Vec3<T>& vi, const Sym3<T>& sj, T rho_j, const Vec3<T>& vj,
-                                             const Vec3<T>& rij, T r2, const Vec3<T>& grad) {
-  const T inv_rho2_j = T(1) / (rho_j * rho_j);
+                                             const Vec3<T>& vi, const Sym3<T>& sj, T inv_rho2_j, T rho_j,
+                                             const Vec3<T>& vj, const Vec3<T>& rij, T r2, const Vec3<T>& grad) {
   const Sym3<T> a = inv_rho2_i * si + inv_rho2_j * sj;
   Vec3<T> acc = a * grad;
   if (kViscosity) {
     const T vr = dot(vi - vj, rij);
     if (vr < T(0)) {
+      // Pi = -alpha c mu / rho_mean with mu = h vr / (r^2 + 0.01 h^2), in one division.
       const T h = k.kernel.h;
-      const T mu = h * vr / (r2 + T(0.01) * h * h);
-      const T pi = -k.viscosity_alpha * k.sound_speed * mu * T(2) / (rho_i + rho_j);
+      const T pi = T(-2) * k.viscosity_alpha * k.sound_speed * h * vr / ((r2 + T(0.01) * h * h) * (rho_i + rho_j));
       acc -= pi * grad;
     }
   }
   return acc;
 }
+
+// A soil particle's own state, as the sums over its neighbours need it.
+template <typename T>
+struct SoilSelf {
+  Vec3<T> x, v;
+  T rho, inv_rho2;
+  Sym3<T> s;
+};
+
+// Sums over a soil particle's neighbours, or one neighbour's share of them: acceleration (per
+// unit mass), velocity gradient, kernel support (Shepard sum) and the XSPH drift.
+template <typename T>
+struct SoilSums {
+  Vec3<T> acc{}, xsph{};
+  Mat3<T> L{};
+  T support = 0;
+  TERRACAL_HD SoilSums& operator+=(const SoilSums& o) {
+    acc += o.acc;
+    xsph += o.xsph;
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) L.m[a][b] += o.L.m[a][b];
+    support += o.support;
+    return *this;
+  }
+};
+
+// The share of neighbour j (soil particle or boundary marker, within the support) in the sums of
+// `me`. Records in and sums out by value, so that the CPU's SIMD loop keeps them in registers
+// (GCC privatises any local whose address is taken inside an `omp simd` loop into memory).
+template <typename T, bool kViscosity, bool kShifting>
+TERRACAL_HD inline SoilSums<T> neighbour_share(const SphConstants<T>& k, const SoilSelf<T>& me, Vec4<T> pj, Vec4<T> vj4,
+                                               Vec4<T> s0j, Vec4<T> s1j) {
+  const Vec3<T> r = me.x - pj.xyz();
+  const T r2 = dot(r, r);
+  const typename SphKernel<T>::Values kv = k.kernel.values(std::sqrt(r2));
+  const Vec3<T> grad = kv.f * r;
+  const Vec3<T> vj = vj4.xyz();
+  const T inv_rho_j = T(1) / pj.w;
+  const T vol_j = k.mass * inv_rho_j;
+  const Vec3<T> dv = vj - me.v;
+  SoilSums<T> c;
+  c.acc = pair_acceleration<T, kViscosity>(k, me.s, me.inv_rho2, me.rho, me.v, stress_of(s0j, s1j),
+                                           inv_rho_j * inv_rho_j, pj.w, vj, r, r2, grad);
+  c.L = outer(vol_j * dv, grad);
+  c.support = vol_j * kv.w;
+  if (kShifting) c.xsph = (vol_j * kv.w) * dv;
+  return c;
+}
+
+#if !defined(__CUDA_ARCH__)
+// The CPU's inner loop. The neighbours listed in `list` (at most kSimdChunk, all within the support)
+// are first copied into structure-of-arrays form, then summed with SIMD across neighbours: x86
+// gathers are slow, contiguous loads are not. The arithmetic is neighbour_share's; only the loop
+// differs from the GPU's.
+constexpr int kSimdChunk = 128;
+template <typename T, bool kViscosity, bool kShifting>
+inline void add_neighbours_simd(SoilSums<T>& sum, const SphConstants<T>& k, const SoilSelf<T>& me,
+                                const Vec4<T>* pos, const Vec4<T>* vel, const Vec4<T>* s0, const Vec4<T>* s1,
+                                const int* list, int n) {
+  alignas(64) T px[kSimdChunk], py[kSimdChunk], pz[kSimdChunk], pr[kSimdChunk];
+  alignas(64) T vx[kSimdChunk], vy[kSimdChunk], vz[kSimdChunk];
+  alignas(64) T sxx[kSimdChunk], syy[kSimdChunk], szz[kSimdChunk], sxy[kSimdChunk], sxz[kSimdChunk], syz[kSimdChunk];
+  for (int q = 0; q < n; ++q) {
+    const int j = list[q];
+    const Vec4<T> p = pos[j], v = vel[j], a = s0[j], b = s1[j];
+    px[q] = p.x; py[q] = p.y; pz[q] = p.z; pr[q] = p.w;
+    vx[q] = v.x; vy[q] = v.y; vz[q] = v.z;
+    sxx[q] = a.x; syy[q] = a.y; szz[q] = a.z; sxy[q] = a.w; sxz[q] = b.x; syz[q] = b.y;
+  }
+  T ax = 0, ay = 0, az = 0, dx = 0, dy = 0, dz = 0, sup = 0;
+  T l00 = 0, l01 = 0, l02 = 0, l10 = 0, l11 = 0, l12 = 0, l20 = 0, l21 = 0, l22 = 0;
+#pragma omp simd reduction(+ : ax, ay, az, dx, dy, dz, sup, l00, l01, l02, l10, l11, l12, l20, l21, l22)
+  for (int q = 0; q < n; ++q) {
+    const SoilSums<T> c = neighbour_share<T, kViscosity, kShifting>(
+        k, me, Vec4<T>{px[q], py[q], pz[q], pr[q]}, Vec4<T>{vx[q], vy[q], vz[q], T(0)},
+        Vec4<T>{sxx[q], syy[q], szz[q], sxy[q]}, Vec4<T>{sxz[q], syz[q], T(0), T(0)});
+    ax += c.acc.x; ay += c.acc.y; az += c.acc.z;
+    dx += c.xsph.x; dy += c.xsph.y; dz += c.xsph.z;
+    sup += c.support;
+    l00 += c.L.m[0][0]; l01 += c.L.m[0][1]; l02 += c.L.m[0][2];
+    l10 += c.L.m[1][0]; l11 += c.L.m[1][1]; l12 += c.L.m[1][2];
+    l20 += c.L.m[2][0]; l21 += c.L.m[2][1]; l22 += c.L.m[2][2];
+  }
+  sum.acc += Vec3<T>{ax, ay, az};
+  sum.xsph += Vec3<T>{dx, dy, dz};
+  sum.support += sup;
+  const T l[3][3] = {{l00, l01, l02}, {l10, l11, l12}, {l20, l21, l22}};
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) sum.L.m[a][b] += l[a][b];
+}
+#endif
 
 // Boundary markers (Adami et al. 2012): stress and velocity extrapolated from the soil around each
 // marker, then the force of the soil on the marker, which the host sums into body wrenches.
@@ -56,7 +147,7 @@ struct MarkerStage {
         const Vec3<T> r = xm - pj.xyz();
         const T r2 = dot(r, r);
         if (r2 >= support2) continue;
-        const T w = k.kernel.w(std::sqrt(r2));
+        const T w = k.kernel.values(std::sqrt(r2)).w;
         sum_w += w;
         sum_s = sum_s + w * stress_of(soil.s0[j], soil.s1[j]);
         const Vec4<T> vj = soil.vel[j];
@@ -77,7 +168,7 @@ struct MarkerStage {
       sm.zz -= head;
       vm = T(2) * wv.xyz() - inv * sum_v;
     }
-    const T rho_m = pm.w;
+    const T rho_m = pm.w, inv_rho2_m = T(1) / (rho_m * rho_m);
     mk.vel[m] = make_vec4(vm, T(0));
     mk.s0[m] = {sm.xx, sm.yy, sm.zz, sm.xy};
     mk.s1[m] = {sm.xz, sm.yz, T(0), sum_w};
@@ -90,10 +181,11 @@ struct MarkerStage {
         const Vec3<T> r = pj.xyz() - xm;  // from the soil particle's side: r_jm
         const T r2 = dot(r, r);
         if (r2 >= support2) continue;
-        const Vec3<T> grad = k.kernel.grad_factor(std::sqrt(r2)) * r;
+        const Vec3<T> grad = k.kernel.values(std::sqrt(r2)).f * r;
         const T rho_j = pj.w;
         const Vec3<T> a = pair_acceleration<T, kViscosity>(k, stress_of(soil.s0[j], soil.s1[j]), T(1) / (rho_j * rho_j),
-                                                            rho_j, soil.vel[j].xyz(), sm, rho_m, vm, r, r2, grad);
+                                                            rho_j, soil.vel[j].xyz(), sm, inv_rho2_m, rho_m, vm, r,
+                                                            r2, grad);
         f -= a;
       }
     });
@@ -124,67 +216,83 @@ struct SoilStage {
       }
       return;
     }
-    const Vec4<T> pi4 = eval.pos[i], vi4 = eval.vel[i];
-    const Vec3<T> xi = pi4.xyz(), vi = vi4.xyz();
-    const T rho_i = pi4.w, inv_rho2_i = T(1) / (rho_i * rho_i);
-    const Sym3<T> si = stress_of(eval.s0[i], eval.s1[i]);
+    const Vec4<T> pi4 = eval.pos[i];
+    SoilSelf<T> me;
+    me.x = pi4.xyz();
+    me.v = eval.vel[i].xyz();
+    me.rho = pi4.w;
+    me.inv_rho2 = T(1) / (me.rho * me.rho);
+    me.s = stress_of(eval.s0[i], eval.s1[i]);
     const T support2 = k.kernel.support2();
 
-    Vec3<T> acc{}, xsph{};
-    Mat3<T> L{};
-    T support = k.mass / rho_i * k.kernel.w(T(0));
-
-    auto interact = [&](const Vec3<T>& xj, T rho_j, const Vec3<T>& vj, const Sym3<T>& sj, T r2, const Vec3<T>& r) {
-      const T rr = std::sqrt(r2);
-      const Vec3<T> grad = k.kernel.grad_factor(rr) * r;
-      acc += pair_acceleration<T, kViscosity>(k, si, inv_rho2_i, rho_i, vi, sj, rho_j, vj, r, r2, grad);
-      const T vol_j = k.mass / rho_j;
-      const Vec3<T> dv = vj - vi;
-      add_outer(L, vol_j * dv, grad);
-      const T w = k.kernel.w(rr);
-      support += vol_j * w;
-      if (kShifting) xsph += (vol_j * w) * dv;
-      (void)xj;
-    };
-    grid.for_each_neighbour_range(xi, soil_begin, [&](int first, int last) {
+    SoilSums<T> sum;
+    sum.support = k.mass / me.rho * k.kernel.values(T(0)).w;
+#if defined(__CUDA_ARCH__)
+    // GPU: one thread per particle walks its neighbour rows directly.
+    grid.for_each_neighbour_range(me.x, soil_begin, [&](int first, int last) {
       for (int j = first; j < last; ++j) {
         const Vec4<T> pj = load(eval.pos + j);
-        const Vec3<T> r = xi - pj.xyz();
-        const T r2 = dot(r, r);
-        if (r2 >= support2 || j == int(i)) continue;
-        interact(pj.xyz(), pj.w, load(eval.vel + j).xyz(), stress_of(load(eval.s0 + j), load(eval.s1 + j)), r2, r);
+        const Vec3<T> r = me.x - pj.xyz();
+        if (dot(r, r) >= support2 || j == int(i)) continue;
+        sum += neighbour_share<T, kViscosity, kShifting>(k, me, pj, load(eval.vel + j), load(eval.s0 + j), load(eval.s1 + j));
       }
     });
-    grid.for_each_neighbour_range(xi, marker_begin, [&](int first, int last) {
+    grid.for_each_neighbour_range(me.x, marker_begin, [&](int first, int last) {
       for (int j = first; j < last; ++j) {
         const Vec4<T> pj = load(mk.pos + j);
-        const Vec3<T> r = xi - pj.xyz();
-        const T r2 = dot(r, r);
-        if (r2 >= support2) continue;
-        interact(pj.xyz(), pj.w, load(mk.vel + j).xyz(), stress_of(load(mk.s0 + j), load(mk.s1 + j)), r2, r);
+        const Vec3<T> r = me.x - pj.xyz();
+        if (dot(r, r) >= support2) continue;
+        sum += neighbour_share<T, kViscosity, kShifting>(k, me, pj, load(mk.vel + j), load(mk.s0 + j), load(mk.s1 + j));
       }
     });
-    acc = k.mass * acc + k.gravity;
-
+#else
+    // CPU: list the neighbours within the support (branch-free), then sum them with SIMD. The list
+    // is flushed whenever it fills, so any number of neighbours is handled.
+    constexpr int kChunk = kSimdChunk;
+    int list[kChunk];
+    int n = 0;
+    auto collect = [&](const Vec4<T>* pos, int first, int last, long self, auto&& flush) {
+      for (int j = first; j < last; ++j) {
+        const Vec3<T> r = me.x - pos[j].xyz();
+        list[n] = j;
+        n += int(dot(r, r) < support2) & int(j != self);
+        if (n == kChunk) {
+          flush();
+          n = 0;
+        }
+      }
+    };
+    auto flush_soil = [&] {
+      add_neighbours_simd<T, kViscosity, kShifting>(sum, k, me, eval.pos, eval.vel, eval.s0, eval.s1, list, n);
+    };
+    grid.for_each_neighbour_range(me.x, soil_begin, [&](int first, int last) { collect(eval.pos, first, last, i, flush_soil); });
+    flush_soil();
+    n = 0;
+    auto flush_markers = [&] { add_neighbours_simd<T, kViscosity, kShifting>(sum, k, me, mk.pos, mk.vel, mk.s0, mk.s1, list, n); };
+    grid.for_each_neighbour_range(me.x, marker_begin, [&](int first, int last) { collect(mk.pos, first, last, -1, flush_markers); });
+    flush_markers();
+#endif
+    const Mat3<T>& L = sum.L;
+    const Vec3<T> acc = k.mass * sum.acc + k.gravity;
     const T div_v = L.m[0][0] + L.m[1][1] + L.m[2][2];
-    const Sym3<T> rate = jaumann_rate(si, L, k.model);
+    const Sym3<T> rate = jaumann_rate(me.s, L, k.model);
 
     const Vec4<T> pb = base.pos[i];
     const Vec4<T> s0b = base.s0[i], s1b = base.s1[i];
-    Vec3<T> drift = vi;
-    if (kShifting) drift += k.xsph * xsph;
+    Vec3<T> drift = me.v;
+    if (kShifting) drift += k.xsph * sum.xsph;
     const Vec3<T> x_new = pb.xyz() + dt * drift;
-    const T rho_new = pb.w - dt * rho_i * div_v;
+    const T rho_new = pb.w - dt * me.rho * div_v;
     const Vec3<T> v_new = vb.xyz() + dt * acc;
     Sym3<T> s_new = stress_of(s0b, s1b) + dt * rate;
     T plastic = s1b.z + return_map(s_new, shear_rate(L), k.model);
     // A particle with a truncated kernel (free surface) cannot resolve its velocity gradient;
     // it carries no stress rather than a spurious one.
-    if (support < k.free_surface_support) s_new = Sym3<T>{};
+    if (sum.support < k.free_surface_support) s_new = Sym3<T>{};
     out.pos[i] = make_vec4(x_new, rho_new);
     out.vel[i] = make_vec4(v_new, T(kParticleActive));
     out.s0[i] = {s_new.xx, s_new.yy, s_new.zz, s_new.xy};
-    out.s1[i] = {s_new.xz, s_new.yz, plastic, support};
+    out.s1[i] = {s_new.xz, s_new.yz, plastic, sum.support};
   }
 };
 
