@@ -9,4 +9,12 @@ void parallel_for_cpu(long n, const F& f) {
   for (long i = 0; i < n; ++i) f(i);
 }
 
+// For loops whose iterations differ in cost (particles with more or fewer neighbours, markers
+// with or without soil around them): chunks are handed out as threads free up.
+template <typename F>
+void parallel_for_cpu_balanced(long n, const F& f) {
+#pragma omp parallel for schedule(dynamic, 512)
+  for (long i = 0; i < n; ++i) f(i);
+}
+
 }  // namespace terracal

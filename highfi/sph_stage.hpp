@@ -6,6 +6,9 @@
 // step is stage(A -> B, dt/2) followed by stage(B -> A, dt): the second stage reads B and updates
 // A in place, which is safe because a particle reads only its own record of A.
 #include "highfi/sph_fields.hpp"
+#if !defined(__CUDA_ARCH__)
+#include "highfi/neighbour_filter_cpu.hpp"
+#endif
 
 namespace terracal {
 
@@ -81,25 +84,21 @@ TERRACAL_HD inline SoilSums<T> neighbour_share(const SphConstants<T>& k, const S
 }
 
 #if !defined(__CUDA_ARCH__)
-// The CPU's inner loop. The neighbours listed in `list` (at most kSimdChunk, all within the support)
-// are first copied into structure-of-arrays form, then summed with SIMD across neighbours: x86
+// The CPU's inner loop. The neighbours listed in `list` (at most kSimdChunk, all within the support;
+// room for 8 more) are first copied into structure-of-arrays form, then summed with SIMD across neighbours: x86
 // gathers are slow, contiguous loads are not. The arithmetic is neighbour_share's; only the loop
 // differs from the GPU's.
 constexpr int kSimdChunk = 128;
 template <typename T, bool kViscosity, bool kShifting>
 inline void add_neighbours_simd(SoilSums<T>& sum, const SphConstants<T>& k, const SoilSelf<T>& me,
                                 const Vec4<T>* pos, const Vec4<T>* vel, const Vec4<T>* s0, const Vec4<T>* s1,
-                                const int* list, int n) {
-  alignas(64) T px[kSimdChunk], py[kSimdChunk], pz[kSimdChunk], pr[kSimdChunk];
-  alignas(64) T vx[kSimdChunk], vy[kSimdChunk], vz[kSimdChunk];
-  alignas(64) T sxx[kSimdChunk], syy[kSimdChunk], szz[kSimdChunk], sxy[kSimdChunk], sxz[kSimdChunk], syz[kSimdChunk];
-  for (int q = 0; q < n; ++q) {
-    const int j = list[q];
-    const Vec4<T> p = pos[j], v = vel[j], a = s0[j], b = s1[j];
-    px[q] = p.x; py[q] = p.y; pz[q] = p.z; pr[q] = p.w;
-    vx[q] = v.x; vy[q] = v.y; vz[q] = v.z;
-    sxx[q] = a.x; syy[q] = a.y; szz[q] = a.z; sxy[q] = a.w; sxz[q] = b.x; syz[q] = b.y;
-  }
+                                int* list, int n) {
+  alignas(64) T px[kSimdChunk + 8], py[kSimdChunk + 8], pz[kSimdChunk + 8], pr[kSimdChunk + 8];
+  alignas(64) T vx[kSimdChunk + 8], vy[kSimdChunk + 8], vz[kSimdChunk + 8];
+  alignas(64) T sxx[kSimdChunk + 8], syy[kSimdChunk + 8], szz[kSimdChunk + 8], sxy[kSimdChunk + 8],
+      sxz[kSimdChunk + 8], syz[kSimdChunk + 8];
+  T* const staged[kStagedFields] = {px, py, pz, pr, vx, vy, vz, sxx, syy, szz, sxy, sxz, syz};
+  stage_neighbours(pos, vel, s0, s1, list, n, staged);
   T ax = 0, ay = 0, az = 0, dx = 0, dy = 0, dz = 0, sup = 0;
   T l00 = 0, l01 = 0, l02 = 0, l10 = 0, l11 = 0, l12 = 0, l20 = 0, l21 = 0, l22 = 0;
 #pragma omp simd reduction(+ : ax, ay, az, dx, dy, dz, sup, l00, l01, l02, l10, l11, l12, l20, l21, l22)
@@ -137,23 +136,56 @@ struct MarkerStage {
     const Vec4<T> pm = mk.pos[m];
     const Vec3<T> xm = pm.xyz();
     const Vec4<T> wv = mk.wall_vel[m];
+    const T support2 = k.kernel.support2();
+    // visit(f) calls f(j) for every soil particle j within the support of the marker, twice per
+    // marker (extrapolation, then force).
+#if defined(__CUDA_ARCH__)
+    auto visit = [&](auto&& f) {
+      grid.for_each_neighbour_range(xm, soil_begin, [&](int first, int last) {
+        for (int j = first; j < last; ++j) {
+          const Vec3<T> r = xm - load(soil.pos + j).xyz();
+          if (dot(r, r) < support2) f(j);
+        }
+      });
+    };
+#else
+    // The CPU lists the neighbours once (SIMD filter) and walks the list in both passes; a marker
+    // buried in an unusually dense heap falls back to walking the cells.
+    constexpr int kCapacity = 256;
+    int list[kCapacity + 8];
+    int n = 0;
+    bool listed = true;
+    grid.for_each_neighbour_range(xm, soil_begin, [&](int first, int last) {
+      if (!listed || n + (last - first) > kCapacity) {
+        listed = false;
+        return;
+      }
+      n = filter_row(soil.pos, first, last, -1, xm, support2, list, n);
+    });
+    auto visit = [&](auto&& f) {
+      if (listed) {
+        for (int q = 0; q < n; ++q) f(list[q]);
+        return;
+      }
+      grid.for_each_neighbour_range(xm, soil_begin, [&](int first, int last) {
+        for (int j = first; j < last; ++j) {
+          const Vec3<T> r = xm - soil.pos[j].xyz();
+          if (dot(r, r) < support2) f(j);
+        }
+      });
+    };
+#endif
     T sum_w = 0;
     Sym3<T> sum_s{};
     Vec3<T> sum_v{}, sum_rho_r{};
-    const T support2 = k.kernel.support2();
-    grid.for_each_neighbour_range(xm, soil_begin, [&](int first, int last) {
-      for (int j = first; j < last; ++j) {
-        const Vec4<T> pj = soil.pos[j];
-        const Vec3<T> r = xm - pj.xyz();
-        const T r2 = dot(r, r);
-        if (r2 >= support2) continue;
-        const T w = k.kernel.values(std::sqrt(r2)).w;
-        sum_w += w;
-        sum_s = sum_s + w * stress_of(soil.s0[j], soil.s1[j]);
-        const Vec4<T> vj = soil.vel[j];
-        sum_v += w * vj.xyz();
-        sum_rho_r += (w * pj.w) * r;
-      }
+    visit([&](int j) {
+      const Vec4<T> pj = soil.pos[j];
+      const Vec3<T> r = xm - pj.xyz();
+      const T w = k.kernel.values(std::sqrt(dot(r, r))).w;
+      sum_w += w;
+      sum_s = sum_s + w * stress_of(soil.s0[j], soil.s1[j]);
+      sum_v += w * soil.vel[j].xyz();
+      sum_rho_r += (w * pj.w) * r;
     });
     Sym3<T> sm{};
     Vec3<T> vm = wv.xyz();
@@ -175,19 +207,14 @@ struct MarkerStage {
 
     // Force of the soil on the marker: minus what the marker does to each soil particle.
     Vec3<T> f{};
-    grid.for_each_neighbour_range(xm, soil_begin, [&](int first, int last) {
-      for (int j = first; j < last; ++j) {
-        const Vec4<T> pj = soil.pos[j];
-        const Vec3<T> r = pj.xyz() - xm;  // from the soil particle's side: r_jm
-        const T r2 = dot(r, r);
-        if (r2 >= support2) continue;
-        const Vec3<T> grad = k.kernel.values(std::sqrt(r2)).f * r;
-        const T rho_j = pj.w;
-        const Vec3<T> a = pair_acceleration<T, kViscosity>(k, stress_of(soil.s0[j], soil.s1[j]), T(1) / (rho_j * rho_j),
-                                                            rho_j, soil.vel[j].xyz(), sm, inv_rho2_m, rho_m, vm, r,
-                                                            r2, grad);
-        f -= a;
-      }
+    visit([&](int j) {
+      const Vec4<T> pj = soil.pos[j];
+      const Vec3<T> r = pj.xyz() - xm;  // from the soil particle's side: r_jm
+      const T r2 = dot(r, r);
+      const Vec3<T> grad = k.kernel.values(std::sqrt(r2)).f * r;
+      const T rho_j = pj.w;
+      f -= pair_acceleration<T, kViscosity>(k, stress_of(soil.s0[j], soil.s1[j]), T(1) / (rho_j * rho_j), rho_j,
+                                            soil.vel[j].xyz(), sm, inv_rho2_m, rho_m, vm, r, r2, grad);
     });
     mk.force[m] = make_vec4((k.mass * k.mass) * f, T(0));
   }
@@ -249,17 +276,18 @@ struct SoilStage {
     // CPU: list the neighbours within the support (branch-free), then sum them with SIMD. The list
     // is flushed whenever it fills, so any number of neighbours is handled.
     constexpr int kChunk = kSimdChunk;
-    int list[kChunk];
+    int list[kChunk + 8];  // + 8: filter_row stores 8 entries at a time
     int n = 0;
     auto collect = [&](const Vec4<T>* pos, int first, int last, long self, auto&& flush) {
-      for (int j = first; j < last; ++j) {
-        const Vec3<T> r = me.x - pos[j].xyz();
-        list[n] = j;
-        n += int(dot(r, r) < support2) & int(j != self);
-        if (n == kChunk) {
+      while (first < last) {
+        if (n > kChunk - 16) {
           flush();
           n = 0;
         }
+        const int room = kChunk - n;
+        const int stop = last - first < room ? last : first + room;
+        n = filter_row(pos, first, stop, self, me.x, support2, list, n);
+        first = stop;
       }
     };
     auto flush_soil = [&] {
