@@ -122,6 +122,30 @@ inline void add_neighbours_simd(SoilSums<T>& sum, const SphConstants<T>& k, cons
 }
 #endif
 
+#if defined(__CUDA_ARCH__)
+// The GPU's neighbour loop over one row of cells: the candidates are tested first and the hits
+// kept as a bit mask, then f(j) runs for each hit. The lanes of a warp thus run the heavy pair
+// arithmetic once per hit of the lane with most hits, not once per candidate of the longest row
+// (about one candidate in four is a hit).
+template <typename T, typename F>
+__device__ inline void for_each_hit(const Vec4<T>* pos, int first, int last, int self, const Vec3<T>& x, T support2,
+                                    F&& f) {
+  for (int base = first; base < last; base += 32) {
+    const int end = last - base < 32 ? last : base + 32;
+    unsigned hits = 0;
+    for (int j = base; j < end; ++j) {
+      const Vec3<T> r = x - load(pos + j).xyz();
+      hits |= unsigned(dot(r, r) < support2 && j != self) << (j - base);
+    }
+    while (hits) {
+      const int j = base + __ffs(int(hits)) - 1;
+      hits &= hits - 1;
+      f(j);
+    }
+  }
+}
+#endif
+
 // Boundary markers (Adami et al. 2012): stress and velocity extrapolated from the soil around each
 // marker, then the force of the soil on the marker, which the host sums into body wrenches.
 template <typename T, bool kViscosity>
@@ -141,12 +165,8 @@ struct MarkerStage {
     // marker (extrapolation, then force).
 #if defined(__CUDA_ARCH__)
     auto visit = [&](auto&& f) {
-      grid.for_each_neighbour_range(xm, soil_begin, [&](int first, int last) {
-        for (int j = first; j < last; ++j) {
-          const Vec3<T> r = xm - load(soil.pos + j).xyz();
-          if (dot(r, r) < support2) f(j);
-        }
-      });
+      grid.for_each_neighbour_range(xm, soil_begin,
+                                    [&](int first, int last) { for_each_hit(soil.pos, first, last, -1, xm, support2, f); });
     };
 #else
     // The CPU lists the neighbours once (SIMD filter) and walks the list in both passes; a marker
@@ -255,22 +275,18 @@ struct SoilStage {
     SoilSums<T> sum;
     sum.support = k.mass / me.rho * k.kernel.values(T(0)).w;
 #if defined(__CUDA_ARCH__)
-    // GPU: one thread per particle walks its neighbour rows directly.
+    // GPU: one thread per particle walks its neighbour rows, testing a row before summing its hits.
     grid.for_each_neighbour_range(me.x, soil_begin, [&](int first, int last) {
-      for (int j = first; j < last; ++j) {
-        const Vec4<T> pj = load(eval.pos + j);
-        const Vec3<T> r = me.x - pj.xyz();
-        if (dot(r, r) >= support2 || j == int(i)) continue;
-        sum += neighbour_share<T, kViscosity, kShifting>(k, me, pj, load(eval.vel + j), load(eval.s0 + j), load(eval.s1 + j));
-      }
+      for_each_hit(eval.pos, first, last, int(i), me.x, support2, [&](int j) {
+        sum += neighbour_share<T, kViscosity, kShifting>(k, me, load(eval.pos + j), load(eval.vel + j),
+                                                         load(eval.s0 + j), load(eval.s1 + j));
+      });
     });
     grid.for_each_neighbour_range(me.x, marker_begin, [&](int first, int last) {
-      for (int j = first; j < last; ++j) {
-        const Vec4<T> pj = load(mk.pos + j);
-        const Vec3<T> r = me.x - pj.xyz();
-        if (dot(r, r) >= support2) continue;
-        sum += neighbour_share<T, kViscosity, kShifting>(k, me, pj, load(mk.vel + j), load(mk.s0 + j), load(mk.s1 + j));
-      }
+      for_each_hit(mk.pos, first, last, -1, me.x, support2, [&](int j) {
+        sum += neighbour_share<T, kViscosity, kShifting>(k, me, load(mk.pos + j), load(mk.vel + j), load(mk.s0 + j),
+                                                         load(mk.s1 + j));
+      });
     });
 #else
     // CPU: list the neighbours within the support (branch-free), then sum them with SIMD. The list

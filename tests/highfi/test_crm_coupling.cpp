@@ -20,7 +20,7 @@ TEST_CASE("CRM: a dynamic box comes to rest on the bed carrying its weight", "[h
                   {"motion", {{"type", "dynamic"}}},
                   {"mass", mass},
                   {"inertia", {1e-3, 1e-3, 1e-3}}}};
-  CrmSolver s(test::scene_from(j), CrmDevice::kCpu);
+  CrmSolver s(test::scene_from(j), test::validation_device());
   const double weight = mass * 9.81;
   double sum = 0;
   int count = 0;
@@ -47,7 +47,7 @@ TEST_CASE("CRM: soil momentum changes by the impulse of gravity and the walls", 
   HostSoil bed = initial_bed(sc);
   for (auto& s : bed.s0) s = {0, 0, 0, 0};
   for (std::size_t i = 0; i < bed.size(); ++i) bed.vel[i] = {0.1 * std::sin(37.0 * i), 0.05 * std::cos(11.0 * i), 0, 0};
-  CrmSolver s(sc, CrmDevice::kCpu, &bed);
+  CrmSolver s(sc, test::validation_device(), &bed);
   const SoilStats before = s.stats();
   Vec3<double> impulse{}, walls{};
   double scale = 0;
@@ -64,7 +64,8 @@ TEST_CASE("CRM: soil momentum changes by the impulse of gravity and the walls", 
   std::printf("momentum: dp = (%.6g, %.6g, %.6g), impulse = (%.6g, %.6g, %.6g), relative mismatch %.2e\n", dp.x, dp.y, dp.z,
               impulse.x, impulse.y, impulse.z, err);
   CHECK(after.lost == 0);
-  CHECK(err < 1e-9);
+  // Exact up to rounding: float64 on the CPU; float32 velocities on the GPU round each update.
+  CHECK(err < (test::validation_device() == CrmDevice::kCpu ? 1e-9 : 1e-5));
   // Not trivial: the walls took up most of the weight, and the soil's momentum did change.
   CHECK(norm(walls) > 0.5 * scale);
   CHECK(norm(dp) > 1e-6 * scale);

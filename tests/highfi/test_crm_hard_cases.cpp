@@ -32,7 +32,7 @@ Outcome run(const nlohmann::json& j, const std::string& name, long steps = kStep
     bed.s0[i] = {0, 0, 0, 0};
     bed.vel[i] = {kick.x + stir * std::sin(12.9898 * i), kick.y + stir * std::sin(78.233 * i), kick.z + stir * std::sin(37.719 * i), 0};
   }
-  keep = std::make_unique<CrmSolver>(sc, CrmDevice::kCpu, &bed);
+  keep = std::make_unique<CrmSolver>(sc, test::validation_device(), &bed);
   for (long k = 0; k < steps; ++k) keep->step();
   Outcome o;
   o.stats = keep->stats();

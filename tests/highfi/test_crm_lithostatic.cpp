@@ -17,7 +17,7 @@ TEST_CASE("CRM: a settled bed is lithostatic", "[highfi][crm]") {
   CrmScene sc = test::scene_from(test::bed_scene_json(d0, 12, layers));
   // Starts from the lithostatic estimate (as settling does) with the bed released at t = 0: the
   // boundary markers, the stress divergence and the free surface must hold it for 0.15 s.
-  CrmSolver solver(sc, CrmDevice::kCpu);
+  CrmSolver solver(sc, test::validation_device());
   const long n = long(std::ceil(0.15 / solver.time_step()));
   for (long s = 0; s < n; ++s) solver.step();
   const SoilStats st = solver.stats();

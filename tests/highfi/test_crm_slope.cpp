@@ -60,7 +60,7 @@ Slope slump(double mu_s) {
   j["bin"]["size"] = {kColumnsX * kD0, kColumnsY * kD0, kHeight + 0.04};
   j["bin"]["fill_length"] = kLength;
   j["resolution"]["cpu_precision"] = "float";
-  CrmSolver s(test::scene_from(j), CrmDevice::kCpu);
+  CrmSolver s(test::scene_from(j), test::validation_device());
   Slope r;
   // The collapse is over within about 0.4 s; the angle is read at 0.9 s and again at 1.2 s.
   auto run_to = [&](double t) {
