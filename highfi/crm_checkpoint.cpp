@@ -105,9 +105,13 @@ std::string crm_fingerprint(const CrmScene& sc, CrmDevice device, bool include_b
       sc.numerics.xsph, sc.numerics.free_surface_support, int(sc.numerics.cpu_precision), sc.effects.cohesion,
       sc.effects.artificial_viscosity, sc.effects.shifting, sc.effects.active_domain, int(device), sc.settle_time);
   if (include_bodies)
-    for (const auto& b : sc.bodies)
+    for (const auto& b : sc.bodies) {
       d += fmt::format("|{} {} {} {} {} {} {}", b.name, int(b.shape.type), b.position.x, b.position.y, b.position.z,
                        b.motion.linear_velocity.z, b.mass);
+      for (const auto& g : b.motion.schedule)
+        d += fmt::format(" {} {} {} {} {} {} {}", g.duration, g.linear_velocity.x, g.linear_velocity.y,
+                         g.linear_velocity.z, g.angular_velocity.x, g.angular_velocity.y, g.angular_velocity.z);
+    }
   std::uint64_t h = 1469598103934665603ull;
   for (unsigned char ch : d) {
     h ^= ch;

@@ -45,11 +45,26 @@ struct BodyShape {
 };
 
 // Each of the six degrees of freedom is prescribed (constant velocity) or free (dynamic).
+// One piece of a prescribed velocity schedule: these velocities for `duration` seconds.
+struct MotionSegment {
+  double duration = 0;
+  Vec3<double> linear_velocity{}, angular_velocity{};
+};
+
 struct BodyMotion {
   Vec3<double> linear_velocity{}, angular_velocity{};  // world frame; the initial velocity of free DOFs
   std::array<bool, 6> free{};                          // x, y, z, rx, ry, rz
+  // Prescribed velocities as piecewise-constant functions of time (t = 0 when the bodies enter,
+  // after settling); after the last segment the prescribed axes hold still. Empty: the constant
+  // velocities above. Free axes ignore the schedule.
+  std::vector<MotionSegment> schedule;
   bool moves() const;
   bool any_free() const;
+  // The prescribed velocities at time t.
+  Vec3<double> linear_at(double t) const;
+  Vec3<double> angular_at(double t) const;
+  // The largest prescribed speed at distance `radius` from the body's centre (for the CFL step).
+  double max_speed(double radius) const;
 };
 
 struct CrmBody {

@@ -14,7 +14,26 @@
 namespace terracal {
 
 bool BodyMotion::moves() const {
-  return any_free() || norm(linear_velocity) > 0 || norm(angular_velocity) > 0;
+  return any_free() || max_speed(1.0) > 0;
+}
+Vec3<double> BodyMotion::linear_at(double t) const {
+  if (schedule.empty()) return linear_velocity;
+  double end = 0;
+  for (const auto& seg : schedule)
+    if (t < (end += seg.duration)) return seg.linear_velocity;
+  return {};
+}
+Vec3<double> BodyMotion::angular_at(double t) const {
+  if (schedule.empty()) return angular_velocity;
+  double end = 0;
+  for (const auto& seg : schedule)
+    if (t < (end += seg.duration)) return seg.angular_velocity;
+  return {};
+}
+double BodyMotion::max_speed(double radius) const {
+  double v = norm(linear_velocity) + norm(angular_velocity) * radius;
+  for (const auto& seg : schedule) v = std::max(v, norm(seg.linear_velocity) + norm(seg.angular_velocity) * radius);
+  return v;
 }
 bool BodyMotion::any_free() const {
   for (bool f : free) if (f) return true;
@@ -151,6 +170,24 @@ CrmBody parse_body(JsonObject o, const std::filesystem::path& base, int index) {
     for (const auto& f : free)
       for (int q = 0; q < 6; ++q) b.motion.free[q] = b.motion.free[q] || f == names[q];
     if (mt == "dynamic") b.motion.free.fill(true);
+    if (m.has("schedule")) {
+      if (mt != "prescribed") m.fail("schedule", "only a prescribed body follows a velocity schedule");
+      if (m.has("linear_velocity") || m.has("angular_velocity"))
+        m.fail("schedule", "give either constant velocities or a schedule, not both");
+      const nlohmann::json& segs = m.raw("schedule");
+      if (!segs.is_array() || segs.empty()) m.fail("schedule", "must be a non-empty array of {duration, linear_velocity, angular_velocity}");
+      for (std::size_t k = 0; k < segs.size(); ++k) {
+        JsonObject g(segs[k], m.where(), m.key_path(fmt::format("schedule[{}]", k)));
+        MotionSegment seg;
+        seg.duration = g.number("duration", 0, 1e6, true);
+        seg.linear_velocity = g.vec3_or("linear_velocity", {});
+        seg.angular_velocity = g.vec3_or("angular_velocity", {});
+        g.finish();
+        b.motion.schedule.push_back(seg);
+      }
+      b.motion.linear_velocity = b.motion.schedule.front().linear_velocity;
+      b.motion.angular_velocity = b.motion.schedule.front().angular_velocity;
+    }
     if (mt == "fixed") {
       if (norm(b.motion.linear_velocity) > 0 || norm(b.motion.angular_velocity) > 0 || !free.empty())
         m.fail("type", "a fixed body takes no velocities and no free axes");
@@ -232,7 +269,7 @@ void validate_crm_scene(CrmScene& sc) {
     if (p.x < 0 || p.x > bin.size.x || p.y < 0 || p.y > bin.size.y || p.z < 0)
       fail(key + ".position", fmt::format("[{}, {}, {}] is outside the bin [0, {}] x [0, {}] x [0, inf)", p.x, p.y, p.z,
                                           bin.size.x, bin.size.y));
-    speed = std::max(speed, norm(body.motion.linear_velocity) + norm(body.motion.angular_velocity) * body.bounding_radius());
+    speed = std::max(speed, body.motion.max_speed(body.bounding_radius()));
   }
   sc.numerics.expected_speed = speed;
   const double limit = n.cfl_limit(soil, speed);

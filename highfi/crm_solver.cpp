@@ -81,6 +81,11 @@ CrmSolver::CrmSolver(const CrmScene& scene, CrmDevice device, const HostSoil* be
   EngineSetup setup;
   setup.constants = crm_constants(scene_);
   setup.grid = crm_grid(scene_);
+  {
+    const double half = 0.5 * scene_.numerics.spacing;
+    setup.room_lo = {-half, -half, -half};
+    setup.room_hi = {scene_.bin.size.x + half, scene_.bin.size.y + half, 1e30};
+  }
   setup.soil = bed ? *bed : initial_bed(scene_);
   setup.viscosity = scene_.effects.artificial_viscosity;
   setup.shifting = scene_.effects.shifting;
@@ -138,14 +143,22 @@ std::vector<BodyPose<double>> CrmSolver::poses(const std::vector<BodyState>& sta
   return p;
 }
 
-// base + h * rate(at): prescribed velocities stay as given; free ones follow Newton-Euler with
-// the soil's wrench, the applied force and torque, and gravity.
+// base + h * rate(at): prescribed velocities take their value at the new time t_out (from the
+// schedule, or constant); free ones follow Newton-Euler with the soil's wrench, the applied force
+// and torque, and gravity.
 BodyState CrmSolver::advance(const BodyState& base, const BodyState& at, const BodyWrench& w, const CrmBody& body,
-                             double h) const {
+                             double h, double t_out) const {
   BodyState out = base;
   out.position = base.position + h * at.velocity;
   out.orientation = integrate_rotation(base.orientation, at.omega, h);
   const auto& f = body.motion.free;
+  if (!body.motion.schedule.empty()) {
+    const Vec3<double> v = body.motion.linear_at(t_out), w_ = body.motion.angular_at(t_out);
+    for (int q = 0; q < 3; ++q) {
+      if (!f[q]) out.velocity[q] = v[q];
+      if (!f[3 + q]) out.omega[q] = w_[q];
+    }
+  }
   if (f[0] || f[1] || f[2]) {
     const Vec3<double> a = (1.0 / body.mass) * (w.force + body.applied_force) + scene_.soil.gravity;
     for (int q = 0; q < 3; ++q)
@@ -202,12 +215,12 @@ void CrmSolver::step() {
   engine_->set_poses(poses(bodies_));
   const std::vector<double> w0 = engine_->stage(0, dt);
   std::vector<BodyState> half(nb);
-  for (std::size_t b = 0; b < nb; ++b) half[b] = advance(bodies_[b], bodies_[b], unpack(w0, b + 1), scene_.bodies[b], 0.5 * dt);
+  for (std::size_t b = 0; b < nb; ++b) half[b] = advance(bodies_[b], bodies_[b], unpack(w0, b + 1), scene_.bodies[b], 0.5 * dt, time_ + 0.5 * dt);
   engine_->set_poses(poses(half));
   const std::vector<double> w1 = engine_->stage(1, dt);
   for (std::size_t b = 0; b < nb; ++b) {
     wrenches_[b] = unpack(w1, b + 1);
-    bodies_[b] = advance(bodies_[b], half[b], wrenches_[b], scene_.bodies[b], dt);
+    bodies_[b] = advance(bodies_[b], half[b], wrenches_[b], scene_.bodies[b], dt, time_ + dt);
   }
   wall_wrench_ = unpack(w1, 0);
   time_ += dt;

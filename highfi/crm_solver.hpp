@@ -52,7 +52,8 @@ class CrmSolver {
 
  private:
   std::vector<BodyPose<double>> poses(const std::vector<BodyState>& states) const;
-  BodyState advance(const BodyState& base, const BodyState& at, const BodyWrench& w, const CrmBody& body, double h) const;
+  BodyState advance(const BodyState& base, const BodyState& at, const BodyWrench& w, const CrmBody& body, double h,
+                    double t_out) const;
   std::vector<ActiveBox<double>> active_boxes() const;
 
   CrmScene scene_;

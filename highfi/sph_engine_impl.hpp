@@ -62,7 +62,8 @@ class SphEngineImpl final : public SphEngine {
  public:
   explicit SphEngineImpl(const EngineSetup& s)
       : k_(constants_in<T>(s.constants)), grid_(grid_in<T>(s.grid)), n_(s.soil.size()), nm_(s.markers.size()),
-        bodies_(s.bodies), viscosity_(s.viscosity), shifting_(s.shifting) {
+        bodies_(s.bodies), viscosity_(s.viscosity), shifting_(s.shifting), room_lo_(to_t<T>(s.room_lo)),
+        room_hi_(to_t<T>(s.room_hi)) {
     const std::size_t nn = n_ > 0 ? n_ : 1, mm = nm_ > 0 ? nm_ : 1;
     A_.allocate(nn);
     B_.allocate(nn);
@@ -151,7 +152,7 @@ class SphEngineImpl final : public SphEngine {
       B::fill_begin(soil_begin_, grid_.cells() + 2, 0);
       return;
     }
-    B::parallel_for(long(n_), SoilCellKey<T>{grid_, A_.a, keys_, vals_});
+    B::parallel_for(long(n_), SoilCellKey<T>{grid_, A_.a, room_lo_, room_hi_, keys_, vals_});
     const int* perm = B::sort_cells(int(n_), grid_.cells() + 1, keys_, vals_, keys_alt_, vals_alt_, soil_begin_);
     // Gather A into B in sorted order, then swap: B is scratch between steps.
     B::parallel_for(long(n_), Gather<Vec4<T>>{A_.a.pos, B_.a.pos, perm});
@@ -250,6 +251,7 @@ class SphEngineImpl final : public SphEngine {
   std::size_t n_, nm_;
   int bodies_;
   bool viscosity_, shifting_;
+  Vec3<T> room_lo_, room_hi_;
   bool markers_sorted_ = false;
   SoilBuffers<T, B> A_, B_;
   MarkerArrays<T> mk_;

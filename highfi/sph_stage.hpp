@@ -326,13 +326,18 @@ struct SoilStage {
     Vec3<T> drift = me.v;
     if (kShifting) drift += k.xsph * sum.xsph;
     const Vec3<T> x_new = pb.xyz() + dt * drift;
-    const T rho_new = pb.w - dt * me.rho * div_v;
+    T rho_new = pb.w - dt * me.rho * div_v;
     const Vec3<T> v_new = vb.xyz() + dt * acc;
     Sym3<T> s_new = stress_of(s0b, s1b) + dt * rate;
     T plastic = s1b.z + return_map(s_new, shear_rate(L), k.model);
     // A particle with a truncated kernel (free surface) cannot resolve its velocity gradient;
     // it carries no stress rather than a spurious one.
     if (sum.support < k.free_surface_support) s_new = Sym3<T>{};
+    // Soil does not compress to half its volume. A density above 1.5 rho0 is the spurious
+    // divergence of a particle squeezed against a wall, which would otherwise grow without bound
+    // and make the walls' hydrostatic head (proportional to it) throw the particle about.
+    const T rho_cap = T(1.5) * k.model.rho0;
+    if (rho_new > rho_cap) rho_new = rho_cap;
     out.pos[i] = make_vec4(x_new, rho_new);
     out.vel[i] = make_vec4(v_new, T(kParticleActive));
     out.s0[i] = {s_new.xx, s_new.yy, s_new.zz, s_new.xy};
@@ -364,16 +369,22 @@ struct MarkerPoseUpdate {
   }
 };
 
-// Cell keys for sorting; a soil particle that has left the domain is marked lost, stopped and
-// parked in the last bin, where no neighbour loop sees it.
+// Cell keys for sorting; a soil particle that has left the domain, or broken into the walls (left
+// the room [room_lo, room_hi]), is marked lost, stopped and parked in the last bin, where no
+// neighbour loop sees it.
 template <typename T>
 struct SoilCellKey {
   GridGeometry<T> grid;
   SoilArrays<T> s;
+  Vec3<T> room_lo, room_hi;
   int* keys;
   int* values;
   TERRACAL_HD void operator()(long i) const {
-    int key = grid.key(s.pos[i].xyz());
+    const Vec3<T> x = s.pos[i].xyz();
+    int key = grid.key(x);
+    const bool in_room = x.x >= room_lo.x && x.y >= room_lo.y && x.z >= room_lo.z && x.x <= room_hi.x &&
+                         x.y <= room_hi.y && x.z <= room_hi.z;
+    if (!in_room) key = grid.cells();
     if (s.vel[i].w == T(kParticleLost)) key = grid.cells();
     if (key == grid.cells() && s.vel[i].w != T(kParticleLost)) s.vel[i] = {T(0), T(0), T(0), T(kParticleLost)};
     keys[i] = key;
