@@ -6,7 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "highfi/sph_stage.hpp"
+// Only the data layouts: the stage functors (and their CPU SIMD code, built for this CPU) stay
+// inside the backends, so code that drives the solver does not depend on how it was compiled.
+#include "highfi/sph_fields.hpp"
 
 namespace terracal {
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "highfi/sph_engine.hpp"
+#include "highfi/sph_stage.hpp"
 
 namespace terracal {
 

@@ -107,4 +107,18 @@ struct SphConstants {
   T free_surface_support = 0; // kernel support (Shepard sum) below which a particle is on the free surface
 };
 
+// A body's pose and rigid motion, as the marker update reads it.
+template <typename T>
+struct BodyPose {
+  Vec3<T> center{}, velocity{}, omega{};
+  T R[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  int moving = 0;
+};
+
+// Active domain: a box around a moving body plus a margin; soil outside every box is frozen.
+template <typename T>
+struct ActiveBox {
+  Vec3<T> lo{}, hi{};
+};
+
 }  // namespace terracal

@@ -345,14 +345,7 @@ struct SoilStage {
   }
 };
 
-// Rigid motion of body markers: x = c + R local, v_wall = v + omega x (R local).
-template <typename T>
-struct BodyPose {
-  Vec3<T> center{}, velocity{}, omega{};
-  T R[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
-  int moving = 0;
-};
-
+// Rigid motion of body markers (BodyPose): x = c + R local, v_wall = v + omega x (R local).
 template <typename T>
 struct MarkerPoseUpdate {
   const BodyPose<T>* poses;
@@ -414,10 +407,6 @@ struct Gather {
 };
 
 // Active domain: particles outside every box (moving bodies' bounds plus a margin) are frozen.
-template <typename T>
-struct ActiveBox {
-  Vec3<T> lo{}, hi{};
-};
 template <typename T>
 struct MarkActive {
   const ActiveBox<T>* boxes;
