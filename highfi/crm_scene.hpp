@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/rigid_body.hpp"
 #include "core/quat.hpp"
 #include "core/vec.hpp"
 #include "highfi/sph_engine.hpp"
@@ -30,54 +31,8 @@ struct CrmEffects {
 };
 inline const std::array<const char*, 4> kCrmEffectNames = {"cohesion", "artificial_viscosity", "shifting", "active_domain"};
 
-enum class ShapeType { kBox, kCylinder, kDisc, kAnnulus, kMesh };
-
-struct BodyShape {
-  ShapeType type = ShapeType::kBox;
-  Vec3<double> half_extents{};  // box
-  double radius = 0;            // cylinder (axis = body y), disc and annulus outer radius (axis = body z)
-  double inner_radius = 0;      // annulus
-  double width = 0;             // cylinder width along y; disc/annulus thickness along z
-  int grouser_count = 0;        // cylinder: straight grousers across the width
-  double grouser_height = 0, grouser_thickness = 0;
-  std::vector<Vec3<double>> vertices;       // triangle mesh, body frame
-  std::vector<std::array<int, 3>> triangles;
-};
-
-// Each of the six degrees of freedom is prescribed (constant velocity) or free (dynamic).
-// One piece of a prescribed velocity schedule: these velocities for `duration` seconds.
-struct MotionSegment {
-  double duration = 0;
-  Vec3<double> linear_velocity{}, angular_velocity{};
-};
-
-struct BodyMotion {
-  Vec3<double> linear_velocity{}, angular_velocity{};  // world frame; the initial velocity of free DOFs
-  std::array<bool, 6> free{};                          // x, y, z, rx, ry, rz
-  // Prescribed velocities as piecewise-constant functions of time (t = 0 when the bodies enter,
-  // after settling); after the last segment the prescribed axes hold still. Empty: the constant
-  // velocities above. Free axes ignore the schedule.
-  std::vector<MotionSegment> schedule;
-  bool moves() const;
-  bool any_free() const;
-  // The prescribed velocities at time t.
-  Vec3<double> linear_at(double t) const;
-  Vec3<double> angular_at(double t) const;
-  // The largest prescribed speed at distance `radius` from the body's centre (for the CFL step).
-  double max_speed(double radius) const;
-};
-
-struct CrmBody {
-  std::string name;
-  BodyShape shape;
-  Vec3<double> position{};
-  Quat orientation{};
-  BodyMotion motion;
-  double mass = 0;
-  Vec3<double> inertia{};              // principal moments in the body frame
-  Vec3<double> applied_force{}, applied_torque{};  // world frame, added to the soil's wrench and gravity
-  double bounding_radius() const;      // of the shape about the body origin
-};
+// A scene body is a rigid body of core/rigid_body.hpp (shape, motion program, mass properties).
+using CrmBody = RigidBody;
 
 struct CrmBin {
   Vec3<double> size{1, 1, 0.5};  // inner length x, width y, wall height z

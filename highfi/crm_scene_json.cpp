@@ -13,48 +13,6 @@
 
 namespace terracal {
 
-bool BodyMotion::moves() const {
-  return any_free() || max_speed(1.0) > 0;
-}
-Vec3<double> BodyMotion::linear_at(double t) const {
-  if (schedule.empty()) return linear_velocity;
-  double end = 0;
-  for (const auto& seg : schedule)
-    if (t < (end += seg.duration)) return seg.linear_velocity;
-  return {};
-}
-Vec3<double> BodyMotion::angular_at(double t) const {
-  if (schedule.empty()) return angular_velocity;
-  double end = 0;
-  for (const auto& seg : schedule)
-    if (t < (end += seg.duration)) return seg.angular_velocity;
-  return {};
-}
-double BodyMotion::max_speed(double radius) const {
-  double v = norm(linear_velocity) + norm(angular_velocity) * radius;
-  for (const auto& seg : schedule) v = std::max(v, norm(seg.linear_velocity) + norm(seg.angular_velocity) * radius);
-  return v;
-}
-bool BodyMotion::any_free() const {
-  for (bool f : free) if (f) return true;
-  return false;
-}
-
-double CrmBody::bounding_radius() const {
-  switch (shape.type) {
-    case ShapeType::kBox: return norm(shape.half_extents);
-    case ShapeType::kCylinder: return std::hypot(shape.radius + shape.grouser_height, 0.5 * shape.width);
-    case ShapeType::kDisc:
-    case ShapeType::kAnnulus: return std::hypot(shape.radius, 0.5 * shape.width);
-    case ShapeType::kMesh: {
-      double r = 0;
-      for (const auto& v : shape.vertices) r = std::max(r, norm(v));
-      return r;
-    }
-  }
-  return 0;
-}
-
 CrmSoil parse_crm_soil(const nlohmann::json& j, const std::string& where) {
   JsonObject o(j, where, "soil");
   CrmSoil s;

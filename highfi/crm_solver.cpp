@@ -146,48 +146,6 @@ std::vector<BodyPose<double>> CrmSolver::poses(const std::vector<BodyState>& sta
 // base + h * rate(at): prescribed velocities take their value at the new time t_out (from the
 // schedule, or constant); free ones follow Newton-Euler with the soil's wrench, the applied force
 // and torque, and gravity.
-BodyState CrmSolver::advance(const BodyState& base, const BodyState& at, const BodyWrench& w, const CrmBody& body,
-                             double h, double t_out) const {
-  BodyState out = base;
-  out.position = base.position + h * at.velocity;
-  out.orientation = integrate_rotation(base.orientation, at.omega, h);
-  const auto& f = body.motion.free;
-  if (!body.motion.schedule.empty()) {
-    const Vec3<double> v = body.motion.linear_at(t_out), w_ = body.motion.angular_at(t_out);
-    for (int q = 0; q < 3; ++q) {
-      if (!f[q]) out.velocity[q] = v[q];
-      if (!f[3 + q]) out.omega[q] = w_[q];
-    }
-  }
-  if (f[0] || f[1] || f[2]) {
-    const Vec3<double> a = (1.0 / body.mass) * (w.force + body.applied_force) + scene_.soil.gravity;
-    for (int q = 0; q < 3; ++q)
-      if (f[q]) out.velocity[q] = base.velocity[q] + h * a[q];
-  }
-  if (f[3] || f[4] || f[5]) {
-    // Euler's equations in the world frame: I_w domega/dt = tau - omega x I_w omega, I_w = R I R^T.
-    double R[9];
-    at.orientation.to_matrix(R);
-    auto body_to_world_inertia = [&](const Vec3<double>& v) {  // I_w v
-      const Vec3<double> vb{R[0] * v.x + R[3] * v.y + R[6] * v.z, R[1] * v.x + R[4] * v.y + R[7] * v.z,
-                            R[2] * v.x + R[5] * v.y + R[8] * v.z};
-      const Vec3<double> ib{body.inertia.x * vb.x, body.inertia.y * vb.y, body.inertia.z * vb.z};
-      return Vec3<double>{R[0] * ib.x + R[1] * ib.y + R[2] * ib.z, R[3] * ib.x + R[4] * ib.y + R[5] * ib.z,
-                          R[6] * ib.x + R[7] * ib.y + R[8] * ib.z};
-    };
-    const Vec3<double> rhs = w.torque + body.applied_torque - cross(at.omega, body_to_world_inertia(at.omega));
-    // I_w^{-1} rhs = R I^{-1} R^T rhs
-    const Vec3<double> rb{R[0] * rhs.x + R[3] * rhs.y + R[6] * rhs.z, R[1] * rhs.x + R[4] * rhs.y + R[7] * rhs.z,
-                          R[2] * rhs.x + R[5] * rhs.y + R[8] * rhs.z};
-    const Vec3<double> ab{rb.x / body.inertia.x, rb.y / body.inertia.y, rb.z / body.inertia.z};
-    const Vec3<double> alpha{R[0] * ab.x + R[1] * ab.y + R[2] * ab.z, R[3] * ab.x + R[4] * ab.y + R[5] * ab.z,
-                             R[6] * ab.x + R[7] * ab.y + R[8] * ab.z};
-    for (int q = 0; q < 3; ++q)
-      if (f[3 + q]) out.omega[q] = base.omega[q] + h * alpha[q];
-  }
-  return out;
-}
-
 std::vector<ActiveBox<double>> CrmSolver::active_boxes() const {
   std::vector<ActiveBox<double>> boxes;
   const double margin = scene_.numerics.active_margin;
@@ -215,12 +173,12 @@ void CrmSolver::step() {
   engine_->set_poses(poses(bodies_));
   const std::vector<double> w0 = engine_->stage(0, dt);
   std::vector<BodyState> half(nb);
-  for (std::size_t b = 0; b < nb; ++b) half[b] = advance(bodies_[b], bodies_[b], unpack(w0, b + 1), scene_.bodies[b], 0.5 * dt, time_ + 0.5 * dt);
+  for (std::size_t b = 0; b < nb; ++b) half[b] = advance_body(scene_.bodies[b], bodies_[b], bodies_[b], unpack(w0, b + 1), scene_.soil.gravity, 0.5 * dt, time_ + 0.5 * dt);
   engine_->set_poses(poses(half));
   const std::vector<double> w1 = engine_->stage(1, dt);
   for (std::size_t b = 0; b < nb; ++b) {
     wrenches_[b] = unpack(w1, b + 1);
-    bodies_[b] = advance(bodies_[b], half[b], wrenches_[b], scene_.bodies[b], dt, time_ + dt);
+    bodies_[b] = advance_body(scene_.bodies[b], bodies_[b], half[b], wrenches_[b], scene_.soil.gravity, dt, time_ + dt);
   }
   wall_wrench_ = unpack(w1, 0);
   time_ += dt;

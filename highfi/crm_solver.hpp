@@ -10,16 +10,6 @@
 
 namespace terracal {
 
-struct BodyState {
-  Vec3<double> position{};
-  Quat orientation{};
-  Vec3<double> velocity{}, omega{};
-};
-
-struct BodyWrench {
-  Vec3<double> force{}, torque{};  // of the soil on the body; torque about the body position
-};
-
 // The initial bed: particles on a lattice of spacing d0 filling the bin to fill_height, at rest,
 // with the lithostatic stress sigma_zz = -rho |g| depth and sigma_xx = sigma_yy = nu/(1-nu) sigma_zz.
 HostSoil initial_bed(const CrmScene& scene);
@@ -52,8 +42,6 @@ class CrmSolver {
 
  private:
   std::vector<BodyPose<double>> poses(const std::vector<BodyState>& states) const;
-  BodyState advance(const BodyState& base, const BodyState& at, const BodyWrench& w, const CrmBody& body, double h,
-                    double t_out) const;
   std::vector<ActiveBox<double>> active_boxes() const;
 
   CrmScene scene_;

@@ -1,0 +1,49 @@
+#pragma once
+// Ray casts against a rigid body's collision shape (core/body_shape.hpp), in the body frame: the SCM
+// terrain uses them to find how far above each grid node the body's underside is. The solids are
+// exactly those of shape_signed_distance (highfi/body_markers.cpp), where it is <= 0.
+#include <vector>
+
+#include "core/body_shape.hpp"
+#include "core/triangle_bvh.hpp"
+#include "core/vec.hpp"
+
+namespace terracal {
+
+class ShapeRaycaster {
+ public:
+  // Copies what the queries need (dimensions, each grouser's sin/cos) and builds the BVH of a mesh,
+  // so that first_hit allocates nothing and evaluates no trigonometry.
+  explicit ShapeRaycaster(const BodyShape& shape);
+
+  // Body frame. Smallest t in [0, t_max] where origin + t dir enters (or is inside) the solid;
+  // +infinity if it misses. If the origin is already inside the solid, returns 0. dir need not be
+  // unit. Meshes: the first triangle hit, "inside" is not detected (see first_hit's comment).
+  double first_hit(const Vec3<double>& origin, const Vec3<double>& dir, double t_max) const;
+
+  // Axis-aligned bounds of the solid in the body frame (grousers included).
+  Vec3<double> bounds_lo() const { return lo_; }
+  Vec3<double> bounds_hi() const { return hi_; }
+
+ private:
+  struct Grouser {
+    double c, s;  // cos and sin of its angle: radial = c x + s z, tangential = -s x + c z
+  };
+  double cylinder_hit(const Vec3<double>& o, const Vec3<double>& d, double t_max) const;
+  double round_plate_hit(const Vec3<double>& o, const Vec3<double>& d, double t_max) const;
+
+  ShapeType type_;
+  Vec3<double> half_{};          // box half extents
+  double radius_ = 0, inner_ = 0, half_width_ = 0;
+  // Grousers: boxes with centre `mid` along their radial axis and half sizes (gr, half_width_, gt).
+  std::vector<Grouser> grousers_;
+  double g_mid_ = 0, g_half_radial_ = 0, g_half_tangential_ = 0, g_outer_radius_ = 0;
+  // Angular culling of grousers (see cylinder_hit): half-angle of a grouser seen from radius R,
+  // grousers per radian, and whether the geometry allows culling at all.
+  double g_half_angle_ = 0, g_per_radian_ = 0;
+  bool g_cull_ = false;
+  TriangleBvh bvh_;
+  Vec3<double> lo_{}, hi_{};
+};
+
+}  // namespace terracal

@@ -1,0 +1,251 @@
+#include "lowfi/wong_reece.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <memory>
+#include <mutex>
+
+#include <fmt/format.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_integration.h>
+#include <gsl/gsl_roots.h>
+
+#include "core/errors.hpp"
+
+namespace terracal::lowfi {
+
+namespace {
+
+// GSL's default error handler aborts the process (e.g. on a round-off warning from QAGS). Within a
+// call we want status codes instead, which we turn into RunError. The handler is process-global, so
+// calls hold a mutex while it is switched off and restore the previous handler afterwards.
+class GslStatusCodes {
+ public:
+  GslStatusCodes() : lock_(mutex()), previous_(gsl_set_error_handler_off()) {}
+  ~GslStatusCodes() { gsl_set_error_handler(previous_); }
+  GslStatusCodes(const GslStatusCodes&) = delete;
+  GslStatusCodes& operator=(const GslStatusCodes&) = delete;
+
+ private:
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+  std::lock_guard<std::mutex> lock_;
+  gsl_error_handler_t* previous_;
+};
+
+// Stresses on the rim for one trial entry angle.
+struct Contact {
+  double r, b, slip;
+  double k_bekker;  // (Kc/b + Kphi) r^n: sigma = k_bekker (cos θ_eq − cos θ1)^n
+  double n, cohesion, tan_phi, janosi_k;
+  double theta1 = 0, theta_m = 0;
+
+  // Bekker stress at the equivalent front angle te; the difference of cosines can round slightly
+  // below zero at te = θ1, and pow of a negative base is NaN.
+  double bekker(double te) const { return k_bekker * std::pow(std::max(0.0, std::cos(te) - std::cos(theta1)), n); }
+  double sigma(double theta) const {
+    if (theta >= theta_m) return bekker(theta);
+    // Rear: [0, θm] is mapped linearly onto [θ1, θm] of the front law, so that σ(0) = 0 and σ is
+    // continuous at θm. Only reached when θm > 0 (the rear piece is empty otherwise).
+    return bekker(theta1 - theta / theta_m * (theta1 - theta_m));
+  }
+  double tau(double theta) const {
+    const double j = r * ((theta1 - theta) - (1.0 - slip) * (std::sin(theta1) - std::sin(theta)));
+    // Janosi-Hanamoto with the sign of j: in skid (s < 0) the soil shears the rim backward.
+    const double developed = -std::expm1(-std::abs(j) / janosi_k);
+    return std::copysign((cohesion + sigma(theta) * tan_phi) * developed, j);
+  }
+  // An upper bound of |σ| + |τ|, the scale for absolute quadrature tolerances (DBP can be ~0).
+  double stress_scale() const {
+    const double sigma_max = bekker(0.0);
+    return sigma_max + cohesion + sigma_max * tan_phi;
+  }
+};
+
+enum class Quantity { Vertical, Drawbar, Torque };
+
+struct Integrand {
+  const Contact* contact;
+  Quantity q;
+};
+
+double integrand(double theta, void* p) {
+  const auto* in = static_cast<const Integrand*>(p);
+  const Contact& c = *in->contact;
+  const double s = c.sigma(theta), t = c.tau(theta);
+  switch (in->q) {
+    case Quantity::Vertical: return s * std::cos(theta) + t * std::sin(theta);
+    case Quantity::Drawbar: return t * std::cos(theta) - s * std::sin(theta);
+    case Quantity::Torque: return t;
+  }
+  return 0.0;
+}
+
+struct WorkspaceFree {
+  void operator()(gsl_integration_workspace* w) const { gsl_integration_workspace_free(w); }
+};
+using Workspace = std::unique_ptr<gsl_integration_workspace, WorkspaceFree>;
+constexpr size_t kWorkspaceIntervals = 1000;
+
+// ∫_0^θ1 of the quantity's integrand (without the r b or r² b factor), the rear [0, θm] and the front
+// [θm, θ1] separately because σ has a kink at θm. QAGS copes with the algebraic end-point behaviour
+// of (cos θ − cos θ1)^n for n < 1.
+double integrate(const Contact& c, Quantity q, double rel_tol, gsl_integration_workspace* w) {
+  Integrand in{&c, q};
+  gsl_function f{&integrand, &in};
+  const double eps_abs = 0.1 * rel_tol * c.stress_scale() * c.theta1;
+  double total = 0.0;
+  const double bounds[3] = {0.0, c.theta_m, c.theta1};
+  for (int piece = 0; piece < 2; ++piece) {
+    const double a = bounds[piece], b = bounds[piece + 1];
+    if (!(b > a)) continue;  // θm = 0 or θm = θ1: one piece is empty
+    double result = 0, abserr = 0;
+    const int status = gsl_integration_qags(&f, a, b, eps_abs, rel_tol, kWorkspaceIntervals, w, &result, &abserr);
+    // A GSL warning with a still-small error estimate (round-off at a very tight rel_tol) is accepted.
+    if (status != GSL_SUCCESS && !(abserr <= 1e-6 * std::max(std::abs(result), c.stress_scale() * (b - a))))
+      throw RunError(fmt::format("wong_reece: quadrature over [{}, {}] rad at entry angle {} rad failed: {} "
+                                 "(estimate {}, error {})",
+                                 a, b, c.theta1, gsl_strerror(status), result, abserr));
+    total += result;
+  }
+  return total;
+}
+
+void set_entry_angle(Contact& c, double theta1, const WongReeceOptions& o) {
+  c.theta1 = theta1;
+  // c1 + c2 s can leave [0, 1] (e.g. c1 + c2 s < 0 in deep skid): then the whole contact is front or rear.
+  c.theta_m = std::clamp((o.c1 + o.c2 * c.slip) * theta1, 0.0, theta1);
+}
+
+void require(bool ok, const char* name, double value, const char* range) {
+  if (!ok) throw InputError(fmt::format("wong_reece: {} = {}: expected {}", name, value, range));
+}
+
+void validate(const ScmSoil& soil, const WongReeceWheel& wheel, double load, double slip, const WongReeceOptions& o) {
+  // `x > 0` and friends are false for NaN, so these also reject non-finite values.
+  require(std::isfinite(wheel.radius) && wheel.radius > 0, "wheel radius", wheel.radius, "a finite value > 0 m");
+  require(std::isfinite(wheel.width) && wheel.width > 0, "wheel width", wheel.width, "a finite value > 0 m");
+  require(std::isfinite(load) && load > 0, "load", load, "a finite value > 0 N");
+  require(slip > -1 && slip < 1, "slip", slip, "-1 < slip < 1");
+  require(std::isfinite(soil.n) && soil.n > 0, "soil n", soil.n, "a finite value > 0");
+  require(std::isfinite(soil.Kc), "soil Kc", soil.Kc, "a finite value");
+  require(std::isfinite(soil.Kphi), "soil Kphi", soil.Kphi, "a finite value");
+  const double k_sum = soil.Kc / wheel.width + soil.Kphi;
+  require(std::isfinite(k_sum) && k_sum > 0, "soil Kc/b + Kphi", k_sum, "> 0 Pa/m^n (b = wheel width)");
+  require(std::isfinite(soil.cohesion) && soil.cohesion >= 0, "soil cohesion", soil.cohesion, "a finite value >= 0 Pa");
+  require(soil.friction_deg >= 0 && soil.friction_deg < 90, "soil friction_deg", soil.friction_deg, "in [0, 90) degrees");
+  require(std::isfinite(soil.janosi_k) && soil.janosi_k > 0, "soil janosi_k", soil.janosi_k, "a finite value > 0 m");
+  require(std::isfinite(o.c1), "option c1", o.c1, "a finite value");
+  require(std::isfinite(o.c2), "option c2", o.c2, "a finite value");
+  require(o.rel_tol >= 1e-14 && o.rel_tol <= 1e-3, "option rel_tol", o.rel_tol, "in [1e-14, 1e-3]");
+}
+
+// What Brent's callback needs: the equilibrium residual, and a place for an exception that must not
+// unwind through GSL's C frames.
+struct Equilibrium {
+  Contact* contact;
+  const WongReeceOptions* options;
+  gsl_integration_workspace* w;
+  double load;
+  std::exception_ptr error;
+
+  // Vertical force [N] minus the load at entry angle theta1.
+  double residual(double theta1) {
+    set_entry_angle(*contact, theta1, *options);
+    return contact->r * contact->b * integrate(*contact, Quantity::Vertical, options->rel_tol, w) - load;
+  }
+  static double call(double theta1, void* p) {
+    auto* e = static_cast<Equilibrium*>(p);
+    try {
+      return e->residual(theta1);
+    } catch (...) {
+      e->error = std::current_exception();
+      return std::nan("");  // makes Brent stop with GSL_EBADFUNC
+    }
+  }
+};
+
+struct SolverFree {
+  void operator()(gsl_root_fsolver* s) const { gsl_root_fsolver_free(s); }
+};
+
+// Brackets the smallest entry angle that carries the load (the wheel sinks until it first balances),
+// then refines it with Brent.
+double solve_entry_angle(Equilibrium& eq, double rel_tol) {
+  const double top = M_PI / 2;  // deeper than the axle: not a rigid-wheel contact any more
+  constexpr int kGrid = 24;
+  // Below 1e-3 rad the sinkage is ~r·5e-7 m: step down further only for a very light load.
+  constexpr double kStart = 1e-3;
+  double lo = kStart, hi = 0;
+  bool bracketed = false;
+  while (eq.residual(lo) >= 0) {
+    bracketed = true;
+    hi = lo;
+    lo *= 0.1;
+    if (lo < 1e-9)
+      throw RunError(fmt::format("wong_reece: load {} N is carried already at an entry angle below 1e-9 rad; "
+                                 "too light to resolve",
+                                 eq.load));
+  }
+  // A coarse upward scan, so that Brent gets the first sign change rather than any.
+  for (int i = 1; i <= kGrid && !bracketed; ++i) {
+    const double theta = kStart + (top - kStart) * i / kGrid;
+    if (eq.residual(theta) >= 0) {
+      bracketed = true;
+      hi = theta;
+    } else {
+      lo = theta;
+    }
+  }
+  if (!bracketed) {
+    set_entry_angle(*eq.contact, top, *eq.options);
+    throw RunError(fmt::format("wong_reece: no entry angle in (0, pi/2] carries the load of {} N (at pi/2 the soil "
+                               "carries only {} N): the wheel would sink past its axle",
+                               eq.load, eq.residual(top) + eq.load));
+  }
+
+  std::unique_ptr<gsl_root_fsolver, SolverFree> solver(gsl_root_fsolver_alloc(gsl_root_fsolver_brent));
+  gsl_function f{&Equilibrium::call, &eq};
+  gsl_root_fsolver_set(solver.get(), &f, lo, hi);
+  for (int iter = 0; iter < 200; ++iter) {
+    const int status = gsl_root_fsolver_iterate(solver.get());
+    if (eq.error) std::rethrow_exception(eq.error);
+    if (status != GSL_SUCCESS)
+      throw RunError(fmt::format("wong_reece: Brent on the entry angle failed: {}", gsl_strerror(status)));
+    const double a = gsl_root_fsolver_x_lower(solver.get()), b = gsl_root_fsolver_x_upper(solver.get());
+    if (gsl_root_test_interval(a, b, 0.0, rel_tol) == GSL_SUCCESS) return gsl_root_fsolver_root(solver.get());
+  }
+  throw RunError("wong_reece: Brent on the entry angle did not converge in 200 iterations");
+}
+
+}  // namespace
+
+WongReeceResult wong_reece(const ScmSoil& soil, const WongReeceWheel& wheel, double load, double slip,
+                           const WongReeceOptions& options) {
+  validate(soil, wheel, load, slip, options);
+  const GslStatusCodes gsl_guard;
+  Workspace w(gsl_integration_workspace_alloc(kWorkspaceIntervals));
+
+  const double r = wheel.radius, b = wheel.width;
+  Contact c{r, b, slip, (soil.Kc / b + soil.Kphi) * std::pow(r, soil.n), soil.n, soil.cohesion,
+            std::tan(soil.friction_deg * M_PI / 180.0), soil.janosi_k};
+  Equilibrium eq{&c, &options, w.get(), load, nullptr};
+  const double theta1 = solve_entry_angle(eq, options.rel_tol);
+
+  set_entry_angle(c, theta1, options);
+  WongReeceResult out;
+  out.slip = slip;
+  out.load = load;
+  out.entry_angle = theta1;
+  out.max_stress_angle = c.theta_m;
+  out.sinkage = r * (1.0 - std::cos(theta1));
+  out.vertical_force = r * b * integrate(c, Quantity::Vertical, options.rel_tol, w.get());
+  out.dbp = r * b * integrate(c, Quantity::Drawbar, options.rel_tol, w.get());
+  out.torque = r * r * b * integrate(c, Quantity::Torque, options.rel_tol, w.get());
+  return out;
+}
+
+}  // namespace terracal::lowfi

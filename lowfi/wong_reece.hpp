@@ -1,0 +1,46 @@
+#pragma once
+// The analytic Wong-Reece rigid wheel on a Bekker-Wong-Janosi soil (DESIGN.md section 4).
+// Sources: J.Y. Wong and A.R. Reece, "Prediction of rigid wheel performance based on the analysis of
+// soil-wheel stresses", J. Terramechanics 4(1) and 4(2), 1967; J.Y. Wong, Theory of Ground Vehicles,
+// 4th ed. (2008), chapter 5.
+//
+// Angles are measured from the vertical below the axle, positive toward the front; the soil leaves
+// the wheel at theta2 = 0. The normal stress follows the Bekker law on the front part
+// (theta_m <= theta <= theta1) and is mirrored onto the rear part (0 <= theta <= theta_m); the shear
+// stress follows Janosi-Hanamoto with the shear displacement of a slipping rim.
+#include "lowfi/scm_soil.hpp"
+
+namespace terracal::lowfi {
+
+struct WongReeceWheel {
+  double radius = 0.47;  // [m]
+  double width = 0.25;   // [m]; the Bekker width b
+};
+
+struct WongReeceOptions {
+  // theta_m = (c1 + c2 s) theta1, clamped to [0, theta1]. Wong-Reece's values for sand.
+  double c1 = 0.43, c2 = 0.32;
+  // Relative tolerance of the entry-angle root and of each quadrature, in [1e-14, 1e-3].
+  double rel_tol = 1e-9;
+};
+
+struct WongReeceResult {
+  double slip = 0, load = 0;     // inputs echoed
+  double entry_angle = 0;        // theta1 [rad]
+  double max_stress_angle = 0;   // theta_m [rad]
+  double sinkage = 0;            // z = r (1 - cos theta1) [m]
+  double dbp = 0;                // drawbar pull [N] = r b ∫ (tau cos θ − sigma sin θ) dθ
+  double torque = 0;             // driving torque [N m] = r^2 b ∫ tau dθ
+  double vertical_force = 0;     // r b ∫ (sigma cos θ + tau sin θ) dθ [N], equals `load` at the solution
+};
+
+// Steady state of a rigid wheel carrying `load` [N] at slip s (−1 < s < 1; s = 1 − v/(ω r); s < 0 is
+// skid). Throws InputError for bad arguments (non-positive radius/width/load, |s| >= 1, non-finite
+// values, a soil outside its physical range, bad options) with a message naming the argument, its value
+// and the allowed range; RunError if no entry angle in (0, π/2] carries the load (the wheel would sink
+// past its axle) or a quadrature fails.
+// Thread safety: calls are serialised process-wide while GSL's abort-on-error handler is switched off.
+WongReeceResult wong_reece(const ScmSoil& soil, const WongReeceWheel& wheel, double load, double slip,
+                           const WongReeceOptions& options = {});
+
+}  // namespace terracal::lowfi
