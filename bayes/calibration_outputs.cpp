@@ -46,6 +46,36 @@ Variable chain_draw_variable(const std::string& name, const std::string& units, 
   return v;
 }
 
+constexpr const char* kElasticMethod = "weighted linear least squares on unload/reload branches";
+
+// Ke is not sampled: its posterior entry is the normal approximation of the linear fit. The keys
+// are those of the sampled entries; R-hat and bulk ESS describe Markov chains and are null here.
+// Not fitted, it reads like a fixed parameter (value, sd 0, R-hat 1, ESS 0, "fixed": true).
+ordered_json elastic_posterior(const ElasticFit& e) {
+  if (!e.fitted)
+    return {{"mean", e.ke}, {"sd", 0.0}, {"q05", e.ke}, {"q50", e.ke}, {"q95", e.ke}, {"rhat", 1.0}, {"ess_bulk", 0.0},
+            {"fixed", true}, {"method", "Chrono default: not fitted (no usable unload rows; see Fit.notes)"}};
+  return {{"mean", e.ke}, {"sd", e.sd}, {"q05", e.quantile(0.05)}, {"q50", e.quantile(0.5)}, {"q95", e.quantile(0.95)},
+          {"rhat", nullptr}, {"ess_bulk", nullptr}, {"method", std::string(kElasticMethod) + " (normal approximation)"}};
+}
+
+ordered_json elastic_fit_block(const ElasticFit& e) {
+  ordered_json b;
+  b["fitted"] = e.fitted;
+  b["method"] = e.fitted ? kElasticMethod : "not fitted: Chrono default";
+  if (!e.fitted) return b;
+  b["rows"] = e.rows;
+  b["degrees_of_freedom"] = e.dof;
+  b["residual_sd"] = e.noise_sd;
+  b["lift_off_rows_excluded"] = e.lift_off_rows;
+  ordered_json branches = ordered_json::array();
+  for (const auto& br : e.branches)
+    branches.push_back({{"plate_radius_m", br.radius}, {"phase", br.phase == PlatePhase::kUnload ? "unload" : "reload"},
+                        {"first_line", br.first_line}, {"rows", br.rows}, {"plastic_sinkage_m", br.plastic_sinkage}});
+  b["branches"] = branches;
+  return b;
+}
+
 }  // namespace
 
 void write_scm_params_json(const std::string& path, const CalibrationProblem& pb, const CalibrationResult& res,
@@ -54,7 +84,7 @@ void write_scm_params_json(const std::string& path, const CalibrationProblem& pb
   j["Type"] = "SCM";
   ordered_json soil;
   for (int i = 0; i < kNumParams; ++i) soil[std::string(kChronoNames[i])] = res.point.map[i];
-  soil["Elastic stiffness"] = kDefaultElasticStiffness;
+  soil["Elastic stiffness"] = pb.elastic().ke;
   soil["Damping"] = kDefaultDamping;
   j["Soil parameters"] = soil;
   ordered_json post;
@@ -70,6 +100,7 @@ void write_scm_params_json(const std::string& path, const CalibrationProblem& pb
     post[std::string(kChronoNames[i])] = {{"mean", s.mean}, {"sd", s.sd}, {"q05", s.q05}, {"q50", s.q50}, {"q95", s.q95},
                                           {"rhat", s.rhat}, {"ess_bulk", s.ess_bulk}};
   }
+  post["Elastic stiffness"] = elastic_posterior(pb.elastic());
   j["Posterior"] = post;
   ordered_json noise, relative;
   for (int t = 0; t < pb.num_types(); ++t) {
@@ -90,7 +121,8 @@ void write_scm_params_json(const std::string& path, const CalibrationProblem& pb
   fit["warmup"] = ctx.warmup;
   fit["converged"] = res.converged;
   fit["failed_evaluations"] = res.failed_evaluations;
-  fit["elastic_stiffness_and_damping"] = "Chrono defaults: not identified by the loading curves";
+  fit["elastic_stiffness"] = elastic_fit_block(pb.elastic());
+  fit["damping"] = "Chrono default: not identified by quasi-static bevameter curves";
   std::vector<std::string> notes = pb.notes();
   notes.insert(notes.end(), res.notes.begin(), res.notes.end());
   fit["notes"] = notes;
@@ -215,10 +247,19 @@ std::string summary_report(const CalibrationProblem& pb, const CalibrationResult
   // byte-identical to an uninterrupted one's.)
   r += fmt::format("  stage 3     MCMC {}: {} chains x {} draws after {} warm-up, acceptance {:.3f}, failed evaluations {}\n",
                    ctx.sampler, res.chains, res.draws, ctx.warmup, res.acceptance_rate, res.failed_evaluations);
-  r += fmt::format("  termination {}\n\n", res.termination);
+  r += fmt::format("  termination {}\n", res.termination);
+  const ElasticFit& ke = pb.elastic();
+  r += ke.fitted ? fmt::format("  elastic     Ke by weighted linear least squares (Eigen QR) on {} unload/reload rows in {} branches, "
+                               "{} dof:\n              a separate linear problem (one nuisance intercept, the plastic sinkage, per branch), "
+                               "not sampled;\n              quantiles from the normal approximation\n\n",
+                               ke.rows, ke.branches.size(), ke.dof)
+                 : "  elastic     Ke not fitted (no usable unload rows): Chrono's default\n\n";
   r += fmt::format("  {:<10} {:>13} {:>13} {:>12} {:>13} {:>13} {:>13} {:>7} {:>8}\n", "parameter", "MAP", "mean", "sd", "5 %", "50 %",
                    "95 %", "R-hat", "ESS");
   for (std::size_t v = 0; v < res.names.size(); ++v) {
+    if (v == static_cast<std::size_t>(res.num_params) && ke.fitted)  // after the SCM parameters; no R-hat/ESS: not sampled
+      r += fmt::format("  {:<10} {:13.6g} {:13.6g} {:12.4g} {:13.6g} {:13.6g} {:13.6g} {:>7} {:>8}\n", "Ke", ke.ke, ke.ke, ke.sd,
+                       ke.quantile(0.05), ke.quantile(0.5), ke.quantile(0.95), "-", "-");
     const auto& s = res.summary[v];
     const bool param = v < static_cast<std::size_t>(res.num_params);
     const std::string map = param ? fmt::format("{:13.6g}", res.point.map[pb.free_indices()[v]])
@@ -228,6 +269,7 @@ std::string summary_report(const CalibrationProblem& pb, const CalibrationResult
   }
   for (int i = 0; i < kNumParams; ++i)
     if (free_slot(pb, i) < 0) r += fmt::format("  {:<10} fixed at {:g}\n", kShortNames[i], pb.fixed_values()[i]);
+  if (!ke.fitted) r += fmt::format("  {:<10} fixed at {:g} (Chrono default, not fitted)\n", "Ke", ke.ke);
   for (const auto& n : pb.notes()) r += "  note: " + n + "\n";
   for (const auto& n : res.notes) r += "  note: " + n + "\n";
   return r;

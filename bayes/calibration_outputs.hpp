@@ -11,9 +11,9 @@
 
 namespace terracal::bayes {
 
-// Chrono's defaults for the two SCM parameters that bevameter curves do not give yet.
-inline constexpr double kDefaultElasticStiffness = 4e7;  // Pa/m
-inline constexpr double kDefaultDamping = 3e4;           // Pa s/m
+// Chrono's default SCM damping: quasi-static bevameter curves do not identify it. (The default
+// elastic stiffness, used when the plate data have no unloading, is in elastic_stiffness.hpp.)
+inline constexpr double kDefaultDamping = 3e4;  // Pa s/m
 
 struct OutputContext {
   std::string sampler;       // "dram" or "ensemble"

@@ -41,6 +41,8 @@ CalibrationProblem::CalibrationProblem(const PlateData& plate, const std::option
   }
   for (int i = 0; i < kNumParams; ++i)
     if (!priors_[i].fixed()) free_.push_back(i);
+  elastic_ = fit_elastic_stiffness(plate, noise_ == NoiseModel::kRelative);
+  notes_.insert(notes_.end(), elastic_.notes.begin(), elastic_.notes.end());
 }
 
 void CalibrationProblem::fix(int i, double value, const std::string& why) {

@@ -15,6 +15,7 @@
 
 #include <Eigen/Dense>
 
+#include "bayes/elastic_stiffness.hpp"
 #include "bayes/forward_models.hpp"
 #include "bayes/observations.hpp"
 #include "bayes/priors.hpp"
@@ -64,6 +65,9 @@ class CalibrationProblem {
   const std::vector<double>& plate_radii() const { return radii_; }
   // Things the user must know: parameters fixed because the data cannot identify them, etc.
   const std::vector<std::string>& notes() const { return notes_; }
+  // SCM's elastic stiffness from the unload/reload rows: a separate linear least-squares problem
+  // (elastic_stiffness.hpp), solved once here; its notes are among notes().
+  const ElasticFit& elastic() const { return elastic_; }
 
   // Predictions of every row of test type t into out[0..size); p is a full parameter array (six
   // values) of scalar T (double, or a Ceres Jet). Each distinct kernel is evaluated once.
@@ -112,6 +116,7 @@ class CalibrationProblem {
   std::vector<int> free_;
   ParamVector fixed_{};
   std::vector<std::string> notes_;
+  ElasticFit elastic_;
 };
 
 }  // namespace terracal::bayes

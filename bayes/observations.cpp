@@ -65,6 +65,12 @@ PlateData load_plate_csv(const std::string& path) {
     reject_millimetres(t, i, "sinkage_m", p.sinkage, kMaxPlausibleSinkage, "plate sinkage");
     // The Bekker law describes loading beyond the deepest sinkage so far (virgin loading).
     double& deepest = max_sinkage[p.radius];
+    // Unloading raises the plate: a deeper unload row contradicts its label, and the elastic
+    // stiffness would be fitted to a virgin-loading point.
+    if (p.phase == PlatePhase::kUnload && p.sinkage > deepest)
+      throw InputError(fmt::format("{}: unload row at sinkage {} m is deeper than the deepest sinkage so far of the plate "
+                                   "r = {} m ({} m); expected at most {} m (is the phase column right?)",
+                                   t.where(i, "sinkage_m"), p.sinkage, p.radius, deepest, deepest));
     p.fitted = p.phase != PlatePhase::kUnload && p.sinkage > 0 && p.sinkage > deepest;
     deepest = std::max(deepest, p.sinkage);
     d.points.push_back(p);

@@ -36,7 +36,8 @@ struct ShearData {
 
 // Load and validate. Bad input throws InputError naming the file, line, column, value and what was
 // expected: missing columns, non-numeric or non-finite cells, negative or zero radii, negative
-// sinkage, sinkage or radii that look like millimetres, an unknown phase, an empty file.
+// sinkage, sinkage or radii that look like millimetres, an unknown phase, an unload row deeper than
+// its plate's deepest sinkage so far, an empty file.
 PlateData load_plate_csv(const std::string& path);
 ShearData load_shear_csv(const std::string& path);
 

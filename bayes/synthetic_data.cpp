@@ -1,5 +1,8 @@
 #include "bayes/synthetic_data.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include <fmt/format.h>
 
 #include "bayes/forward_models.hpp"
@@ -11,15 +14,41 @@ PlateData synthesize_plate(const ParamVector& truth, const SyntheticDesign& d, R
   PlateData out;
   out.path = "<synthetic plate>";
   out.radii = d.plate_radii;
-  for (double r : d.plate_radii)
-    for (int i = 1; i <= d.plate_points; ++i) {
+  for (double r : d.plate_radii) {
+    auto add = [&](double z, double f, PlatePhase phase) {
       PlatePoint p;
       p.radius = r;
-      p.sinkage = d.max_sinkage * i / d.plate_points;
-      p.force = plate_force(r, p.sinkage, truth[kKc], truth[kKphi], truth[kN]) * (1.0 + d.relative_noise * rng.normal());
-      p.fitted = true;
+      p.sinkage = z;
+      p.force = f * (1.0 + d.relative_noise * rng.normal());
+      p.phase = phase;
+      p.fitted = phase == PlatePhase::kLoad;  // reload rows stay below the previous maximum here
       out.points.push_back(p);
+    };
+    const double area = kPi * r * r;
+    // Loading sinkages: the even grid, where a turning point of a cycle replaces a grid point that
+    // differs from it by rounding only (0.1 * 6 / 20 is not 0.03), plus the other turning points.
+    auto turning = [&](double z) {
+      return std::any_of(d.unload_at.begin(), d.unload_at.end(), [&](double u) { return std::abs(u - z) <= 1e-12 * d.max_sinkage; });
+    };
+    std::vector<double> loading = d.unload_at;
+    for (int i = 1; i <= d.plate_points; ++i)
+      if (const double z = d.max_sinkage * i / d.plate_points; !turning(z)) loading.push_back(z);
+    std::sort(loading.begin(), loading.end());
+    for (double z : loading) {
+      const double f = plate_force(r, z, truth[kKc], truth[kKphi], truth[kN]);
+      add(z, f, PlatePhase::kLoad);
+      if (std::find(d.unload_at.begin(), d.unload_at.end(), z) == d.unload_at.end()) continue;
+      const double zp = z - f / (area * d.elastic_stiffness);  // plastic sinkage left by unloading
+      for (int k = 1; k <= d.unload_points; ++k) {
+        const double zk = z - (z - zp) * k / d.unload_points;
+        add(zk, k == d.unload_points ? 0.0 : std::max(0.0, area * d.elastic_stiffness * (zk - zp)), PlatePhase::kUnload);
+      }
+      for (int k = 1; k < d.unload_points; ++k) {
+        const double zk = zp + (z - zp) * k / d.unload_points;
+        add(zk, area * d.elastic_stiffness * (zk - zp), PlatePhase::kReload);
+      }
     }
+  }
   return out;
 }
 
@@ -43,8 +72,14 @@ ShearData synthesize_shear(const ParamVector& truth, const SyntheticDesign& d, R
 }
 
 void write_plate_csv(const std::string& path, const PlateData& data) {
-  std::string s = "plate_radius_m,sinkage_m,force_N\n";
-  for (const auto& p : data.points) s += fmt::format("{},{},{}\n", p.radius, p.sinkage, p.force);
+  // Files without cycles keep the three-column layout (and the demo data set its bytes).
+  const bool phases = std::any_of(data.points.begin(), data.points.end(), [](const PlatePoint& p) { return p.phase != PlatePhase::kLoad; });
+  std::string s = phases ? "plate_radius_m,sinkage_m,force_N,phase\n" : "plate_radius_m,sinkage_m,force_N\n";
+  for (const auto& p : data.points) {
+    s += fmt::format("{},{},{}", p.radius, p.sinkage, p.force);
+    if (phases) s += p.phase == PlatePhase::kLoad ? ",load" : p.phase == PlatePhase::kUnload ? ",unload" : ",reload";
+    s += "\n";
+  }
   write_text_atomically(path, s);
 }
 

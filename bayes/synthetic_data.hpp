@@ -19,12 +19,19 @@ struct SyntheticDesign {
   double max_angle = 0.8;                      // rad
   int shear_points = 30;                       // per load, evenly spaced in (0, max_angle]
   double relative_noise = 0.02;                // sd of multiplicative Gaussian noise: y = f (1 + sd eps)
+  // Load/unload/reload cycles: at each of these sinkages [m] every plate is unloaded elastically
+  // (F = pi r^2 Ke (z - z_p)) down to lift-off, reloaded up the same line, then loading goes on.
+  // Empty: monotone loading only.
+  std::vector<double> unload_at;
+  double elastic_stiffness = 4e7;              // Ke [Pa/m] of the cycles
+  int unload_points = 8;                       // rows per unload branch (the last at lift-off, F = 0) and per reload branch
 };
 
 PlateData synthesize_plate(const ParamVector& truth, const SyntheticDesign& design, Rng& rng);
 ShearData synthesize_shear(const ParamVector& truth, const SyntheticDesign& design, Rng& rng);
 
-// CSV in the formats of DESIGN.md section 3, written atomically.
+// CSV in the formats of DESIGN.md section 3, written atomically (plate: with the phase column
+// when some row is not `load`).
 void write_plate_csv(const std::string& path, const PlateData& data);
 void write_shear_csv(const std::string& path, const ShearData& data);
 
