@@ -49,6 +49,7 @@ PlateData load_plate_csv(const std::string& path) {
   PlateData d;
   d.path = path;
   std::map<double, double> max_sinkage;  // per plate radius: the deepest sinkage so far
+  std::map<double, double> max_force;    // per plate radius: the largest force so far
   for (std::size_t i = 0; i < t.rows(); ++i) {
     PlatePoint p;
     p.line = t.line_of(i);
@@ -71,8 +72,13 @@ PlateData load_plate_csv(const std::string& path) {
       throw InputError(fmt::format("{}: unload row at sinkage {} m is deeper than the deepest sinkage so far of the plate "
                                    "r = {} m ({} m); expected at most {} m (is the phase column right?)",
                                    t.where(i, "sinkage_m"), p.sinkage, p.radius, deepest, deepest));
-    p.fitted = p.phase != PlatePhase::kUnload && p.sinkage > 0 && p.sinkage > deepest;
+    // A reload first climbs its elastic branch past the old deepest point (by the spring-back
+    // p / Ke); it is back on the virgin curve once its force passes the largest force so far.
+    double& strongest = max_force[p.radius];
+    p.fitted = p.phase != PlatePhase::kUnload && p.sinkage > 0 && p.sinkage > deepest &&
+               (p.phase != PlatePhase::kReload || p.force >= strongest);
     deepest = std::max(deepest, p.sinkage);
+    if (p.phase != PlatePhase::kReload || p.fitted) strongest = std::max(strongest, p.force);
     d.points.push_back(p);
   }
   // The plate sizes are those with fitted rows: a radius that only has zero-sinkage or unloading

@@ -1,0 +1,35 @@
+#pragma once
+// The SCM soil: Bekker-Wong pressure-sinkage, Mohr-Coulomb strength and Janosi shear, plus the
+// elastic stiffness and damping of Chrono's SCM, in Chrono's units (the "Soil parameters" block of
+// DESIGN.md section 3): Kc [Pa/m^(n-1)], Kphi [Pa/m^n], n [-], cohesion [Pa], friction [deg],
+// Janosi k [m], elastic stiffness [Pa/m], damping [Pa s/m].
+#include <cmath>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace terracal::lowfi {
+
+struct ScmSoil {
+  double Kc = 0, Kphi = 2e6, n = 1.1;
+  double cohesion = 0, friction_deg = 30, janosi_k = 0.01;
+  double elastic_stiffness = 4e7, damping = 3e4;
+
+  // Bekker-Wong pressure at sinkage z for a contact of width b: (Kc/b + Kphi) z^n.
+  double bekker_pressure(double z, double b) const { return z > 0 ? (Kc / b + Kphi) * std::pow(z, n) : 0.0; }
+  // Mohr-Coulomb strength under normal pressure p.
+  double shear_strength(double p) const { return cohesion + p * std::tan(friction_deg * M_PI / 180.0); }
+  // Janosi-Hanamoto shear stress after shear displacement j under pressure p.
+  double janosi_shear(double p, double j) const { return shear_strength(p) * (1.0 - std::exp(-std::abs(j) / janosi_k)); }
+};
+
+// Reads the "Soil parameters" block of a Chrono SCM JSON file (or of terracal's scm_params.json).
+// Bekker Kphi, Kc, n, the Mohr limits and the Janosi coefficient are required; Elastic stiffness and
+// Damping default to Chrono's (4e7, 3e4). Throws InputError naming the file, the key, the value and
+// the allowed range.
+ScmSoil read_scm_json(const std::string& path);
+ScmSoil parse_scm_soil(const nlohmann::json& soil_parameters_block, const std::string& where);
+// The "Soil parameters" block, exactly Chrono's names and units.
+nlohmann::json scm_soil_json(const ScmSoil& soil);
+
+}  // namespace terracal::lowfi

@@ -1,0 +1,324 @@
+#include "lowfi/scm_terrain.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+
+namespace terracal::lowfi {
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// World-frame axis-aligned bounds of a body at a pose, from the 8 corners of its body-frame bounds.
+void world_bounds(const ShapeRaycaster& shape, const BodyState& s, Vec3<double>& lo, Vec3<double>& hi) {
+  const Vec3<double> a = shape.bounds_lo(), b = shape.bounds_hi();
+  lo = {kInf, kInf, kInf};
+  hi = {-kInf, -kInf, -kInf};
+  for (int c = 0; c < 8; ++c) {
+    const Vec3<double> corner{(c & 1) ? b.x : a.x, (c & 2) ? b.y : a.y, (c & 4) ? b.z : a.z};
+    const Vec3<double> w = s.position + s.orientation.rotate(corner);
+    for (int q = 0; q < 3; ++q) {
+      lo[q] = std::min(lo[q], w[q]);
+      hi[q] = std::max(hi[q], w[q]);
+    }
+  }
+}
+}  // namespace
+
+ScmEffects parse_scm_effects(const std::vector<std::string>& names, const std::string& key) {
+  ScmEffects e;
+  for (const auto& n : names) {
+    if (n == "elastic_unloading") e.elastic_unloading = true;
+    else if (n == "damping") e.damping = true;
+    else if (n == "bulldozing") e.bulldozing = true;
+    else
+      throw InputError(fmt::format("{}: unknown SCM effect '{}'; known: elastic_unloading, damping, bulldozing", key, n));
+  }
+  return e;
+}
+
+void validate(const ScmSettings& s, const ScmSoil& soil) {
+  auto check = [](const char* key, double v, double lo, double hi, const char* unit) {
+    if (!(v >= lo && v <= hi)) throw InputError(fmt::format("SCM setting '{}' = {}: expected in [{}, {}] {}", key, v, lo, hi, unit));
+  };
+  check("grid", s.grid, 1e-4, 1.0, "m");
+  check("time_step", s.time_step, 1e-6, 0.1, "s");
+  check("repose_angle_deg", s.repose_angle_deg, 1, 89, "degrees");
+  check("erosion_sweeps", s.erosion_sweeps, 0, 100, "");
+  if (!(norm(s.gravity) <= 1000)) throw InputError(fmt::format("SCM setting 'gravity': |g| = {} outside [0, 1000] m/s^2", norm(s.gravity)));
+  check("Bekker Kphi", soil.Kphi, 0, 1e12, "Pa/m^n");
+  check("Bekker n exponent", soil.n, 0.05, 5, "");
+  check("Janosi shear coefficient", soil.janosi_k, 1e-6, 10, "m");
+  check("Elastic stiffness", soil.elastic_stiffness, 1, 1e13, "Pa/m");
+}
+
+ScmTerrain::ScmTerrain(const ScmSoil& soil, const ScmSettings& settings, std::vector<RigidBody> bodies)
+    : soil_(soil), settings_(settings), bodies_(std::move(bodies)) {
+  validate(settings_, soil_);
+  tan_phi_ = std::tan(soil_.friction_deg * M_PI / 180.0);
+  for (const auto& b : bodies_) {
+    if (b.motion.any_free() && !(b.mass > 0))
+      throw InputError(fmt::format("body '{}': mass = {}: a body with free degrees of freedom needs mass > 0", b.name, b.mass));
+    shapes_.emplace_back(b.shape);
+    BodyState s;
+    s.position = b.position;
+    s.orientation = b.orientation;
+    s.velocity = b.motion.linear_at(0);
+    s.omega = b.motion.angular_at(0);
+    states_.push_back(s);
+  }
+  wrenches_.assign(bodies_.size(), {});
+  update_contact();
+}
+
+std::string ScmTerrain::description() const {
+  std::string effects;
+  if (settings_.effects.elastic_unloading) effects += " elastic_unloading";
+  if (settings_.effects.damping) effects += " damping";
+  if (settings_.effects.bulldozing) effects += " bulldozing";
+  return fmt::format("SCM, grid {} m, step {} s, effects:{}", settings_.grid, settings_.time_step, effects.empty() ? " none" : effects);
+}
+
+std::string ScmSite::description() const { return ScmTerrain(soil_, settings_, {}).description(); }
+
+const ScmNode* ScmTerrain::node(int i, int j) const {
+  const auto it = nodes_.find(key(i, j));
+  return it == nodes_.end() ? nullptr : &it->second;
+}
+
+double ScmTerrain::free_surface(int i, int j) const {
+  const ScmNode* n = node(i, j);
+  return settings_.surface_height + (n ? n->level_offset - n->plastic_sinkage : 0.0);
+}
+
+// One vertical ray per node under each body's bounds, cast up from below the body to the highest
+// the soil reaches. The body's outward normal at each hit comes from the hit heights of the
+// neighbouring rays (central differences where both neighbours hit): shape-independent, and it
+// lets the pressure act normal to the body as in Wong-Reece, so a wheel meets compaction resistance.
+void ScmTerrain::cast_rays(std::vector<Hit>& hits) const {
+  hits.clear();
+  const double g = settings_.grid;
+  double top = settings_.surface_height;
+  for (const auto& [k, n] : nodes_) top = std::max(top, settings_.surface_height + n.level_offset);
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    Vec3<double> lo, hi;
+    world_bounds(shapes_[b], states_[b], lo, hi);
+    if (lo.z >= top) continue;  // wholly above the soil
+    const int i0 = int(std::ceil(lo.x / g)), i1 = int(std::floor(hi.x / g));
+    const int j0 = int(std::ceil(lo.y / g)), j1 = int(std::floor(hi.y / g));
+    if (i1 < i0 || j1 < j0) continue;
+    const int nx = i1 - i0 + 1, ny = j1 - j0 + 1;
+    const double z0 = lo.z - 1e-6, t_max = top - z0 + 1e-6;
+    // Ray in the body frame: origin R^T (o - c), direction R^T e_z.
+    const Quat inv{states_[b].orientation.w, -states_[b].orientation.x, -states_[b].orientation.y, -states_[b].orientation.z};
+    const Vec3<double> dir = inv.rotate({0, 0, 1});
+    std::vector<double> level(std::size_t(nx) * ny, kInf);
+#pragma omp parallel for schedule(static) if (nx * ny > 20000)
+    for (int jj = 0; jj < ny; ++jj)
+      for (int ii = 0; ii < nx; ++ii) {
+        const Vec3<double> o{(i0 + ii) * g, (j0 + jj) * g, z0};
+        const double t = shapes_[b].first_hit(inv.rotate(o - states_[b].position), dir, t_max);
+        if (t < kInf) level[std::size_t(jj) * nx + ii] = z0 + t;
+      }
+    auto at = [&](int ii, int jj) { return (ii < 0 || jj < 0 || ii >= nx || jj >= ny) ? kInf : level[std::size_t(jj) * nx + ii]; };
+    auto slope = [&](double minus, double here, double plus) {
+      if (minus < kInf && plus < kInf) return (plus - minus) / (2 * g);
+      if (plus < kInf) return (plus - here) / g;
+      if (minus < kInf) return (here - minus) / g;
+      return 0.0;
+    };
+    for (int jj = 0; jj < ny; ++jj)
+      for (int ii = 0; ii < nx; ++ii) {
+        const double h = at(ii, jj);
+        if (!(h < kInf)) continue;
+        const int i = i0 + ii, j = j0 + jj;
+        if (h >= free_surface(i, j)) continue;
+        // The underside z = h(x, y): outward (downward-facing) normal is (dh/dx, dh/dy, -1); the soil
+        // pushes along minus that, i.e. along (-dh/dx, -dh/dy, 1).
+        const double hx = slope(at(ii - 1, jj), h, at(ii + 1, jj)), hy = slope(at(ii, jj - 1), h, at(ii, jj + 1));
+        const double inv_len = 1.0 / std::sqrt(1 + hx * hx + hy * hy);
+        hits.push_back({i, j, int(b), h, {-hx * inv_len, -hy * inv_len, inv_len}});
+      }
+  }
+  if (bodies_.size() > 1) {
+    // Where two bodies cover a node, the lower one touches the soil.
+    std::sort(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) {
+      return a.i != b.i ? a.i < b.i : a.j != b.j ? a.j < b.j : a.level < b.level;
+    });
+    hits.erase(std::unique(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) { return a.i == b.i && a.j == b.j; }), hits.end());
+  }
+}
+
+void ScmTerrain::contact(const std::vector<Hit>& hits) {
+  const double g = settings_.grid, area = g * g, dt = settings_.time_step;
+  const double ke = soil_.elastic_stiffness;
+  for (auto& w : wrenches_) w = {};
+  stats_ = {};
+  stats_.rays = int(hits.size());
+  stats_.body_contact_area.assign(bodies_.size(), 0.0);
+  // Contact patches and their Bekker widths.
+  std::vector<GridIndex> idx;
+  idx.reserve(hits.size());
+  for (const auto& h : hits) idx.push_back({h.i, h.j});
+  const ContactPatches patches = find_contact_patches(idx, g);
+  stats_.patches = int(patches.count());
+  stats_.patch_bekker_width = patches.bekker_width;
+  std::vector<double> displaced(patches.count(), 0.0);  // plastic volume pushed aside per patch
+
+  std::vector<std::int64_t> now;
+  now.reserve(hits.size());
+  for (std::size_t h = 0; h < hits.size(); ++h) {
+    const Hit& hit = hits[h];
+    ScmNode& n = nodes_[key(hit.i, hit.j)];
+    const double undisturbed = settings_.surface_height + n.level_offset;
+    const double z = undisturbed - hit.level;  // total sinkage
+    const double b = patches.bekker_width[patches.patch_of[h]];
+    // Elastic trial, capped at the Bekker yield; yielding moves the plastic sinkage down.
+    double sigma = ke * (z - n.plastic_sinkage);
+    const double yield = soil_.bekker_pressure(z, b);
+    if (sigma > yield) {
+      const double zp = z - yield / ke;
+      displaced[patches.patch_of[h]] += (zp - n.plastic_sinkage) * area;
+      n.plastic_sinkage = zp;
+      sigma = yield;
+    }
+    const BodyState& s = states_[hit.body];
+    const Vec3<double> p{hit.i * g, hit.j * g, hit.level};
+    const Vec3<double> r = p - s.position;
+    const Vec3<double> v = s.velocity + cross(s.omega, r);
+    const Vec3<double> nrm = hit.normal;
+    if (settings_.effects.damping) sigma += soil_.damping * std::max(0.0, -dot(v, nrm));
+    sigma = std::max(sigma, 0.0);
+    // Janosi shear from the displacement accumulated along the body's surface during this contact.
+    const Vec3<double> v_tan = v - dot(v, nrm) * nrm;
+    n.shear += dt * v_tan;
+    n.shear -= dot(n.shear, nrm) * nrm;  // keep it in the current tangent plane
+    const double j = norm(n.shear);
+    const double tau = j > 0 ? soil_.janosi_shear(sigma, j) : 0.0;
+    n.sigma = sigma;
+    n.tau = tau;
+    n.deepest = std::max(n.deepest, z);
+    n.in_contact = true;
+    now.push_back(key(hit.i, hit.j));
+    // Pressure on the body's surface element (projected area g^2, true area g^2 / n_z).
+    const double surface = area / nrm.z;
+    Vec3<double> f = (sigma * surface) * nrm;
+    if (j > 0) f -= (tau * surface / j) * n.shear;
+    BodyWrench& w = wrenches_[hit.body];
+    w.force += f;
+    w.torque += cross(r, f);
+    ++stats_.contact_nodes;
+    stats_.contact_area += area;
+    stats_.body_contact_area[hit.body] += area;
+    stats_.max_sinkage = std::max(stats_.max_sinkage, z);
+  }
+  // Nodes the bodies left this step: the shear spring is released; without elastic unloading the
+  // soil keeps the deepest sinkage it was pushed to.
+  std::sort(now.begin(), now.end());
+  for (const std::int64_t k : contact_keys_) {
+    if (std::binary_search(now.begin(), now.end(), k)) continue;
+    ScmNode& n = nodes_[k];
+    if (!settings_.effects.elastic_unloading) n.plastic_sinkage = std::max(n.plastic_sinkage, n.deepest);
+    n.deepest = 0;
+    n.shear = {};
+    n.sigma = n.tau = 0;
+    n.in_contact = false;
+  }
+  contact_keys_ = std::move(now);
+  if (settings_.effects.bulldozing) bulldoze(hits, patches, displaced);
+}
+
+// Bulldozing: the volume each patch pushed down plastically this step is laid on the nodes around
+// the patch, then the loose surface is relaxed until no slope between neighbours exceeds the angle
+// of repose. Nodes under a body are not moved.
+void ScmTerrain::bulldoze(const std::vector<Hit>& hits, const ContactPatches& patches, const std::vector<double>& displaced) {
+  if (hits.empty()) return;
+  const double g = settings_.grid;
+  auto in_contact = [&](int i, int j) {
+    const auto it = nodes_.find(key(i, j));
+    return it != nodes_.end() && it->second.in_contact;
+  };
+  const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
+  std::vector<std::vector<std::int64_t>> rims(patches.count());
+  int ilo = hits[0].i, ihi = ilo, jlo = hits[0].j, jhi = jlo;
+  for (std::size_t h = 0; h < hits.size(); ++h) {
+    ilo = std::min(ilo, hits[h].i); ihi = std::max(ihi, hits[h].i);
+    jlo = std::min(jlo, hits[h].j); jhi = std::max(jhi, hits[h].j);
+    for (int q = 0; q < 4; ++q) {
+      const int i = hits[h].i + di[q], j = hits[h].j + dj[q];
+      if (!in_contact(i, j)) rims[patches.patch_of[h]].push_back(key(i, j));
+    }
+  }
+  for (std::size_t p = 0; p < rims.size(); ++p) {
+    auto& rim = rims[p];
+    std::sort(rim.begin(), rim.end());
+    rim.erase(std::unique(rim.begin(), rim.end()), rim.end());
+    if (rim.empty() || displaced[p] <= 0) continue;
+    const double dh = displaced[p] / (double(rim.size()) * g * g);
+    for (const auto k : rim) nodes_[k].level_offset += dh;
+  }
+  // Erosion sweeps over the region around the patches.
+  const double max_step = g * std::tan(settings_.repose_angle_deg * M_PI / 180.0);
+  const int margin = 6;
+  for (int sweep = 0; sweep < settings_.erosion_sweeps; ++sweep)
+    for (int i = ilo - margin; i <= ihi + margin; ++i)
+      for (int j = jlo - margin; j <= jhi + margin; ++j) {
+        if (in_contact(i, j)) continue;
+        for (int q = 0; q < 2; ++q) {  // +x and +y neighbours: each pair once
+          const int i2 = i + di[2 * q], j2 = j + dj[2 * q];
+          if (in_contact(i2, j2)) continue;
+          const double diff = free_surface(i, j) - free_surface(i2, j2);
+          if (std::abs(diff) <= max_step) continue;
+          const double move = 0.25 * (std::abs(diff) - max_step) * (diff > 0 ? 1 : -1);
+          nodes_[key(i, j)].level_offset -= move;
+          nodes_[key(i2, j2)].level_offset += move;
+        }
+      }
+}
+
+// A free body resting on the elastic soil is a mass on a spring of stiffness Ke x contact area;
+// symplectic Euler is stable only while omega dt < 2. Past that the body bounces ever higher, so say
+// so (and by how much) instead of returning nonsense.
+void ScmTerrain::check_step() const {
+  const double dt = settings_.time_step;
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    if (!bodies_[b].motion.free[2]) continue;
+    const double k = soil_.elastic_stiffness * stats_.body_contact_area[b];
+    const double omega = std::sqrt(k / bodies_[b].mass);
+    if (omega * dt >= 2.0)
+      throw RunError(fmt::format("SCM: body '{}' at t = {:.4g} s: time step {} s is unstable for its contact (elastic stiffness {} Pa/m "
+                                 "x contact area {:.4g} m^2 on mass {} kg: omega dt = {:.3g} >= 2); use a step below {:.3g} s",
+                                 bodies_[b].name, time_, dt, soil_.elastic_stiffness, stats_.body_contact_area[b], bodies_[b].mass,
+                                 omega * dt, 2.0 / omega));
+  }
+}
+
+// Symplectic Euler: velocities from the wrench at the current pose, then the pose from the new
+// velocities (stable for the stiff elastic contact where explicit Euler would gain energy). The
+// contact is then evaluated at the new pose, so that bodies() and wrenches() always belong together.
+void ScmTerrain::step() {
+  const double dt = settings_.time_step;
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    const BodyState& s = states_[b];
+    BodyState next = advance_body(bodies_[b], s, s, wrenches_[b], settings_.gravity, dt, time_ + dt);
+    next.position = s.position + dt * next.velocity;
+    next.orientation = integrate_rotation(s.orientation, next.omega, dt);
+    states_[b] = next;
+  }
+  time_ += dt;
+  ++steps_;
+  update_contact();
+}
+
+void ScmTerrain::update_contact() {
+  std::vector<Hit> hits;
+  cast_rays(hits);
+  contact(hits);
+  check_step();
+}
+
+}  // namespace terracal::lowfi

@@ -1,0 +1,133 @@
+#pragma once
+// The Soil Contact Model terrain (DESIGN.md section 4), in the manner of Chrono's SCM: a sparse grid
+// of nodes keyed by integer coordinates (only touched nodes are stored, the patch is unbounded), one
+// vertical ray per node under each body's bounding box, contact patches with their Bekker width,
+// elastic-plastic pressure (stiffness Ke up to the Bekker yield, plastic sinkage remembered) and
+// Janosi shear from each node's accumulated shear displacement.
+//
+// Effects (named in the settings; a name not given costs nothing):
+//   elastic_unloading  when a body leaves a node, the soil springs back by its elastic part (sigma/Ke);
+//                      without it the rut keeps the deepest sinkage the body reached.
+//   damping            a normal pressure R v_n against the speed of sinking (Chrono's "Damping").
+//   bulldozing         soil displaced by plastic sinkage is pushed to the patch's rim, then the
+//                      surface is eroded down to the angle of repose.
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "core/rigid_body.hpp"
+#include "core/shape_raycast.hpp"
+#include "core/terrain.hpp"
+#include "lowfi/contact_patches.hpp"
+#include "lowfi/scm_soil.hpp"
+
+namespace terracal::lowfi {
+
+struct ScmEffects {
+  bool elastic_unloading = false, damping = false, bulldozing = false;
+};
+inline const std::array<const char*, 3> kScmEffectNames = {"elastic_unloading", "damping", "bulldozing"};
+// Parses a list of effect names; throws InputError naming `key` and the unknown name.
+ScmEffects parse_scm_effects(const std::vector<std::string>& names, const std::string& key);
+
+struct ScmSettings {
+  double grid = 0.01;          // node spacing [m]
+  double time_step = 1e-3;     // [s]
+  Vec3<double> gravity{0, 0, -9.81};
+  double surface_height = 0;   // the undisturbed surface is the plane z = surface_height
+  double repose_angle_deg = 30; // bulldozing: slope the eroded surface relaxes to
+  int erosion_sweeps = 5;      // bulldozing: relaxation sweeps per step
+  ScmEffects effects;
+};
+// Throws InputError naming the setting, its value and the allowed range.
+void validate(const ScmSettings& s, const ScmSoil& soil);
+
+// One stored node: what a node remembers between steps.
+struct ScmNode {
+  double plastic_sinkage = 0;  // z_p below the undisturbed surface
+  double deepest = 0;          // the deepest sinkage of the current contact
+  double sigma = 0;            // normal pressure at the last step [Pa]
+  double tau = 0;              // shear stress at the last step [Pa]
+  Vec3<double> shear{};        // accumulated shear displacement of the current contact [m]
+  double level_offset = 0;     // bulldozing: soil added (+) or removed (-) on top of the undisturbed surface
+  bool in_contact = false;
+};
+
+struct ScmStepStats {
+  int contact_nodes = 0, patches = 0, rays = 0;
+  double contact_area = 0, max_sinkage = 0;
+  std::vector<double> patch_bekker_width;
+  std::vector<double> body_contact_area;  // per body [m^2]
+};
+
+class ScmTerrain final : public Terrain {
+ public:
+  ScmTerrain(const ScmSoil& soil, const ScmSettings& settings, std::vector<RigidBody> bodies);
+
+  std::string description() const override;
+  void step() override;
+  double time() const override { return time_; }
+  double time_step() const override { return settings_.time_step; }
+  const std::vector<BodyState>& bodies() const override { return states_; }
+  const std::vector<BodyWrench>& wrenches() const override { return wrenches_; }
+
+  const ScmSoil& soil() const { return soil_; }
+  const ScmSettings& settings() const { return settings_; }
+  const ScmStepStats& last_step() const { return stats_; }
+  std::size_t stored_nodes() const { return nodes_.size(); }
+  // The soil surface at grid node (i, j) when no body presses on it.
+  double free_surface(int i, int j) const;
+  // Stored node (i, j), or nullptr if never touched.
+  const ScmNode* node(int i, int j) const;
+
+ private:
+  static std::int64_t key(int i, int j) { return (std::int64_t(i) << 32) ^ std::int64_t(std::uint32_t(j)); }
+  // A node under a body whose underside is below the soil's free surface there.
+  struct Hit {
+    int i, j, body;
+    double level;          // height of the body's underside above the node
+    Vec3<double> normal;   // outward normal of the body's underside (from neighbouring rays)
+  };
+  void cast_rays(std::vector<Hit>& hits) const;
+  void contact(const std::vector<Hit>& hits);
+  void check_step() const;
+  void update_contact();  // rays, contact and wrenches at the current poses
+  void bulldoze(const std::vector<Hit>& hits, const ContactPatches& patches, const std::vector<double>& displaced);
+
+  ScmSoil soil_;
+  ScmSettings settings_;
+  double tan_phi_ = 0;
+  std::vector<RigidBody> bodies_;
+  std::vector<ShapeRaycaster> shapes_;
+  std::vector<BodyState> states_;
+  std::vector<BodyWrench> wrenches_;
+  std::unordered_map<std::int64_t, ScmNode> nodes_;
+  std::vector<std::int64_t> contact_keys_;  // nodes in contact at the last step
+  ScmStepStats stats_;
+  double time_ = 0;
+  long steps_ = 0;
+};
+
+// An unbounded flat SCM patch: every terrain it makes starts undisturbed.
+class ScmSite final : public TerrainSite {
+ public:
+  ScmSite(const ScmSoil& soil, const ScmSettings& settings) : soil_(soil), settings_(settings) { validate(settings_, soil_); }
+  std::string name() const override { return "scm"; }
+  std::string description() const override;
+  double surface_height() const override { return settings_.surface_height; }
+  Vec3<double> gravity() const override { return settings_.gravity; }
+  std::unique_ptr<Terrain> make(std::vector<RigidBody> bodies, double) const override {
+    return std::make_unique<ScmTerrain>(soil_, settings_, std::move(bodies));
+  }
+  const ScmSoil& soil() const { return soil_; }
+  const ScmSettings& settings() const { return settings_; }
+
+ private:
+  ScmSoil soil_;
+  ScmSettings settings_;
+};
+
+}  // namespace terracal::lowfi

@@ -1,0 +1,35 @@
+#pragma once
+// Annulus-shear rig (issue 4, point 4): an annulus under a dead normal load (free to sink), left to
+// settle, then turned at a constant rate; torque against angle for each load (the rows of
+// DESIGN.md's shear.csv). Gives the Mohr-Coulomb c, phi and the Janosi k.
+#include <string>
+#include <vector>
+
+#include "core/terrain.hpp"
+#include "virtual_bevameter/rig_progress.hpp"
+
+namespace terracal::rigs {
+
+struct ShearTest {
+  double inner_radius = 0.15, outer_radius = 0.20;  // [m]
+  std::vector<double> loads;        // normal loads [N]; each a separate run on a fresh terrain
+  double angular_velocity = 1.0;    // [rad/s]
+  double max_angle = 1.0;           // [rad] turned after settling
+  double settle_time = 1.0;         // [s] under the load before turning (the bounce of the drop must die out)
+  double thickness = 0.02;          // [m]
+  int samples = 100;                // rows per load over the turn
+};
+void validate(const ShearTest& test);
+
+struct ShearRow {
+  double inner_radius = 0, outer_radius = 0, normal_load = 0, angle = 0, torque = 0;
+  double sinkage = 0;  // of the annulus's underside below the undisturbed surface (not in shear.csv)
+};
+
+// Torque is what the drive applies (minus the soil's torque about the vertical axis).
+std::vector<ShearRow> run_shear(const TerrainSite& site, const ShearTest& test, const RigProgress& progress = {});
+
+// DESIGN.md's shear.csv (inner_radius_m,outer_radius_m,normal_load_N,angle_rad,torque_Nm), atomically.
+void write_shear_csv(const std::string& path, const std::vector<ShearRow>& rows);
+
+}  // namespace terracal::rigs

@@ -1,0 +1,58 @@
+#pragma once
+// Single-wheel rig (issue 4, point 5): a rigid wheel under a dead load (its mass; free to sink)
+// turning at omega while its carriage moves at v = omega r (1 - s). Drawbar pull, driving torque and
+// sinkage against time, their steady means over the last part of the run, and slip sweeps (the rows
+// of DESIGN.md's wheel.csv).
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/terrain.hpp"
+#include "virtual_bevameter/rig_progress.hpp"
+
+namespace terracal::rigs {
+
+// DESIGN.md's wheel JSON.
+struct WheelSpec {
+  double radius = 0.47, width = 0.25, mass = 108, angular_velocity = 1.0;
+  int grouser_count = 0;
+  double grouser_height = 0, grouser_thickness = 0;
+};
+WheelSpec parse_wheel(const nlohmann::json& j, const std::string& where);
+WheelSpec read_wheel_json(const std::string& path);
+void validate(const WheelSpec& w);
+
+struct WheelRun {
+  double duration = 4.0;        // [s] simulated per slip
+  double average_from = 0.5;    // steady means over t >= average_from * duration
+  int samples = 200;            // rows of the time series
+};
+void validate(const WheelRun& r);
+
+struct WheelSample {
+  double t = 0, x = 0, dbp = 0, torque = 0, sinkage = 0, vertical = 0;
+};
+
+struct WheelResult {
+  double slip = 0, load = 0;
+  double dbp = 0, torque = 0, sinkage = 0;  // steady means
+  double dbp_sd = 0, torque_sd = 0, sinkage_sd = 0;
+  double wall_seconds = 0;
+  std::vector<WheelSample> series;
+};
+
+// One run at slip s (-1 < s < 1; s < 0 is skid; omega = 0 is a wheel at standstill under load).
+// DBP is the soil's longitudinal force on the wheel (forward positive), torque what the drive applies,
+// sinkage the depth of the wheel's lowest point below the undisturbed surface.
+WheelResult run_wheel(const TerrainSite& site, const WheelSpec& wheel, double slip, const WheelRun& run,
+                      const RigProgress& progress = {});
+std::vector<WheelResult> run_slip_sweep(const TerrainSite& site, const WheelSpec& wheel, const std::vector<double>& slips,
+                                        const WheelRun& run, const RigProgress& progress = {});
+
+// DESIGN.md's wheel.csv (slip,load_N,dbp_N,torque_Nm,sinkage_m,dbp_sd_N,torque_sd_Nm), atomically;
+// and the time series of every slip in one long table.
+void write_wheel_csv(const std::string& path, const std::vector<WheelResult>& results);
+void write_wheel_series_csv(const std::string& path, const std::vector<WheelResult>& results);
+
+}  // namespace terracal::rigs
