@@ -13,5 +13,8 @@ Command add_calibrate(CLI::App& app);
 Command add_demo(CLI::App& app);
 Command add_synthesize(CLI::App& app);
 Command add_crm(CLI::App& app);
+Command add_bevameter(CLI::App& app);
+Command add_wheel(CLI::App& app);
+Command add_pipeline(CLI::App& app);
 
 }  // namespace terracal::app

@@ -1,6 +1,7 @@
-// `terracal demo`: the main job on its embedded default. Until the CRM pipeline exists it
-// calibrates the example data set of studies/demo (made by make_demo_data.sh from truth.json,
-// embedded in the program at build time) and writes the results to results/demo/.
+// `terracal demo`: the main job on its embedded default (issue 4, point 7): the whole pipeline on
+// the CRM bevameter study soil (2022) at a coarse resolution, sized to finish within minutes on
+// 2 CPU cores (faster with a GPU). `--calibration-only` calibrates the embedded example curves of
+// studies/demo instead (seconds).
 #include <filesystem>
 #include <memory>
 
@@ -8,30 +9,61 @@
 
 #include "apps/calibration_run.hpp"
 #include "apps/commands.hpp"
+#include "apps/pipeline.hpp"
 #include "core/atomic_file.hpp"
 #include "demo_data.hpp"  // generated: kDemoPlateCsv, kDemoShearCsv, kDemoTruthJson
 
 namespace terracal::app {
 
+namespace {
+struct DemoArgs {
+  std::string out = "results/demo", device = "auto", cache = "results/runs/bed_cache";
+  std::uint64_t seed = 2026;
+  bool calibration_only = false;
+};
+
+int calibrate_embedded(const DemoArgs& a) {
+  const std::string data = a.out + "/data";
+  std::filesystem::create_directories(data);
+  write_text_atomically(data + "/plate.csv", kDemoPlateCsv);
+  write_text_atomically(data + "/shear.csv", kDemoShearCsv);
+  write_text_atomically(data + "/truth.json", kDemoTruthJson);
+  spdlog::info("demo: the data set of studies/demo (true parameters in {}/truth.json)", data);
+  CalibrationRequest req;
+  req.plate_csv = data + "/plate.csv";
+  req.shear_csv = data + "/shear.csv";
+  req.out_dir = a.out;
+  req.seed = a.seed;
+  return run_calibration(req);
+}
+}  // namespace
+
 Command add_demo(CLI::App& app) {
-  auto* sub = app.add_subcommand("demo", "Calibrate the embedded example data set (studies/demo) and write results/demo/");
-  auto out = std::make_shared<std::string>("results/demo");
-  auto seed = std::make_shared<std::uint64_t>(2026);
-  sub->add_option("--out", *out, "output folder")->capture_default_str();
-  sub->add_option("--seed", *seed, "random seed")->capture_default_str();
-  return [out, seed] {
-    const std::string data = *out + "/data";
-    std::filesystem::create_directories(data);
-    write_text_atomically(data + "/plate.csv", kDemoPlateCsv);
-    write_text_atomically(data + "/shear.csv", kDemoShearCsv);
-    write_text_atomically(data + "/truth.json", kDemoTruthJson);
-    spdlog::info("demo: the data set of studies/demo (true parameters in {}/truth.json)", data);
-    CalibrationRequest req;
-    req.plate_csv = data + "/plate.csv";
-    req.shear_csv = data + "/shear.csv";
-    req.out_dir = *out;
-    req.seed = *seed;
-    return run_calibration(req);
+  auto* sub = app.add_subcommand("demo", "The whole pipeline on the embedded default soil at a coarse resolution (minutes on 2 cores)");
+  auto a = std::make_shared<DemoArgs>();
+  sub->add_option("--out", a->out, "output folder")->capture_default_str();
+  sub->add_option("--seed", a->seed, "random seed")->capture_default_str();
+  sub->add_option("--device", a->device, "CRM device: cpu, cuda or auto")->capture_default_str();
+  sub->add_option("--cache", a->cache, "folder of settled CRM beds")->capture_default_str();
+  sub->add_flag("--calibration-only", a->calibration_only, "only calibrate the embedded example curves (studies/demo)");
+  return [a] {
+    if (a->calibration_only) return calibrate_embedded(*a);
+    PipelinePlan p;
+    p.soil = CrmSoil{};  // "bevameter study soil (2022)" of shared/reference/crm_soils.csv
+    p.soil_name = "bevameter study soil (2022), coarse demo";
+    p.terrain.spacing = 0.04;
+    p.terrain.device = a->device;
+    p.terrain.cache = a->cache;
+    p.out = a->out;
+    p.seed = a->seed;
+    p.bevameter.plates = {0.2, 0.3};
+    p.bevameter.max_sinkage = 0.15;
+    p.bevameter.shear_loads = {50 * 9.81, 100 * 9.81, 150 * 9.81, 200 * 9.81};
+    p.bevameter.shear_settle = 0.3;
+    p.slips = {0, 0.2, 0.4, 0.6, 0.8};
+    p.crm_wheel_run.duration = p.scm_wheel_run.duration = 1.5;
+    p.scm_grid = 0.01;
+    return run_pipeline(p);
   };
 }
 

@@ -26,6 +26,9 @@ int main(int argc, char** argv) {
   add(terracal::app::add_demo, "demo");
   add(terracal::app::add_synthesize, "synthesize");
   add(terracal::app::add_crm, "crm");
+  add(terracal::app::add_bevameter, "bevameter");
+  add(terracal::app::add_wheel, "wheel");
+  add(terracal::app::add_pipeline, "pipeline");
   // Progress and messages go to stderr; stdout carries the summary table only.
   spdlog::set_default_logger(spdlog::stderr_color_mt("terracal"));
   spdlog::set_pattern("[%H:%M:%S] %^%l%$ %v");

@@ -50,7 +50,7 @@ std::vector<PlateRow> run_plate(const TerrainSite& site, const PlateTest& test, 
     duration += l.duration;
   }
   plate.motion.linear_velocity = {0, 0, legs[0].velocity};
-  check_fits(site, plate, test.radius);
+  check_fits(site, plate, test.radius, test.radius);
 
   auto terrain = site.make({plate}, duration);
   const double dt = terrain->time_step();

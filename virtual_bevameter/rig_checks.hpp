@@ -8,8 +8,8 @@
 namespace terracal::rigs {
 
 void check_range(const std::string& key, double value, double lo, double hi, const std::string& unit);
-// Throws InputError when a body reaching `reach` from its (x, y) would come closer than one reach to
-// the site's walls: such a test would measure the bin, not the soil.
-void check_fits(const TerrainSite& site, const RigidBody& body, double reach, double travel_x = 0);
+// Throws InputError when a body reaching reach_x, reach_y from its (x, y) (and travelling travel_x
+// beyond) would come closer than one reach to the site's walls: such a test would measure the bin.
+void check_fits(const TerrainSite& site, const RigidBody& body, double reach_x, double reach_y, double travel_x = 0);
 
 }  // namespace terracal::rigs

@@ -43,7 +43,7 @@ std::vector<ShearRow> run_shear(const TerrainSite& site, const ShearTest& test, 
     a.inertia = {a.mass * r2 / 4, a.mass * r2 / 4, a.mass * r2 / 2};
     a.motion.free = {false, false, true, false, false, false};
     a.motion.schedule = {{test.settle_time, {}, {}}, {turn, {}, {0, 0, test.angular_velocity}}};
-    check_fits(site, a, test.outer_radius);
+    check_fits(site, a, test.outer_radius, test.outer_radius);
 
     auto terrain = site.make({a}, duration);
     const double dt = terrain->time_step();

@@ -23,6 +23,10 @@ WheelSpec parse_wheel(const nlohmann::json& j, const std::string& where);
 WheelSpec read_wheel_json(const std::string& path);
 void validate(const WheelSpec& w);
 
+// How far across (y) a wheel disturbs the soil, for sizing bins: its half width plus a quarter width
+// of undisturbed soil on each side (a bin three wheel widths wide).
+inline double wheel_reach_y(const WheelSpec& w) { return 0.75 * w.width; }
+
 struct WheelRun {
   double duration = 4.0;        // [s] simulated per slip
   double average_from = 0.5;    // steady means over t >= average_from * duration

@@ -1,0 +1,228 @@
+#include "apps/pipeline.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+
+#include "apps/calibration_run.hpp"
+#include "apps/report_plots.hpp"
+#include "core/atomic_file.hpp"
+#include "core/errors.hpp"
+#include "core/json_file.hpp"
+
+namespace terracal::app {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+double rmse(const std::vector<rigs::WheelResult>& a, const std::vector<rigs::WheelResult>& ref, double rigs::WheelResult::* f) {
+  double s = 0;
+  for (std::size_t i = 0; i < ref.size(); ++i) s += (a[i].*f - ref[i].*f) * (a[i].*f - ref[i].*f);
+  return std::sqrt(s / double(ref.size()));
+}
+double range(const std::vector<rigs::WheelResult>& ref, double rigs::WheelResult::* f) {
+  double lo = 1e300, hi = -1e300;
+  for (const auto& r : ref) lo = std::min(lo, r.*f), hi = std::max(hi, r.*f);
+  return hi - lo;
+}
+
+// Relative change of a curve between a run and its check (bigger bin or longer run), as the
+// largest difference over the larger of the two curves' magnitudes.
+double curve_change(const std::vector<double>& a, const std::vector<double>& b) {
+  double diff = 0, scale = 0;
+  for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
+    diff = std::max(diff, std::abs(a[i] - b[i]));
+    scale = std::max({scale, std::abs(a[i]), std::abs(b[i])});
+  }
+  return scale > 0 ? diff / scale : 0;
+}
+
+struct Check {
+  std::string rig, what;
+  double change;
+};
+
+std::vector<Check> run_checks(const PipelinePlan& plan, const SoilChoice& crm, const BevameterCurves& base_bev,
+                              const std::vector<rigs::WheelResult>& base_wheel) {
+  std::vector<Check> out;
+  TerrainOptions big = plan.terrain;
+  big.bin_scale = 1.5;
+  // Plate: the largest plate in a 1.5x bin, 1.5x deeper.
+  BevameterPlan p = plan.bevameter;
+  p.plates = {*std::max_element(p.plates.begin(), p.plates.end())};
+  const auto plate_big = run_bevameter(crm, big, p, true, false);
+  std::vector<double> a, b;
+  for (const auto& r : base_bev.plate)
+    if (r.radius == p.plates[0]) a.push_back(r.force);
+  for (const auto& r : plate_big.plate) b.push_back(r.force);
+  out.push_back({"plate", "bin 1.5x larger and deeper", curve_change(a, b)});
+  // Annulus: the heaviest load, in a 1.5x bin, then turned 1.5x further.
+  BevameterPlan s = plan.bevameter;
+  s.shear_loads = {*std::max_element(s.shear_loads.begin(), s.shear_loads.end())};
+  auto base_shear = [&](const BevameterCurves& c) {
+    std::vector<double> t;
+    for (const auto& r : c.shear)
+      if (r.normal_load == s.shear_loads[0]) t.push_back(r.torque);
+    return t;
+  };
+  const auto shear_big = run_bevameter(crm, big, s, false, true);
+  out.push_back({"annulus", "bin 1.5x larger and deeper", curve_change(base_shear(base_bev), base_shear(shear_big))});
+  BevameterPlan longer = s;
+  longer.shear_angle *= 1.5;
+  const auto shear_long = run_bevameter(crm, plan.terrain, longer, false, true);
+  // The longer run's first 2/3 covers the base run's angles at the same samples only approximately;
+  // compare the fully developed torque (mean of the last fifth of each run).
+  auto tail_mean = [](const std::vector<double>& t) {
+    double sum = 0;
+    const std::size_t from = t.size() * 4 / 5;
+    for (std::size_t i = from; i < t.size(); ++i) sum += t[i];
+    return t.size() > from ? sum / double(t.size() - from) : 0.0;
+  };
+  const double t0 = tail_mean(base_shear(base_bev)), t1 = tail_mean(base_shear(shear_long));
+  out.push_back({"annulus", "turned 1.5x further (developed torque)", std::abs(t1 - t0) / std::max(std::abs(t0), 1e-12)});
+  // Wheel: slip 0.3 (or the middle slip) in a 1.5x bin, and run 1.5x longer.
+  const double slip = plan.slips[plan.slips.size() / 2];
+  const rigs::WheelResult* base = nullptr;
+  for (const auto& r : base_wheel)
+    if (r.slip == slip) base = &r;
+  const auto wheel_big = run_wheel_sweep("crm", crm, big, plan.wheel, {slip}, plan.crm_wheel_run);
+  rigs::WheelRun long_run = plan.crm_wheel_run;
+  long_run.duration *= 1.5;
+  const auto wheel_long = run_wheel_sweep("crm", crm, plan.terrain, plan.wheel, {slip}, long_run);
+  if (base) {
+    auto change = [&](const rigs::WheelResult& r) {
+      return std::max({std::abs(r.dbp - base->dbp) / std::max(std::abs(base->torque / plan.wheel.radius), 1e-12),
+                       std::abs(r.torque - base->torque) / std::max(std::abs(base->torque), 1e-12),
+                       std::abs(r.sinkage - base->sinkage) / std::max(std::abs(base->sinkage), 1e-12)});
+    };
+    out.push_back({"wheel", fmt::format("slip {}: bin 1.5x larger (largest of DBP/thrust, torque, sinkage)", slip), change(wheel_big[0])});
+    out.push_back({"wheel", fmt::format("slip {}: run 1.5x longer (largest of DBP/thrust, torque, sinkage)", slip), change(wheel_long[0])});
+  }
+  return out;
+}
+}  // namespace
+
+int run_pipeline(const PipelinePlan& plan) {
+  const auto start = Clock::now();
+  const std::string out = plan.out;
+  std::filesystem::create_directories(out);
+  SoilChoice crm;
+  crm.solver = "crm";
+  crm.crm = plan.soil;
+  crm.gravity = plan.soil.gravity;
+
+  // 1. CRM bevameter.
+  spdlog::info("pipeline 1/4: CRM bevameter (plates {} m to {} m, annulus {}-{} m at {} loads)", fmt::join(plan.bevameter.plates, ", "),
+               plan.bevameter.max_sinkage, plan.bevameter.inner_radius, plan.bevameter.outer_radius, plan.bevameter.shear_loads.size());
+  auto t = Clock::now();
+  const BevameterCurves bev = run_bevameter(crm, plan.terrain, plan.bevameter, true, true);
+  const double bev_wall = since(t);
+  const std::string bdir = out + "/bevameter";
+  std::filesystem::create_directories(bdir);
+  rigs::write_plate_csv(bdir + "/plate.csv", bev.plate);
+  rigs::write_shear_csv(bdir + "/shear.csv", bev.shear);
+
+  // 2. Calibration.
+  spdlog::info("pipeline 2/4: calibrating SCM on the CRM curves");
+  t = Clock::now();
+  CalibrationRequest req;
+  req.plate_csv = bdir + "/plate.csv";
+  req.shear_csv = bdir + "/shear.csv";
+  req.out_dir = out + "/calibration";
+  req.seed = plan.seed;
+  const int cal_status = run_calibration(req);
+  const double cal_wall = since(t);
+  if (cal_status != 0) spdlog::warn("the calibration did not converge; the pipeline goes on with its MAP point (see calibration/summary.txt)");
+  SoilChoice scm;
+  scm.solver = "scm";
+  scm.scm = lowfi::read_scm_json(out + "/calibration/scm_params.json");
+  scm.gravity = plan.soil.gravity;
+  plot_bevameter(out, bev, &*scm.scm);
+
+  // 3. Wheel sweeps.
+  spdlog::info("pipeline 3/4: single wheel, slips {}: CRM, SCM (calibrated) and Wong-Reece", fmt::join(plan.slips, ", "));
+  TerrainOptions scm_options = plan.terrain;
+  scm_options.grid = plan.scm_grid;
+  scm_options.step = 0;
+  t = Clock::now();
+  std::string crm_site_text, scm_site_text;
+  const auto wheel_crm = run_wheel_sweep("crm", crm, plan.terrain, plan.wheel, plan.slips, plan.crm_wheel_run, &crm_site_text);
+  const double crm_wheel_wall = since(t);
+  t = Clock::now();
+  const auto wheel_scm = run_wheel_sweep("scm", scm, scm_options, plan.wheel, plan.slips, plan.scm_wheel_run, &scm_site_text);
+  const double scm_wheel_wall = since(t);
+  const auto wheel_wr = run_wheel_sweep("wong-reece", scm, scm_options, plan.wheel, plan.slips, plan.scm_wheel_run);
+  for (const auto& [name, res] : {std::pair{"crm", &wheel_crm}, std::pair{"scm", &wheel_scm}, std::pair{"wong_reece", &wheel_wr}}) {
+    std::filesystem::create_directories(out + "/wheel_" + name);
+    rigs::write_wheel_csv(out + "/wheel_" + name + "/wheel.csv", *res);
+    if (std::string(name) != "wong_reece") rigs::write_wheel_series_csv(out + "/wheel_" + name + "/wheel_series.csv", *res);
+  }
+  plot_wheel_models(out, {{"CRM", wheel_crm}, {"SCM (calibrated)", wheel_scm}, {"Wong-Reece (calibrated)", wheel_wr}});
+
+  std::vector<Check> checks;
+  if (plan.checks) {
+    spdlog::info("pipeline: bin-size and run-length checks");
+    checks = run_checks(plan, crm, bev, wheel_crm);
+  }
+
+  // 4. Report.
+  spdlog::info("pipeline 4/4: report");
+  const nlohmann::json params = read_json_file(out + "/calibration/scm_params.json", "calibrated SCM set");
+  std::string md = fmt::format("# terracal pipeline: {}\n\n", plan.soil_name);
+  md += fmt::format("CRM soil: density {} kg/m^3, E {} Pa, nu {}, mu_s {}, mu_2 {}, I0 {}, cohesion {} Pa, gravity {} m/s^2.\n\n",
+                    plan.soil.density, plan.soil.young_modulus, plan.soil.poisson_ratio, plan.soil.mu_s, plan.soil.mu_2, plan.soil.I0,
+                    plan.soil.cohesion, norm(plan.soil.gravity));
+  md += fmt::format("- CRM bevameter: {}\n- CRM wheel: {}\n- SCM wheel: {}\n\n", bev.site, crm_site_text, scm_site_text);
+  md += "## Bevameter (CRM) and the calibrated SCM set\n\n![bevameter](bevameter.png)\n\n";
+  md += "| parameter | MAP | posterior sd | 5 % | 95 % |\n|---|---|---|---|---|\n";
+  for (const auto& [key, value] : params["Soil parameters"].items()) {
+    const auto& post = params.contains("Posterior") && params["Posterior"].contains(key) ? params["Posterior"][key] : nlohmann::json();
+    auto num = [&](const char* k) { return post.is_object() && post.contains(k) && post[k].is_number() ? fmt::format("{:.4g}", post[k].get<double>()) : std::string("-"); };
+    md += fmt::format("| {} | {:.4g} | {} | {} | {} |\n", key, value.get<double>(), num("sd"), num("q05"), num("q95"));
+  }
+  md += fmt::format("\nCalibration: {} (calibration/summary.txt).\n\n", cal_status == 0 ? "converged" : "NOT converged");
+  md += fmt::format("## Single wheel (radius {} m, width {} m, mass {} kg, omega {} rad/s)\n\n![wheel](wheel.png)\n\n", plan.wheel.radius,
+                    plan.wheel.width, plan.wheel.mass, plan.wheel.angular_velocity);
+  md += "| slip | DBP CRM [N] | DBP SCM | DBP W-R | torque CRM [N m] | torque SCM | torque W-R | sinkage CRM [m] | sinkage SCM | sinkage W-R |\n";
+  md += "|---|---|---|---|---|---|---|---|---|---|\n";
+  for (std::size_t i = 0; i < plan.slips.size(); ++i)
+    md += fmt::format("| {} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} |\n", plan.slips[i], wheel_crm[i].dbp,
+                      wheel_scm[i].dbp, wheel_wr[i].dbp, wheel_crm[i].torque, wheel_scm[i].torque, wheel_wr[i].torque, wheel_crm[i].sinkage,
+                      wheel_scm[i].sinkage, wheel_wr[i].sinkage);
+  md += "\n## Error against CRM (RMSE over the slips; in brackets, relative to CRM's range over the slips)\n\n";
+  md += "| model | DBP [N] | torque [N m] | sinkage [m] |\n|---|---|---|---|\n";
+  for (const auto& [name, res] : {std::pair{"SCM (calibrated)", &wheel_scm}, std::pair{"Wong-Reece (calibrated)", &wheel_wr}}) {
+    auto cell = [&](double rigs::WheelResult::* f) {
+      const double e = rmse(*res, wheel_crm, f), r = range(wheel_crm, f);
+      return r > 0 ? fmt::format("{:.4g} ({:.0f} %)", e, 100 * e / r) : fmt::format("{:.4g}", e);
+    };
+    md += fmt::format("| {} | {} | {} | {} |\n", name, cell(&rigs::WheelResult::dbp), cell(&rigs::WheelResult::torque),
+                      cell(&rigs::WheelResult::sinkage));
+  }
+  if (!checks.empty()) {
+    md += "\n## Bin size and run length\n\n| rig | check | largest change of the curve |\n|---|---|---|\n";
+    for (const auto& c : checks) md += fmt::format("| {} | {} | {:.2f} % {} |\n", c.rig, c.what, 100 * c.change, c.change < 0.05 ? "" : "(above 5 %)");
+  }
+  md += fmt::format("\n## Cost\n\n| stage | wall time [s] |\n|---|---|\n| CRM bevameter | {:.1f} |\n| calibration | {:.1f} |\n| CRM wheel sweep | {:.1f} |\n"
+                    "| SCM wheel sweep | {:.2f} |\n| total | {:.1f} |\n",
+                    bev_wall, cal_wall, crm_wheel_wall, scm_wheel_wall, since(start));
+  write_text_atomically(out + "/report.md", md);
+  nlohmann::json summary = {{"soil", plan.soil_name},
+                            {"calibration_converged", cal_status == 0},
+                            {"wall_seconds", {{"bevameter", bev_wall}, {"calibration", cal_wall}, {"crm_wheel", crm_wheel_wall}, {"scm_wheel", scm_wheel_wall}, {"total", since(start)}}},
+                            {"rmse_scm_vs_crm", {{"dbp_N", rmse(wheel_scm, wheel_crm, &rigs::WheelResult::dbp)}, {"torque_Nm", rmse(wheel_scm, wheel_crm, &rigs::WheelResult::torque)}, {"sinkage_m", rmse(wheel_scm, wheel_crm, &rigs::WheelResult::sinkage)}}},
+                            {"rmse_wong_reece_vs_crm", {{"dbp_N", rmse(wheel_wr, wheel_crm, &rigs::WheelResult::dbp)}, {"torque_Nm", rmse(wheel_wr, wheel_crm, &rigs::WheelResult::torque)}, {"sinkage_m", rmse(wheel_wr, wheel_crm, &rigs::WheelResult::sinkage)}}}};
+  nlohmann::json cj = nlohmann::json::array();
+  for (const auto& c : checks) cj.push_back({{"rig", c.rig}, {"check", c.what}, {"relative_change", c.change}});
+  summary["checks"] = cj;
+  write_text_atomically(out + "/summary.json", summary.dump(2) + "\n");
+  spdlog::info("pipeline done in {:.1f} s: {}/report.md", since(start), out);
+  return cal_status;
+}
+
+}  // namespace terracal::app

@@ -1,0 +1,29 @@
+#pragma once
+// The whole loop (issue 4, point 7): a CRM soil -> CRM bevameter (plates, annulus) -> calibrated
+// SCM set -> single-wheel slip sweeps in CRM, in SCM with the calibrated set, and with Wong-Reece ->
+// a Markdown report with plots and an error table. `terracal pipeline` and `terracal demo` run it.
+#include <string>
+#include <vector>
+
+#include "apps/rig_runs.hpp"
+
+namespace terracal::app {
+
+struct PipelinePlan {
+  CrmSoil soil;
+  std::string soil_name = "soil";
+  TerrainOptions terrain;              // CRM spacing, device, cache; SCM grid and effects
+  BevameterPlan bevameter;
+  rigs::WheelSpec wheel;
+  std::vector<double> slips{0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8};
+  rigs::WheelRun crm_wheel_run, scm_wheel_run;
+  double scm_grid = 0.01;
+  std::uint64_t seed = 1;
+  bool checks = false;                 // rerun each rig in a 1.5x bin and for a 1.5x longer run
+  std::string out;
+};
+
+// Returns 0, or 1 when the calibration did not converge (everything is still written).
+int run_pipeline(const PipelinePlan& plan);
+
+}  // namespace terracal::app

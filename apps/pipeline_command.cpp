@@ -1,0 +1,69 @@
+// `terracal pipeline`: soil -> CRM bevameter -> calibrated SCM set -> single-wheel validation (CRM,
+// SCM, Wong-Reece) -> report. DESIGN.md section 3.
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "apps/commands.hpp"
+#include "apps/pipeline.hpp"
+#include "core/errors.hpp"
+
+namespace terracal::app {
+
+namespace {
+struct PipelineArgs {
+  std::string soil, out, wheel, slips = "0,0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8", plates = "0.2,0.3", annulus = "0.15,0.20";
+  std::string loads_kg = "25,50,75,100,125,150,175,200";
+  double max_sinkage = 0.2, wheel_duration = 3.0;
+  std::uint64_t seed = 1;
+  bool checks = false;
+  TerrainOptions terrain;
+};
+}  // namespace
+
+Command add_pipeline(CLI::App& app) {
+  auto* sub = app.add_subcommand("pipeline", "Soil -> CRM bevameter -> calibrated SCM set -> single-wheel validation (CRM, SCM, Wong-Reece) -> report");
+  auto a = std::make_shared<PipelineArgs>();
+  sub->add_option("--soil", a->terrain.soil_json, "CRM soil material (JSON, DESIGN.md 'Soil')")->required();
+  sub->add_option("--out", a->out, "output folder")->required();
+  sub->add_option("--wheel", a->wheel, "wheel file (JSON); default radius 0.47 m, width 0.25 m, 108 kg, 1 rad/s");
+  sub->add_option("--slips", a->slips, "slips of the wheel sweep")->capture_default_str();
+  sub->add_option("--plates", a->plates, "plate radii [m]")->capture_default_str();
+  sub->add_option("--max-sinkage", a->max_sinkage, "plate sinkage [m]")->capture_default_str();
+  sub->add_option("--annulus", a->annulus, "annulus inner,outer radius [m]")->capture_default_str();
+  sub->add_option("--shear-loads-kg", a->loads_kg, "annulus dead loads [kg]")->capture_default_str();
+  sub->add_option("--wheel-duration", a->wheel_duration, "simulated seconds per slip")->capture_default_str();
+  sub->add_option("--seed", a->seed, "calibration seed")->capture_default_str();
+  sub->add_flag("--checks", a->checks, "rerun each rig in a 1.5x bin and 1.5x longer (bin-size and run-length checks)");
+  sub->add_option("--spacing", a->terrain.spacing, "CRM particle spacing [m]")->capture_default_str();
+  sub->add_option("--device", a->terrain.device, "CRM device: cpu, cuda or auto")->capture_default_str();
+  sub->add_option("--cache", a->terrain.cache, "folder of settled CRM beds")->capture_default_str();
+  sub->add_option("--grid", a->terrain.grid, "SCM grid [m]")->capture_default_str();
+  return [a] {
+    PipelinePlan p;
+    p.soil = load_crm_soil(a->terrain.soil_json);
+    p.soil_name = a->terrain.soil_json;
+    p.terrain = a->terrain;
+    p.out = a->out;
+    p.seed = a->seed;
+    p.checks = a->checks;
+    p.scm_grid = a->terrain.grid;
+    p.slips = parse_list(a->slips, "--slips");
+    p.bevameter.plates = parse_list(a->plates, "--plates");
+    p.bevameter.max_sinkage = a->max_sinkage;
+    const auto ann = parse_list(a->annulus, "--annulus");
+    if (ann.size() != 2) throw InputError(fmt::format("--annulus '{}': expected INNER,OUTER", a->annulus));
+    p.bevameter.inner_radius = ann[0];
+    p.bevameter.outer_radius = ann[1];
+    for (double kg : parse_list(a->loads_kg, "--shear-loads-kg")) {
+      if (!(kg > 0)) throw InputError(fmt::format("--shear-loads-kg: {} kg; expected > 0", kg));
+      p.bevameter.shear_loads.push_back(kg * norm(p.soil.gravity));
+    }
+    if (!a->wheel.empty()) p.wheel = rigs::read_wheel_json(a->wheel);
+    p.crm_wheel_run.duration = p.scm_wheel_run.duration = a->wheel_duration;
+    rigs::validate(p.crm_wheel_run);
+    return run_pipeline(p);
+  };
+}
+
+}  // namespace terracal::app

@@ -1,0 +1,19 @@
+#pragma once
+// PNG plots of the rigs' curves (gnuplot): bevameter curves with the SCM fit drawn over them, and
+// DBP, torque and sinkage against slip for several wheel models. A missing gnuplot is a warning.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "apps/rig_runs.hpp"
+
+namespace terracal::app {
+
+// DIR/bevameter.png: force against sinkage per plate and torque against angle per load; with
+// `fit`, the SCM laws of that parameter set as lines.
+void plot_bevameter(const std::string& dir, const BevameterCurves& curves, const lowfi::ScmSoil* fit);
+
+// DIR/wheel.png: DBP, torque and sinkage against slip, one line per named model.
+void plot_wheel_models(const std::string& dir, const std::vector<std::pair<std::string, std::vector<rigs::WheelResult>>>& models);
+
+}  // namespace terracal::app

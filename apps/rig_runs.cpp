@@ -1,0 +1,139 @@
+#include "apps/rig_runs.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "core/errors.hpp"
+#include "virtual_bevameter/rig_checks.hpp"
+
+namespace terracal::app {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+std::unique_ptr<TerrainSite> site_for(const SoilChoice& soil, const TerrainOptions& o, double half_length, double half_width, double depth) {
+  if (soil.solver == "crm") {
+    if (!soil.crm) throw InputError("--solver crm needs a CRM soil (--soil SOIL.json)");
+    return crm_site(*soil.crm, o, o.bin_scale * half_length, o.bin_scale * half_width, o.bin_scale * depth);
+  }
+  if (soil.solver == "scm") {
+    if (!soil.scm) throw InputError("--solver scm needs an SCM parameter set (--scm SCM.json)");
+    return scm_site(*soil.scm, o, soil.gravity);
+  }
+  throw InputError(fmt::format("solver '{}': expected crm or scm", soil.solver));
+}
+}  // namespace
+
+rigs::RigProgress progress_logger() {
+  auto start = std::make_shared<Clock::time_point>(Clock::now());
+  auto last = std::make_shared<Clock::time_point>(Clock::now());
+  auto current = std::make_shared<std::string>();
+  return [=](const std::string& what, double t, double t_end) {
+    if (what != *current) {
+      *current = what;
+      *start = Clock::now();
+      *last = *start;
+      return;
+    }
+    if (seconds_since(*last) < 5 && t < t_end) return;
+    *last = Clock::now();
+    const double wall = seconds_since(*start);
+    spdlog::info("{}: {:.3g} / {:.3g} s simulated, {:.3g} s wall ({:.3g}x real time)", what, t, t_end, wall, wall > 0 ? t / wall : 0);
+  };
+}
+
+BevameterCurves run_bevameter(const SoilChoice& soil, const TerrainOptions& o, const BevameterPlan& plan, bool plate, bool shear) {
+  BevameterCurves c;
+  const auto progress = progress_logger();
+  if (plate) {
+    if (plan.plates.empty()) throw InputError("--plates: give at least one plate radius");
+    for (double r : plan.plates) rigs::check_range("--plates radius", r, 0.01, 2, "m");
+    rigs::check_range("--max-sinkage", plan.max_sinkage, 1e-3, 2, "m");
+    const double r_max = *std::max_element(plan.plates.begin(), plan.plates.end());
+    const auto t0 = Clock::now();
+    auto site = site_for(soil, o, 2 * r_max + o.spacing, 2 * r_max + o.spacing, plan.max_sinkage + r_max);
+    c.site = site->description();
+    for (double r : plan.plates) {
+      rigs::PlateTest t;
+      t.radius = r;
+      t.max_sinkage = plan.max_sinkage;
+      t.speed = plan.plate_speed;
+      t.thickness = std::max(0.02, 2 * o.spacing);
+      const auto rows = rigs::run_plate(*site, t, progress);
+      c.plate.insert(c.plate.end(), rows.begin(), rows.end());
+      spdlog::info("plate r = {} m: {} rows, force {:.4g} N at {:.3g} m", r, rows.size(), rows.back().force, rows.back().sinkage);
+    }
+    c.plate_wall = seconds_since(t0);
+  }
+  if (shear) {
+    if (plan.shear_loads.empty()) throw InputError("--shear-loads: give at least one normal load [N]");
+    const auto t0 = Clock::now();
+    const double r = plan.outer_radius;
+    auto site = site_for(soil, o, 2 * r + o.spacing, 2 * r + o.spacing, std::max(0.2, 1.5 * r));
+    if (c.site.empty()) c.site = site->description();
+    rigs::ShearTest t;
+    t.inner_radius = plan.inner_radius;
+    t.outer_radius = plan.outer_radius;
+    t.loads = plan.shear_loads;
+    t.angular_velocity = plan.shear_rate;
+    t.max_angle = plan.shear_angle;
+    t.settle_time = plan.shear_settle;
+    t.thickness = std::max(0.02, 2 * o.spacing);
+    c.shear = rigs::run_shear(*site, t, progress);
+    c.shear_wall = seconds_since(t0);
+  }
+  return c;
+}
+
+std::vector<rigs::WheelResult> run_wheel_sweep(const std::string& solver, const SoilChoice& soil, const TerrainOptions& o,
+                                               const rigs::WheelSpec& wheel, const std::vector<double>& slips, const rigs::WheelRun& run,
+                                               std::string* site_description) {
+  rigs::validate(wheel);
+  rigs::validate(run);
+  for (double s : slips)
+    if (!(s > -1 && s < 1)) throw InputError(fmt::format("--slips: slip {} outside (-1, 1)", s));
+  if (solver == "wong-reece") {
+    if (!soil.scm) throw InputError("--terrain wong-reece needs an SCM parameter set (--scm SCM.json)");
+    std::vector<rigs::WheelResult> out;
+    for (double s : slips) {
+      const auto t0 = Clock::now();
+      const auto wr = lowfi::wong_reece(*soil.scm, {wheel.radius, wheel.width}, wheel.mass * norm(soil.gravity), s);
+      rigs::WheelResult r;
+      r.slip = s;
+      r.load = wr.load;
+      r.dbp = wr.dbp;
+      r.torque = wr.torque;
+      r.sinkage = wr.sinkage;
+      r.wall_seconds = seconds_since(t0);
+      out.push_back(r);
+    }
+    if (site_description) *site_description = "Wong-Reece (analytic, GSL quadrature)";
+    return out;
+  }
+  SoilChoice s = soil;
+  s.solver = solver;
+  // The bin: the run's travel at the lowest slip plus two outer radii of soil before and after.
+  double travel = 0;
+  for (double slip : slips) travel = std::max(travel, wheel.angular_velocity * wheel.radius * (1 - slip) * run.duration);
+  const double outer = wheel.radius + wheel.grouser_height;
+  auto site = site_for(s, o, 0.5 * travel + 2 * outer + o.spacing, 2 * rigs::wheel_reach_y(wheel) + o.spacing,
+                       std::max(0.2, 0.5 * wheel.radius));
+  if (site_description) *site_description = site->description();
+  std::vector<rigs::WheelResult> out;
+  const auto progress = progress_logger();
+  for (double slip : slips) {
+    out.push_back(rigs::run_wheel(*site, wheel, slip, run, progress));
+    const auto& r = out.back();
+    spdlog::info("{} wheel at slip {}: DBP {:.4g} N, torque {:.4g} N m, sinkage {:.4g} m ({:.3g} s wall)", solver, slip, r.dbp, r.torque,
+                 r.sinkage, r.wall_seconds);
+  }
+  return out;
+}
+
+}  // namespace terracal::app

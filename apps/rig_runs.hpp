@@ -1,0 +1,51 @@
+#pragma once
+// The rigs as the commands run them: sites sized for each rig (a CRM bin per rig, or an SCM patch),
+// progress lines on long runs, and the curves with their wall times. Shared by `bevameter`, `wheel`
+// and `pipeline`.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "apps/terrain_options.hpp"
+#include "lowfi/wong_reece.hpp"
+#include "virtual_bevameter/plate_rig.hpp"
+#include "virtual_bevameter/shear_rig.hpp"
+#include "virtual_bevameter/wheel_rig.hpp"
+
+namespace terracal::app {
+
+// One soil seen by either solver: a CRM material or an SCM parameter set.
+struct SoilChoice {
+  std::string solver;                  // crm | scm
+  std::optional<CrmSoil> crm;
+  std::optional<lowfi::ScmSoil> scm;
+  Vec3<double> gravity{0, 0, -9.81};
+};
+
+struct BevameterPlan {
+  std::vector<double> plates{0.2, 0.3};
+  double max_sinkage = 0.2, plate_speed = 0.1;
+  double inner_radius = 0.15, outer_radius = 0.20;
+  std::vector<double> shear_loads;     // [N]
+  double shear_rate = 1.0, shear_angle = 1.0, shear_settle = 1.0;
+};
+
+struct BevameterCurves {
+  std::vector<rigs::PlateRow> plate;
+  std::vector<rigs::ShearRow> shear;
+  double plate_wall = 0, shear_wall = 0;
+  std::string site;  // description of the terrain(s)
+};
+
+// Logs "what: t / t_end s simulated, x real time" every few wall seconds.
+rigs::RigProgress progress_logger();
+
+BevameterCurves run_bevameter(const SoilChoice& soil, const TerrainOptions& o, const BevameterPlan& plan, bool plate, bool shear);
+
+// A slip sweep on CRM or SCM (soil.solver), or the analytic Wong-Reece model (solver "wong-reece",
+// which needs soil.scm).
+std::vector<rigs::WheelResult> run_wheel_sweep(const std::string& solver, const SoilChoice& soil, const TerrainOptions& o,
+                                               const rigs::WheelSpec& wheel, const std::vector<double>& slips, const rigs::WheelRun& run,
+                                               std::string* site_description = nullptr);
+
+}  // namespace terracal::app

@@ -1,0 +1,13 @@
+#pragma once
+// Reads --soil / --scm into a SoilChoice for the chosen solver; InputError when the wrong file or
+// both or neither are given.
+#include <string>
+#include <vector>
+
+#include "apps/rig_runs.hpp"
+
+namespace terracal::app {
+
+SoilChoice choose_soil(const std::string& solver, const TerrainOptions& o);
+
+}  // namespace terracal::app

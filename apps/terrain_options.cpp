@@ -1,0 +1,98 @@
+#include "apps/terrain_options.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "core/errors.hpp"
+#include "core/json_file.hpp"
+#include "highfi/crm_terrain.hpp"
+#include "highfi/sph_engine.hpp"
+
+namespace terracal::app {
+
+void add_terrain_options(CLI::App* sub, TerrainOptions& o, bool crm, bool scm) {
+  if (crm) {
+    sub->add_option("--soil", o.soil_json, "CRM soil material (JSON, DESIGN.md 'Soil')");
+    sub->add_option("--spacing", o.spacing, "CRM particle spacing [m]")->capture_default_str();
+    sub->add_option("--device", o.device, "CRM device: cpu, cuda or auto")->capture_default_str();
+    sub->add_option("--cache", o.cache, "folder of settled CRM beds ('' = no cache)")->capture_default_str();
+    sub->add_option("--settle-time", o.settle_time, "CRM settling before the test [s]")->capture_default_str();
+  }
+  if (scm) {
+    sub->add_option("--scm", o.scm_json, "SCM parameter file (Chrono SCM JSON or terracal's scm_params.json)");
+    sub->add_option("--grid", o.grid, "SCM grid spacing [m]")->capture_default_str();
+    sub->add_option("--scm-effects", o.scm_effects, "SCM effects: damping, elastic_unloading, bulldozing")->capture_default_str();
+    sub->add_option("--gravity", o.gravity, "gravity vector for SCM (default Earth) [m/s^2]")->expected(3);
+  }
+  sub->add_option("--step", o.step, "time step [s] (0: CRM from its CFL limit, SCM 1e-3)")->capture_default_str();
+}
+
+CrmSoil load_crm_soil(const std::string& path) { return parse_crm_soil(read_json_file(path, "soil file"), path); }
+
+lowfi::ScmSoil load_scm_soil(const std::string& path) { return lowfi::read_scm_json(path); }
+
+CrmDevice resolve_device(const std::string& device) {
+  if (device == "cpu") return CrmDevice::kCpu;
+  std::string why;
+  const bool have = cuda_engine_available(&why);
+  if (device == "cuda") {
+    if (!have) throw InputError(fmt::format("--device cuda: no CUDA device available ({})", why));
+    return CrmDevice::kCuda;
+  }
+  if (device != "auto") throw InputError(fmt::format("--device {}: expected cpu, cuda or auto", device));
+  spdlog::info("CRM on the {}", have ? "GPU (CUDA)" : fmt::format("CPU ({})", why));
+  return have ? CrmDevice::kCuda : CrmDevice::kCpu;
+}
+
+std::unique_ptr<TerrainSite> crm_site(const CrmSoil& soil, const TerrainOptions& o, double half_length, double half_width, double depth) {
+  if (!(o.spacing > 0 && o.spacing < 1)) throw InputError(fmt::format("--spacing {}: expected in (0, 1) m", o.spacing));
+  if (!(o.step >= 0)) throw InputError(fmt::format("--step {}: expected >= 0 s", o.step));
+  CrmScene sc;
+  sc.source = o.soil_json.empty() ? "embedded soil" : o.soil_json;
+  sc.soil = soil;
+  sc.effects.artificial_viscosity = true;
+  sc.effects.cohesion = soil.cohesion > 0;
+  sc.numerics.spacing = o.spacing;
+  sc.numerics.time_step = o.step;
+  // Whole spacings, and a bin at least a few spacings around the rig.
+  const double d0 = o.spacing;
+  sc.bin.size = {2 * std::ceil(half_length / d0) * d0, 2 * std::ceil(half_width / d0) * d0, std::ceil(1.5 * depth / d0) * d0};
+  sc.bin.fill_height = std::ceil(depth / d0) * d0;
+  sc.settle_time = o.settle_time;
+  spdlog::info("CRM bin {:.3g} x {:.3g} m, soil {:.3g} m deep at spacing {} m: settling (or reading the cached bed)", sc.bin.size.x,
+               sc.bin.size.y, sc.bin.fill_height, d0);
+  return std::make_unique<CrmSite>(sc, resolve_device(o.device), o.cache);
+}
+
+std::unique_ptr<TerrainSite> scm_site(const lowfi::ScmSoil& soil, const TerrainOptions& o, const Vec3<double>& gravity) {
+  lowfi::ScmSettings s;
+  s.grid = o.grid;
+  s.time_step = o.step > 0 ? o.step : 1e-3;
+  s.gravity = gravity;
+  if (o.gravity.size() == 3) s.gravity = {o.gravity[0], o.gravity[1], o.gravity[2]};
+  s.effects = lowfi::parse_scm_effects(o.scm_effects, "--scm-effects");
+  return std::make_unique<lowfi::ScmSite>(soil, s);
+}
+
+std::vector<double> parse_list(const std::string& text, const std::string& option) {
+  std::vector<double> out;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    try {
+      std::size_t used = 0;
+      const double v = std::stod(item, &used);
+      if (used != item.size() || !std::isfinite(v)) throw std::invalid_argument(item);
+      out.push_back(v);
+    } catch (const std::exception&) {
+      throw InputError(fmt::format("{} '{}': '{}' is not a number (expected a comma-separated list such as 0,0.2,0.4)", option, text, item));
+    }
+  }
+  if (out.empty()) throw InputError(fmt::format("{} '{}': empty list", option, text));
+  return out;
+}
+
+}  // namespace terracal::app

@@ -1,0 +1,43 @@
+#pragma once
+// The terrain options shared by `bevameter`, `wheel` and `pipeline`: which solver, which soil, its
+// fidelity knobs, and the site (CRM bin sized for the rig, or an SCM patch) built from them.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "core/terrain.hpp"
+#include "highfi/crm_scene.hpp"
+#include "lowfi/scm_soil.hpp"
+#include "lowfi/scm_terrain.hpp"
+
+namespace terracal::app {
+
+struct TerrainOptions {
+  std::string soil_json, scm_json;       // CRM material (DESIGN.md "Soil") or Chrono SCM parameter file
+  double spacing = 0.02;                 // CRM particle spacing [m]
+  std::string device = "auto";           // cpu | cuda | auto (cuda when a device is present)
+  std::string cache = "results/runs/bed_cache";
+  double settle_time = 0.3;              // CRM settling [s]
+  double grid = 0.01;                    // SCM grid [m]
+  double step = 0;                       // time step [s]; 0 = CRM's CFL step, SCM 1e-3
+  std::vector<std::string> scm_effects = {"damping"};
+  std::vector<double> gravity;           // SCM: override Earth gravity
+  double bin_scale = 1;                  // CRM bins (and their depth) scaled by this: the bin-size check
+};
+void add_terrain_options(CLI::App* sub, TerrainOptions& o, bool crm, bool scm);
+
+CrmSoil load_crm_soil(const std::string& path);
+lowfi::ScmSoil load_scm_soil(const std::string& path);
+CrmDevice resolve_device(const std::string& device);
+
+// A CRM site whose bin gives room for a body reaching `reach_x` x `reach_y` from the centre (plus
+// `travel` in x), with soil `depth` deep.
+std::unique_ptr<TerrainSite> crm_site(const CrmSoil& soil, const TerrainOptions& o, double half_length, double half_width, double depth);
+std::unique_ptr<TerrainSite> scm_site(const lowfi::ScmSoil& soil, const TerrainOptions& o, const Vec3<double>& gravity);
+
+// Parses "0,0.2,0.4" into numbers; InputError naming the option.
+std::vector<double> parse_list(const std::string& text, const std::string& option);
+
+}  // namespace terracal::app

@@ -1,0 +1,71 @@
+#include "highfi/crm_terrain.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+
+namespace terracal {
+
+std::string CrmTerrain::description() const {
+  const CrmScene& s = solver_.scene();
+  return fmt::format("CRM, spacing {} m, step {:.3g} s", s.numerics.spacing, s.numerics.time_step);
+}
+
+void CrmTerrain::step() {
+  solver_.step();
+  // The wrenches every step (cheap); the whole soil every 200 steps (a reduction over all particles).
+  bool finite = true;
+  for (const auto& w : solver_.wrenches())
+    finite = finite && std::isfinite(w.force.x + w.force.y + w.force.z + w.torque.x + w.torque.y + w.torque.z);
+  if (finite && solver_.steps() % 200 == 0) finite = solver_.stats().nonfinite == 0;
+  if (!finite)
+    throw RunError(fmt::format("CRM: the state turned non-finite at step {} (t = {:.4g} s, step {:.3g} s)", solver_.steps(), solver_.time(),
+                               solver_.time_step()));
+}
+
+CrmSite::CrmSite(const CrmScene& base, CrmDevice device, const std::filesystem::path& cache_dir) : base_(base), device_(device) {
+  requested_step_ = base_.numerics.time_step;
+  base_.bodies.clear();
+  validate_crm_scene(base_);
+  bed_ = settled_bed(base_, device_, cache_dir, &from_cache_);
+  // The surface: the mean height of the top layer of particles in the middle half of the bin (away
+  // from the walls' meniscus), plus half a spacing.
+  const double d0 = base_.numerics.spacing;
+  const Vec3<double> c = centre();
+  const double hx = 0.25 * (base_.bin.fill_length > 0 ? base_.bin.fill_length : base_.bin.size.x), hy = 0.25 * base_.bin.size.y;
+  double top = -1e300;
+  for (const auto& p : bed_.pos)
+    if (std::abs(p.x - c.x) < hx && std::abs(p.y - c.y) < hy) top = std::max(top, p.z);
+  double sum = 0;
+  int n = 0;
+  for (const auto& p : bed_.pos)
+    if (std::abs(p.x - c.x) < hx && std::abs(p.y - c.y) < hy && p.z > top - 0.5 * d0) sum += p.z, ++n;
+  if (n == 0) throw RunError("CRM: the settled bed has no particles in the middle of the bin");
+  surface_ = sum / n + 0.5 * d0;
+}
+
+std::string CrmSite::description() const {
+  return fmt::format("CRM, spacing {} m, {} particles, bin {} x {} x {} m filled to {} m, surface at {:.4g} m", base_.numerics.spacing,
+                     bed_.size(), base_.bin.size.x, base_.bin.size.y, base_.bin.size.z, base_.bin.fill_height, surface_);
+}
+
+Vec3<double> CrmSite::centre() const {
+  const double length = base_.bin.fill_length > 0 ? base_.bin.fill_length : base_.bin.size.x;
+  return {0.5 * length, 0.5 * base_.bin.size.y, surface_};
+}
+
+double CrmSite::half_length() const { return 0.5 * (base_.bin.fill_length > 0 ? base_.bin.fill_length : base_.bin.size.x); }
+
+std::unique_ptr<Terrain> CrmSite::make(std::vector<RigidBody> bodies, double duration) const {
+  CrmScene scene = base_;
+  scene.bodies = std::move(bodies);
+  scene.duration = duration;
+  scene.numerics.time_step = requested_step_;
+  validate_crm_scene(scene);
+  return std::make_unique<CrmTerrain>(scene, device_, bed_);
+}
+
+}  // namespace terracal
