@@ -58,7 +58,11 @@ Command add_demo(CLI::App& app) {
     p.seed = a->seed;
     p.bevameter.plates = {0.2, 0.3};
     p.bevameter.max_sinkage = 0.15;
-    p.bevameter.shear_loads = {50 * 9.81, 100 * 9.81, 150 * 9.81, 200 * 9.81};
+    // At 0.04 m particles a 5 cm ring (the 0.15-0.20 m annulus) is barely two spacings wide and sinks
+    // through the bed under 100 kg; the demo's annulus is 0.10-0.20 m under 25-100 kg.
+    p.bevameter.inner_radius = 0.10;
+    p.bevameter.outer_radius = 0.20;
+    p.bevameter.shear_loads = {25 * 9.81, 50 * 9.81, 75 * 9.81, 100 * 9.81};
     p.bevameter.shear_settle = 0.3;
     p.slips = {0, 0.2, 0.4, 0.6, 0.8};
     p.crm_wheel_run.duration = p.scm_wheel_run.duration = 1.5;

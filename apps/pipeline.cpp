@@ -151,16 +151,38 @@ int run_pipeline(const PipelinePlan& plan) {
   scm_options.step = 0;
   t = Clock::now();
   std::string crm_site_text, scm_site_text;
-  const auto wheel_crm = run_wheel_sweep("crm", crm, plan.terrain, plan.wheel, plan.slips, plan.crm_wheel_run, &crm_site_text);
+  const std::vector<rigs::WheelResult> wheel_crm = run_wheel_sweep("crm", crm, plan.terrain, plan.wheel, plan.slips, plan.crm_wheel_run, &crm_site_text);
   const double crm_wheel_wall = since(t);
   t = Clock::now();
-  const auto wheel_scm = run_wheel_sweep("scm", scm, scm_options, plan.wheel, plan.slips, plan.scm_wheel_run, &scm_site_text);
+  std::vector<rigs::WheelResult> wheel_scm;
+  std::string scm_note;
+  try {
+    wheel_scm = run_wheel_sweep("scm", scm, scm_options, plan.wheel, plan.slips, plan.scm_wheel_run, &scm_site_text);
+  } catch (const RunError& e) {
+    if (std::string(e.what()).find("no strength for contacts narrower") == std::string::npos) throw;
+    // The free-Kc set fits the plates but is negative for the wheel's narrower contact patch: SCM
+    // cannot use it there. Calibrate again with Kc = 0 (Bekker's law without the width term) and
+    // say so in the report.
+    spdlog::warn("{}", e.what());
+    spdlog::warn("recalibrating with Kc fixed at 0 for the SCM wheel (calibration_kc0/)");
+    scm_note = fmt::format("The calibrated set (free Kc) could not drive the SCM wheel: {} The SCM wheel uses the set "
+                           "calibrated with Kc fixed at 0 (calibration_kc0/).", e.what());
+    const std::string kc0 = out + "/calibration_kc0";
+    std::filesystem::create_directories(kc0);
+    write_text_atomically(kc0 + "/priors.json", R"({"Kc": {"type": "fixed", "value": 0}})" "\n");
+    CalibrationRequest r0 = req;
+    r0.out_dir = kc0;
+    r0.priors_json = kc0 + "/priors.json";
+    run_calibration(r0);
+    scm.scm = lowfi::read_scm_json(kc0 + "/scm_params.json");
+    wheel_scm = run_wheel_sweep("scm", scm, scm_options, plan.wheel, plan.slips, plan.scm_wheel_run, &scm_site_text);
+  }
   const double scm_wheel_wall = since(t);
-  const auto wheel_wr = run_wheel_sweep("wong-reece", scm, scm_options, plan.wheel, plan.slips, plan.scm_wheel_run);
-  for (const auto& [name, res] : {std::pair{"crm", &wheel_crm}, std::pair{"scm", &wheel_scm}, std::pair{"wong_reece", &wheel_wr}}) {
+  std::vector<rigs::WheelResult> wheel_wr = run_wheel_sweep("wong-reece", scm, scm_options, plan.wheel, plan.slips, plan.scm_wheel_run);
+  for (const auto& [name, res] : std::vector<std::pair<std::string, const std::vector<rigs::WheelResult>*>>{{"crm", &wheel_crm}, {"scm", &wheel_scm}, {"wong_reece", &wheel_wr}}) {
     std::filesystem::create_directories(out + "/wheel_" + name);
     rigs::write_wheel_csv(out + "/wheel_" + name + "/wheel.csv", *res);
-    if (std::string(name) != "wong_reece") rigs::write_wheel_series_csv(out + "/wheel_" + name + "/wheel_series.csv", *res);
+    if (name != "wong_reece") rigs::write_wheel_series_csv(out + "/wheel_" + name + "/wheel_series.csv", *res);
   }
   plot_wheel_models(out, {{"CRM", wheel_crm}, {"SCM (calibrated)", wheel_scm}, {"Wong-Reece (calibrated)", wheel_wr}});
 
@@ -186,6 +208,7 @@ int run_pipeline(const PipelinePlan& plan) {
     md += fmt::format("| {} | {:.4g} | {} | {} | {} |\n", key, value.get<double>(), num("sd"), num("q05"), num("q95"));
   }
   md += fmt::format("\nCalibration: {} (calibration/summary.txt).\n\n", cal_status == 0 ? "converged" : "NOT converged");
+  if (!scm_note.empty()) md += "**Note.** " + scm_note + "\n\n";
   md += fmt::format("## Single wheel (radius {} m, width {} m, mass {} kg, omega {} rad/s)\n\n![wheel](wheel.png)\n\n", plan.wheel.radius,
                     plan.wheel.width, plan.wheel.mass, plan.wheel.angular_velocity);
   md += "| slip | DBP CRM [N] | DBP SCM | DBP W-R | torque CRM [N m] | torque SCM | torque W-R | sinkage CRM [m] | sinkage SCM | sinkage W-R |\n";
@@ -196,7 +219,7 @@ int run_pipeline(const PipelinePlan& plan) {
                       wheel_scm[i].sinkage, wheel_wr[i].sinkage);
   md += "\n## Error against CRM (RMSE over the slips; in brackets, relative to CRM's range over the slips)\n\n";
   md += "| model | DBP [N] | torque [N m] | sinkage [m] |\n|---|---|---|---|\n";
-  for (const auto& [name, res] : {std::pair{"SCM (calibrated)", &wheel_scm}, std::pair{"Wong-Reece (calibrated)", &wheel_wr}}) {
+  for (const auto& [name, res] : std::vector<std::pair<std::string, const std::vector<rigs::WheelResult>*>>{{"SCM (calibrated)", &wheel_scm}, {"Wong-Reece (calibrated)", &wheel_wr}}) {
     auto cell = [&](double rigs::WheelResult::* f) {
       const double e = rmse(*res, wheel_crm, f), r = range(wheel_crm, f);
       return r > 0 ? fmt::format("{:.4g} ({:.0f} %)", e, 100 * e / r) : fmt::format("{:.4g}", e);
@@ -214,6 +237,7 @@ int run_pipeline(const PipelinePlan& plan) {
   write_text_atomically(out + "/report.md", md);
   nlohmann::json summary = {{"soil", plan.soil_name},
                             {"calibration_converged", cal_status == 0},
+                            {"note", scm_note},
                             {"wall_seconds", {{"bevameter", bev_wall}, {"calibration", cal_wall}, {"crm_wheel", crm_wheel_wall}, {"scm_wheel", scm_wheel_wall}, {"total", since(start)}}},
                             {"rmse_scm_vs_crm", {{"dbp_N", rmse(wheel_scm, wheel_crm, &rigs::WheelResult::dbp)}, {"torque_Nm", rmse(wheel_scm, wheel_crm, &rigs::WheelResult::torque)}, {"sinkage_m", rmse(wheel_scm, wheel_crm, &rigs::WheelResult::sinkage)}}},
                             {"rmse_wong_reece_vs_crm", {{"dbp_N", rmse(wheel_wr, wheel_crm, &rigs::WheelResult::dbp)}, {"torque_Nm", rmse(wheel_wr, wheel_crm, &rigs::WheelResult::torque)}, {"sinkage_m", rmse(wheel_wr, wheel_crm, &rigs::WheelResult::sinkage)}}}};

@@ -24,7 +24,7 @@ void add_terrain_options(CLI::App* sub, TerrainOptions& o, bool crm, bool scm) {
   if (scm) {
     sub->add_option("--scm", o.scm_json, "SCM parameter file (Chrono SCM JSON or terracal's scm_params.json)");
     sub->add_option("--grid", o.grid, "SCM grid spacing [m]")->capture_default_str();
-    sub->add_option("--scm-effects", o.scm_effects, "SCM effects: damping, elastic_unloading, bulldozing")->capture_default_str();
+    sub->add_option("--scm-effects", o.scm_effects, "SCM effects: damping, elastic_unloading, bulldozing, or none")->capture_default_str();
     sub->add_option("--gravity", o.gravity, "gravity vector for SCM (default Earth) [m/s^2]")->expected(3);
   }
   sub->add_option("--step", o.step, "time step [s] (0: CRM from its CFL limit, SCM 1e-3)")->capture_default_str();
@@ -73,7 +73,10 @@ std::unique_ptr<TerrainSite> scm_site(const lowfi::ScmSoil& soil, const TerrainO
   s.time_step = o.step > 0 ? o.step : 1e-3;
   s.gravity = gravity;
   if (o.gravity.size() == 3) s.gravity = {o.gravity[0], o.gravity[1], o.gravity[2]};
-  s.effects = lowfi::parse_scm_effects(o.scm_effects, "--scm-effects");
+  std::vector<std::string> effects;
+  for (const auto& e : o.scm_effects)
+    if (!e.empty() && e != "none") effects.push_back(e);
+  s.effects = lowfi::parse_scm_effects(effects, "--scm-effects");
   return std::make_unique<lowfi::ScmSite>(soil, s);
 }
 

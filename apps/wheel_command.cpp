@@ -19,7 +19,7 @@ namespace {
 struct WheelArgs {
   std::string terrain, wheel, slips = "0,0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8", out;
   double duration = 4.0, average_from = 0.5;
-  bool plots = true;
+  bool plots = true, with_wong_reece = false;
   TerrainOptions options;
 };
 }  // namespace
@@ -34,10 +34,12 @@ Command add_wheel(CLI::App& app) {
   sub->add_option("--duration", a->duration, "simulated seconds per slip")->capture_default_str();
   sub->add_option("--average-from", a->average_from, "steady means over t >= this fraction of the run")->capture_default_str();
   sub->add_flag("!--no-plots", a->plots, "skip the PNG plot");
+  sub->add_flag("--with-wong-reece", a->with_wong_reece, "with --terrain scm: also the Wong-Reece model of the same set (wheel_wong_reece.csv, comparison.md)");
   add_terrain_options(sub, a->options, true, true);
   return [a] {
     if (a->terrain != "crm" && a->terrain != "scm" && a->terrain != "wong-reece")
       throw InputError(fmt::format("--terrain {}: expected crm, scm or wong-reece", a->terrain));
+    if (a->with_wong_reece && a->terrain != "scm") throw InputError("--with-wong-reece: only with --terrain scm");
     const rigs::WheelSpec wheel = rigs::read_wheel_json(a->wheel);
     const auto slips = parse_list(a->slips, "--slips");
     rigs::WheelRun run;
@@ -53,7 +55,19 @@ Command add_wheel(CLI::App& app) {
     for (const auto& r : results) wall += r.wall_seconds;
     nlohmann::json j = {{"terrain", a->terrain}, {"site", site}, {"wall_seconds", wall}, {"simulated_seconds_per_slip", run.duration}};
     write_text_atomically(a->out + "/run.json", j.dump(2) + "\n");
-    if (a->plots) plot_wheel_models(a->out, {{a->terrain, results}});
+    std::vector<std::pair<std::string, std::vector<rigs::WheelResult>>> models = {{a->terrain, results}};
+    if (a->with_wong_reece) {
+      const auto wr = run_wheel_sweep("wong-reece", soil, a->options, wheel, slips, run);
+      rigs::write_wheel_csv(a->out + "/wheel_wong_reece.csv", wr);
+      std::string md = "| slip | DBP SCM [N] | DBP W-R [N] | torque SCM [N m] | torque W-R [N m] | sinkage SCM [m] | sinkage W-R [m] | sinkage SCM / W-R |\n";
+      md += "|---|---|---|---|---|---|---|---|\n";
+      for (std::size_t i = 0; i < wr.size(); ++i)
+        md += fmt::format("| {} | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {:.4f} | {:.4f} | {:.2f} |\n", slips[i], results[i].dbp, wr[i].dbp,
+                          results[i].torque, wr[i].torque, results[i].sinkage, wr[i].sinkage, results[i].sinkage / wr[i].sinkage);
+      write_text_atomically(a->out + "/comparison.md", md);
+      models.push_back({"Wong-Reece", wr});
+    }
+    if (a->plots) plot_wheel_models(a->out, models);
     fmt::print("wheel ({}): {} slips in {:.3g} s wall; written to {}/wheel.csv\n", a->terrain, results.size(), wall, a->out);
     return 0;
   };

@@ -21,6 +21,12 @@ class ShapeRaycaster {
   // unit. Meshes: the first triangle hit, "inside" is not detected (see first_hit's comment).
   double first_hit(const Vec3<double>& origin, const Vec3<double>& dir, double t_max) const;
 
+  // How far thin features (grousers) reach beyond the smooth body: a coarse ray that hits the rim
+  // may miss a grouser this much lower.
+  double feature_depth() const { return grousers_.empty() ? 0.0 : g_outer_radius_ - radius_; }
+  // Whether the underside is known to be smooth up to feature_depth(): not for arbitrary meshes.
+  bool smooth_underside() const { return type_ != ShapeType::kMesh; }
+
   // Axis-aligned bounds of the solid in the body frame (grousers included).
   Vec3<double> bounds_lo() const { return lo_; }
   Vec3<double> bounds_hi() const { return hi_; }

@@ -21,6 +21,14 @@ void CrmTerrain::step() {
   for (const auto& w : solver_.wrenches())
     finite = finite && std::isfinite(w.force.x + w.force.y + w.force.z + w.torque.x + w.torque.y + w.torque.z);
   if (finite && solver_.steps() % 200 == 0) finite = solver_.stats().nonfinite == 0;
+  // A body that reaches the bin's floor was not carried by the soil: the spacing is too coarse for
+  // it (particles leak past its markers) or its load is above the soil's bearing capacity.
+  const CrmScene& sc = solver_.scene();
+  for (std::size_t b = 0; b < sc.bodies.size(); ++b)
+    if (solver_.bodies()[b].position.z < 0.5 * sc.numerics.spacing)
+      throw RunError(fmt::format("CRM: body '{}' reached the bin floor at t = {:.4g} s: the soil did not carry it (spacing {} m too "
+                                 "coarse for the body, or its load above the bearing capacity)",
+                                 sc.bodies[b].name, solver_.time(), sc.numerics.spacing));
   if (!finite)
     throw RunError(fmt::format("CRM: the state turned non-finite at step {} (t = {:.4g} s, step {:.3g} s)", solver_.steps(), solver_.time(),
                                solver_.time_step()));

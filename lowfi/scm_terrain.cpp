@@ -12,6 +12,7 @@ namespace terracal::lowfi {
 
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr int kCoarseStride = 4;
 
 // World-frame axis-aligned bounds of a body at a pose, from the 8 corners of its body-frame bounds.
 void world_bounds(const ShapeRaycaster& shape, const BodyState& s, Vec3<double>& lo, Vec3<double>& hi) {
@@ -85,6 +86,16 @@ std::string ScmTerrain::description() const {
 
 std::string ScmSite::description() const { return ScmTerrain(soil_, settings_, {}).description(); }
 
+ScmTerrain::Volumes ScmTerrain::volumes() const {
+  Volumes v;
+  const double a = settings_.grid * settings_.grid;
+  for (const auto& [k, n] : nodes_) {
+    v.pushed_down += n.plastic_sinkage * a;
+    v.piled_up += n.level_offset * a;
+  }
+  return v;
+}
+
 const ScmNode* ScmTerrain::node(int i, int j) const {
   const auto it = nodes_.find(key(i, j));
   return it == nodes_.end() ? nullptr : &it->second;
@@ -117,13 +128,40 @@ void ScmTerrain::cast_rays(std::vector<Hit>& hits) const {
     const Quat inv{states_[b].orientation.w, -states_[b].orientation.x, -states_[b].orientation.y, -states_[b].orientation.z};
     const Vec3<double> dir = inv.rotate({0, 0, 1});
     std::vector<double> level(std::size_t(nx) * ny, kInf);
+    auto cast = [&](int ii, int jj, double reach) {
+      const Vec3<double> o{(i0 + ii) * g, (j0 + jj) * g, z0};
+      const double t = shapes_[b].first_hit(inv.rotate(o - states_[b].position), dir, reach);
+      return t < kInf ? z0 + t : kInf;
+    };
+    // Most of a body's bounds is far above the soil (a wheel touches it over a fifth of its length).
+    // A coarse pass every kStride nodes finds where the underside comes within `margin` of the
+    // highest soil; the fine pass casts only within one coarse cell of those. The margin covers a
+    // slope of 2 across a coarse cell plus the grousers' height, so no contact between coarse nodes
+    // is missed. Meshes (which may have thin spikes) are cast in full.
+    const int stride = settings_.coarse_rays && shapes_[b].smooth_underside() && nx * ny >= 16 * kCoarseStride * kCoarseStride ? kCoarseStride : 1;
+    std::vector<char> wanted;
+    if (stride > 1) {
+      const int cx = (nx - 1) / stride + 2, cy = (ny - 1) / stride + 2;  // coarse nodes, the last at or past the edge
+      const double margin = 2.0 * stride * g + shapes_[b].feature_depth();
+      std::vector<char> near(std::size_t(cx) * cy, 0);
+      for (int b2 = 0; b2 < cy; ++b2)
+        for (int a2 = 0; a2 < cx; ++a2) {
+          const double h = cast(std::min(a2 * stride, nx - 1), std::min(b2 * stride, ny - 1), t_max + margin);
+          near[std::size_t(b2) * cx + a2] = h < top + margin;
+        }
+      wanted.assign(std::size_t(nx) * ny, 0);
+      for (int b2 = 0; b2 < cy; ++b2)
+        for (int a2 = 0; a2 < cx; ++a2) {
+          if (!near[std::size_t(b2) * cx + a2]) continue;
+          const int ilo = std::max(0, (a2 - 1) * stride), ihi = std::min(nx - 1, (a2 + 1) * stride);
+          const int jlo = std::max(0, (b2 - 1) * stride), jhi = std::min(ny - 1, (b2 + 1) * stride);
+          for (int jj = jlo; jj <= jhi; ++jj) std::fill(wanted.begin() + std::size_t(jj) * nx + ilo, wanted.begin() + std::size_t(jj) * nx + ihi + 1, 1);
+        }
+    }
 #pragma omp parallel for schedule(static) if (nx * ny > 20000)
     for (int jj = 0; jj < ny; ++jj)
-      for (int ii = 0; ii < nx; ++ii) {
-        const Vec3<double> o{(i0 + ii) * g, (j0 + jj) * g, z0};
-        const double t = shapes_[b].first_hit(inv.rotate(o - states_[b].position), dir, t_max);
-        if (t < kInf) level[std::size_t(jj) * nx + ii] = z0 + t;
-      }
+      for (int ii = 0; ii < nx; ++ii)
+        if (stride == 1 || wanted[std::size_t(jj) * nx + ii]) level[std::size_t(jj) * nx + ii] = cast(ii, jj, t_max);
     auto at = [&](int ii, int jj) { return (ii < 0 || jj < 0 || ii >= nx || jj >= ny) ? kInf : level[std::size_t(jj) * nx + ii]; };
     auto slope = [&](double minus, double here, double plus) {
       if (minus < kInf && plus < kInf) return (plus - minus) / (2 * g);
@@ -177,6 +215,11 @@ void ScmTerrain::contact(const std::vector<Hit>& hits) {
     const double undisturbed = settings_.surface_height + n.level_offset;
     const double z = undisturbed - hit.level;  // total sinkage
     const double b = patches.bekker_width[patches.patch_of[h]];
+    if (!(soil_.Kc / b + soil_.Kphi > 0))
+      throw RunError(fmt::format("SCM: body '{}' at t = {:.4g} s: contact patch of Bekker width b = {:.3g} m gives Kc/b + Kphi = {:.4g} "
+                                 "Pa/m^n <= 0: this set's pressure-sinkage law has no strength for contacts narrower than "
+                                 "|Kc|/Kphi = {:.3g} m (calibrate on plates nearer this width, or fix Kc)",
+                                 bodies_[hit.body].name, time_, b, soil_.Kc / b + soil_.Kphi, std::abs(soil_.Kc) / soil_.Kphi));
     // Elastic trial, capped at the Bekker yield; yielding moves the plastic sinkage down.
     double sigma = ke * (z - n.plastic_sinkage);
     const double yield = soil_.bekker_pressure(z, b);

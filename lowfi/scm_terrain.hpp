@@ -40,6 +40,7 @@ struct ScmSettings {
   double surface_height = 0;   // the undisturbed surface is the plane z = surface_height
   double repose_angle_deg = 30; // bulldozing: slope the eroded surface relaxes to
   int erosion_sweeps = 5;      // bulldozing: relaxation sweeps per step
+  bool coarse_rays = true;     // cull rays far above the soil with a coarse pass (same result, fewer rays)
   ScmEffects effects;
 };
 // Throws InputError naming the setting, its value and the allowed range.
@@ -80,6 +81,13 @@ class ScmTerrain final : public Terrain {
   std::size_t stored_nodes() const { return nodes_.size(); }
   // The soil surface at grid node (i, j) when no body presses on it.
   double free_surface(int i, int j) const;
+  // Soil volumes over every stored node [m^3]: pushed down plastically (sum of z_p g^2) and piled
+  // up by bulldozing (sum of the positive and negative level offsets g^2). Bulldozing conserves
+  // them: what the bodies push down reappears around them.
+  struct Volumes {
+    double pushed_down = 0, piled_up = 0;
+  };
+  Volumes volumes() const;
   // Stored node (i, j), or nullptr if never touched.
   const ScmNode* node(int i, int j) const;
 

@@ -52,7 +52,7 @@ std::vector<ShearRow> run_shear(const TerrainSite& site, const ShearTest& test, 
     const long every = std::max(1L, (steps - settle_steps) / test.samples);
     for (long s = 1; s <= steps; ++s) {
       terrain->step();
-      if (s < settle_steps || (s - settle_steps) % every != 0) continue;
+      if (s <= settle_steps || (s - settle_steps) % every != 0) continue;  // rows once the annulus turns
       const BodyState& b = terrain->bodies()[0];
       const double angle = test.angular_velocity * std::max(0.0, terrain->time() - test.settle_time);
       rows.push_back({test.inner_radius, test.outer_radius, load, angle, -terrain->wrenches()[0].torque.z,
@@ -64,9 +64,9 @@ std::vector<ShearRow> run_shear(const TerrainSite& site, const ShearTest& test, 
 }
 
 void write_shear_csv(const std::string& path, const std::vector<ShearRow>& rows) {
-  std::string s = "inner_radius_m,outer_radius_m,normal_load_N,angle_rad,torque_Nm\n";
+  std::string s = "inner_radius_m,outer_radius_m,normal_load_N,angle_rad,torque_Nm,sinkage_m\n";
   for (const auto& r : rows)
-    s += fmt::format("{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", r.inner_radius, r.outer_radius, r.normal_load, r.angle, r.torque);
+    s += fmt::format("{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", r.inner_radius, r.outer_radius, r.normal_load, r.angle, r.torque, r.sinkage);
   write_text_atomically(path, s);
 }
 

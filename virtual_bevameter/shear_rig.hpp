@@ -23,13 +23,14 @@ void validate(const ShearTest& test);
 
 struct ShearRow {
   double inner_radius = 0, outer_radius = 0, normal_load = 0, angle = 0, torque = 0;
-  double sinkage = 0;  // of the annulus's underside below the undisturbed surface (not in shear.csv)
+  double sinkage = 0;  // of the annulus's underside below the undisturbed surface
 };
 
 // Torque is what the drive applies (minus the soil's torque about the vertical axis).
 std::vector<ShearRow> run_shear(const TerrainSite& site, const ShearTest& test, const RigProgress& progress = {});
 
-// DESIGN.md's shear.csv (inner_radius_m,outer_radius_m,normal_load_N,angle_rad,torque_Nm), atomically.
+// DESIGN.md's shear.csv (inner_radius_m,outer_radius_m,normal_load_N,angle_rad,torque_Nm), plus the
+// annulus's sinkage (sinkage_m; the calibrator ignores it), atomically.
 void write_shear_csv(const std::string& path, const std::vector<ShearRow>& rows);
 
 }  // namespace terracal::rigs

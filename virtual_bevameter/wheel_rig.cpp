@@ -95,7 +95,7 @@ WheelResult run_wheel(const TerrainSite& site, const WheelSpec& wheel, double sl
   w.motion.free = {false, false, true, false, false, false};  // the axle sinks under the load; the carriage holds the rest
   w.motion.linear_velocity = {speed, 0, 0};
   w.motion.angular_velocity = {0, wheel.angular_velocity, 0};  // about +y: the contact point moves back, the wheel rolls +x
-  check_fits(site, w, outer, wheel_reach_y(wheel), 0.5 * travel);
+  check_fits(site, w, outer, wheel_reach_y(wheel));  // it starts travel/2 before the centre and ends travel/2 past it
 
   const auto start = std::chrono::steady_clock::now();
   auto terrain = site.make({w}, run.duration);

@@ -158,3 +158,27 @@ TEST_CASE("SCM step-size sweep: converges below the stability limit and says so 
   CHECK(ran >= 2);
   CHECK(refused >= 1);
 }
+
+TEST_CASE("SCM coarse ray pass changes nothing: a grousered wheel gives the same wrench with and without it", "[lowfi][scm][wheel]") {
+  const lowfi::ScmSoil soil = test::scm_dry_sand();
+  auto w = design_wheel();
+  w.grouser_count = 12;
+  w.grouser_height = 0.03;
+  w.grouser_thickness = 0.01;
+  lowfi::ScmSettings fine;
+  fine.grid = 0.01;
+  fine.effects.damping = true;
+  fine.coarse_rays = false;
+  lowfi::ScmSettings coarse = fine;
+  coarse.coarse_rays = true;
+  const auto a = rigs::run_wheel(lowfi::ScmSite(soil, fine), w, 0.3, run_of(1.5));
+  const auto b = rigs::run_wheel(lowfi::ScmSite(soil, coarse), w, 0.3, run_of(1.5));
+  REQUIRE(a.series.size() == b.series.size());
+  for (std::size_t i = 0; i < a.series.size(); ++i) {
+    INFO("t = " << a.series[i].t);
+    REQUIRE(a.series[i].dbp == b.series[i].dbp);
+    REQUIRE(a.series[i].sinkage == b.series[i].sinkage);
+  }
+  // Grousers dig in: the wheel meets the soil at all.
+  CHECK(a.torque > 0);
+}
