@@ -2,6 +2,7 @@
 // Ray casts against a rigid body's collision shape (core/body_shape.hpp), in the body frame: the SCM
 // terrain uses them to find how far above each grid node the body's underside is. The solids are
 // exactly those of shape_signed_distance (highfi/body_markers.cpp), where it is <= 0.
+#include <algorithm>
 #include <vector>
 
 #include "core/body_shape.hpp"
@@ -26,6 +27,20 @@ class ShapeRaycaster {
   double feature_depth() const { return grousers_.empty() ? 0.0 : g_outer_radius_ - radius_; }
   // Whether the underside is known to be smooth up to feature_depth(): not for arbitrary meshes.
   bool smooth_underside() const { return type_ != ShapeType::kMesh; }
+  // How far the underside can dip below the higher of two points `span` apart on a line through its
+  // lowest part (cylinders: their curvature, span^2 / r; flat-bottomed shapes tilted up to 45 degrees:
+  // span), and the narrowest solid part seen from below (an annulus's ring), which a coarse pass
+  // must not step over.
+  double dip_over(double span) const { return type_ == ShapeType::kCylinder ? span * span / radius_ : span; }
+  double narrowest() const {
+    switch (type_) {
+      case ShapeType::kAnnulus: return radius_ - inner_;
+      case ShapeType::kDisc: return 2 * radius_;
+      case ShapeType::kCylinder: return std::min(2 * radius_, 2 * half_width_);
+      case ShapeType::kBox: return 2 * std::min(half_.x, half_.y);
+      default: return 0;
+    }
+  }
 
   // Axis-aligned bounds of the solid in the body frame (grousers included).
   Vec3<double> bounds_lo() const { return lo_; }

@@ -41,29 +41,59 @@ void convex_hull_measures(std::vector<std::pair<double, double>> p, double& area
 ContactPatches find_contact_patches(const std::vector<GridIndex>& nodes, double grid) {
   ContactPatches out;
   out.patch_of.assign(nodes.size(), -1);
-  std::unordered_map<std::int64_t, int> index;
-  index.reserve(2 * nodes.size());
-  for (std::size_t n = 0; n < nodes.size(); ++n) index.emplace(key_of(nodes[n].i, nodes[n].j), int(n));
+  if (nodes.empty()) return out;
+  // The nodes' bounding box as a dense index (contacts are compact, so this is small and beats a
+  // hash map by an order of magnitude).
+  int ilo = nodes[0].i, ihi = ilo, jlo = nodes[0].j, jhi = jlo;
+  for (const auto& n : nodes) {
+    ilo = std::min(ilo, n.i), ihi = std::max(ihi, n.i);
+    jlo = std::min(jlo, n.j), jhi = std::max(jhi, n.j);
+  }
+  const long w = long(ihi) - ilo + 1, h = long(jhi) - jlo + 1;
+  std::vector<int> index;
+  std::unordered_map<std::int64_t, int> sparse;  // for scattered contacts (several distant bodies)
+  const bool dense = w * h <= 64 * long(nodes.size()) + 4096;
+  if (dense) {
+    index.assign(std::size_t(w * h), -1);
+    for (std::size_t n = 0; n < nodes.size(); ++n) index[std::size_t((nodes[n].j - jlo) * w + (nodes[n].i - ilo))] = int(n);
+  } else {
+    sparse.reserve(2 * nodes.size());
+    for (std::size_t n = 0; n < nodes.size(); ++n) sparse.emplace(key_of(nodes[n].i, nodes[n].j), int(n));
+  }
+  auto find = [&](int i, int j) -> int {
+    if (i < ilo || i > ihi || j < jlo || j > jhi) return -1;
+    if (dense) return index[std::size_t((j - jlo) * w + (i - ilo))];
+    const auto it = sparse.find(key_of(i, j));
+    return it == sparse.end() ? -1 : it->second;
+  };
   std::vector<int> stack;
   std::vector<std::pair<double, double>> pts;
+  std::unordered_map<int, std::pair<int, int>> row_extent;  // per row j of a patch: min and max i
   for (std::size_t seed = 0; seed < nodes.size(); ++seed) {
     if (out.patch_of[seed] >= 0) continue;
     const int patch = int(out.count());
     out.patch_of[seed] = patch;
     stack.assign(1, int(seed));
-    pts.clear();
+    row_extent.clear();
     while (!stack.empty()) {
       const int n = stack.back();
       stack.pop_back();
-      pts.emplace_back(nodes[n].i * grid, nodes[n].j * grid);
+      auto [it, fresh] = row_extent.try_emplace(nodes[n].j, nodes[n].i, nodes[n].i);
+      if (!fresh) it->second = {std::min(it->second.first, nodes[n].i), std::max(it->second.second, nodes[n].i)};
       const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
       for (int q = 0; q < 4; ++q) {
-        const auto it = index.find(key_of(nodes[n].i + di[q], nodes[n].j + dj[q]));
-        if (it != index.end() && out.patch_of[it->second] < 0) {
-          out.patch_of[it->second] = patch;
-          stack.push_back(it->second);
+        const int m = find(nodes[n].i + di[q], nodes[n].j + dj[q]);
+        if (m >= 0 && out.patch_of[m] < 0) {
+          out.patch_of[m] = patch;
+          stack.push_back(m);
         }
       }
+    }
+    // The hull of a set of grid points is the hull of each row's two ends.
+    pts.clear();
+    for (const auto& [j, e] : row_extent) {
+      pts.emplace_back(e.first * grid, j * grid);
+      if (e.second != e.first) pts.emplace_back(e.second * grid, j * grid);
     }
     double a = 0, p = 0;
     convex_hull_measures(pts, a, p);

@@ -113,8 +113,7 @@ double ScmTerrain::free_surface(int i, int j) const {
 void ScmTerrain::cast_rays(std::vector<Hit>& hits) const {
   hits.clear();
   const double g = settings_.grid;
-  double top = settings_.surface_height;
-  for (const auto& [k, n] : nodes_) top = std::max(top, settings_.surface_height + n.level_offset);
+  const double top = settings_.surface_height + max_level_offset_;
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
     Vec3<double> lo, hi;
     world_bounds(shapes_[b], states_[b], lo, hi);
@@ -135,14 +134,18 @@ void ScmTerrain::cast_rays(std::vector<Hit>& hits) const {
     };
     // Most of a body's bounds is far above the soil (a wheel touches it over a fifth of its length).
     // A coarse pass every kStride nodes finds where the underside comes within `margin` of the
-    // highest soil; the fine pass casts only within one coarse cell of those. The margin covers a
-    // slope of 2 across a coarse cell plus the grousers' height, so no contact between coarse nodes
-    // is missed. Meshes (which may have thin spikes) are cast in full.
-    const int stride = settings_.coarse_rays && shapes_[b].smooth_underside() && nx * ny >= 16 * kCoarseStride * kCoarseStride ? kCoarseStride : 1;
+    // highest soil; the fine pass casts only within one coarse cell of those. The margin covers how
+    // far the underside can dip between coarse nodes (ShapeRaycaster::dip_over) plus the grousers'
+    // height, so no contact between coarse nodes is missed. Meshes (which may have thin spikes) and
+    // rings narrower than two coarse cells are cast in full.
+    const int stride = settings_.coarse_rays && shapes_[b].smooth_underside() && nx * ny >= 16 * kCoarseStride * kCoarseStride &&
+                               shapes_[b].narrowest() >= 2 * kCoarseStride * g
+                           ? kCoarseStride
+                           : 1;
     std::vector<char> wanted;
     if (stride > 1) {
       const int cx = (nx - 1) / stride + 2, cy = (ny - 1) / stride + 2;  // coarse nodes, the last at or past the edge
-      const double margin = 2.0 * stride * g + shapes_[b].feature_depth();
+      const double margin = shapes_[b].dip_over(stride * g) + shapes_[b].feature_depth() + 1e-9;
       std::vector<char> near(std::size_t(cx) * cy, 0);
       for (int b2 = 0; b2 < cy; ++b2)
         for (int a2 = 0; a2 < cx; ++a2) {
@@ -241,7 +244,7 @@ void ScmTerrain::contact(const std::vector<Hit>& hits) {
     n.shear += dt * v_tan;
     n.shear -= dot(n.shear, nrm) * nrm;  // keep it in the current tangent plane
     const double j = norm(n.shear);
-    const double tau = j > 0 ? soil_.janosi_shear(sigma, j) : 0.0;
+    const double tau = j > 0 ? (soil_.cohesion + sigma * tan_phi_) * (1.0 - std::exp(-j / soil_.janosi_k)) : 0.0;
     n.sigma = sigma;
     n.tau = tau;
     n.deepest = std::max(n.deepest, z);
@@ -302,7 +305,7 @@ void ScmTerrain::bulldoze(const std::vector<Hit>& hits, const ContactPatches& pa
     rim.erase(std::unique(rim.begin(), rim.end()), rim.end());
     if (rim.empty() || displaced[p] <= 0) continue;
     const double dh = displaced[p] / (double(rim.size()) * g * g);
-    for (const auto k : rim) nodes_[k].level_offset += dh;
+    for (const auto k : rim) max_level_offset_ = std::max(max_level_offset_, nodes_[k].level_offset += dh);
   }
   // Erosion sweeps over the region around the patches.
   const double max_step = g * std::tan(settings_.repose_angle_deg * M_PI / 180.0);
@@ -318,7 +321,8 @@ void ScmTerrain::bulldoze(const std::vector<Hit>& hits, const ContactPatches& pa
           if (std::abs(diff) <= max_step) continue;
           const double move = 0.25 * (std::abs(diff) - max_step) * (diff > 0 ? 1 : -1);
           nodes_[key(i, j)].level_offset -= move;
-          nodes_[key(i2, j2)].level_offset += move;
+          max_level_offset_ = std::max(max_level_offset_, nodes_[key(i2, j2)].level_offset += move);
+          max_level_offset_ = std::max(max_level_offset_, nodes_[key(i, j)].level_offset);
         }
       }
 }

@@ -115,6 +115,7 @@ class ScmTerrain final : public Terrain {
   std::unordered_map<std::int64_t, ScmNode> nodes_;
   std::vector<std::int64_t> contact_keys_;  // nodes in contact at the last step
   ScmStepStats stats_;
+  double max_level_offset_ = 0;  // the highest the soil was piled (bounds the rays from above)
   double time_ = 0;
   long steps_ = 0;
 };
