@@ -26,4 +26,8 @@ struct PipelinePlan {
 // Returns 0, or 1 when the calibration did not converge (everything is still written).
 int run_pipeline(const PipelinePlan& plan);
 
+// Draws a finished pipeline's bevameter.png and wheel.png again from its CSV and JSON files (for
+// runs made where gnuplot was missing, such as a GPU machine).
+void replot_pipeline(const std::string& dir);
+
 }  // namespace terracal::app

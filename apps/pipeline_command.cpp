@@ -14,9 +14,9 @@ namespace {
 struct PipelineArgs {
   std::string soil, out, wheel, slips = "0,0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8", plates = "0.2,0.3", annulus = "0.15,0.20";
   std::string loads_kg = "25,50,75,100,125,150,175,200";
-  double max_sinkage = 0.2, wheel_duration = 3.0;
+  double max_sinkage = 0.2, wheel_duration = 3.0, shear_step = 0, shear_angle = 1.0, shear_settle = 1.0;
   std::uint64_t seed = 1;
-  bool checks = false;
+  bool checks = false, replot = false;
   TerrainOptions terrain;
 };
 }  // namespace
@@ -24,8 +24,10 @@ struct PipelineArgs {
 Command add_pipeline(CLI::App& app) {
   auto* sub = app.add_subcommand("pipeline", "Soil -> CRM bevameter -> calibrated SCM set -> single-wheel validation (CRM, SCM, Wong-Reece) -> report");
   auto a = std::make_shared<PipelineArgs>();
-  sub->add_option("--soil", a->terrain.soil_json, "CRM soil material (JSON, DESIGN.md 'Soil')")->required();
+  auto* soil = sub->add_option("--soil", a->terrain.soil_json, "CRM soil material (JSON, DESIGN.md 'Soil')");
   sub->add_option("--out", a->out, "output folder")->required();
+  auto* replot = sub->add_flag("--replot", a->replot, "only draw the plots of the finished pipeline in --out again");
+  soil->excludes(replot);
   sub->add_option("--wheel", a->wheel, "wheel file (JSON); default radius 0.47 m, width 0.25 m, 108 kg, 1 rad/s");
   sub->add_option("--slips", a->slips, "slips of the wheel sweep")->capture_default_str();
   sub->add_option("--plates", a->plates, "plate radii [m]")->capture_default_str();
@@ -39,7 +41,16 @@ Command add_pipeline(CLI::App& app) {
   sub->add_option("--device", a->terrain.device, "CRM device: cpu, cuda or auto")->capture_default_str();
   sub->add_option("--cache", a->terrain.cache, "folder of settled CRM beds")->capture_default_str();
   sub->add_option("--grid", a->terrain.grid, "SCM grid [m]")->capture_default_str();
+  sub->add_option("--step", a->terrain.step, "CRM time step [s] (0: from the CFL limit)")->capture_default_str();
+  sub->add_option("--shear-angle", a->shear_angle, "angle the annulus turns [rad]")->capture_default_str();
+  sub->add_option("--shear-settle", a->shear_settle, "annulus settling under its load before turning [s]")->capture_default_str();
+  sub->add_option("--shear-step", a->shear_step, "CRM time step of the annulus runs [s] (0: as --step)")->capture_default_str();
   return [a] {
+    if (a->replot) {
+      replot_pipeline(a->out);
+      return 0;
+    }
+    if (a->terrain.soil_json.empty()) throw InputError("--soil: required (the CRM soil material, JSON)");
     PipelinePlan p;
     p.soil = load_crm_soil(a->terrain.soil_json);
     p.soil_name = a->terrain.soil_json;
@@ -51,6 +62,9 @@ Command add_pipeline(CLI::App& app) {
     p.slips = parse_list(a->slips, "--slips");
     p.bevameter.plates = parse_list(a->plates, "--plates");
     p.bevameter.max_sinkage = a->max_sinkage;
+    p.bevameter.shear_step = a->shear_step;
+    p.bevameter.shear_angle = a->shear_angle;
+    p.bevameter.shear_settle = a->shear_settle;
     const auto ann = parse_list(a->annulus, "--annulus");
     if (ann.size() != 2) throw InputError(fmt::format("--annulus '{}': expected INNER,OUTER", a->annulus));
     p.bevameter.inner_radius = ann[0];

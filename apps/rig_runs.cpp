@@ -57,7 +57,9 @@ BevameterCurves run_bevameter(const SoilChoice& soil, const TerrainOptions& o, c
     rigs::check_range("--max-sinkage", plan.max_sinkage, 1e-3, 2, "m");
     const double r_max = *std::max_element(plan.plates.begin(), plan.plates.end());
     const auto t0 = Clock::now();
-    auto site = site_for(soil, o, 2 * r_max + o.spacing, 2 * r_max + o.spacing, plan.max_sinkage + r_max);
+    // Room for the plate's pressure bulb: 3 radii to the walls and 2.5 radii of soil below the
+    // deepest point (with 2 radii and 1 radius below, a 1.5x bin moved the 0.3 m plate's force by 28 %).
+    auto site = site_for(soil, o, 3 * r_max + o.spacing, 3 * r_max + o.spacing, plan.max_sinkage + 2.5 * r_max);
     c.site = site->description();
     for (double r : plan.plates) {
       rigs::PlateTest t;
@@ -75,7 +77,12 @@ BevameterCurves run_bevameter(const SoilChoice& soil, const TerrainOptions& o, c
     if (plan.shear_loads.empty()) throw InputError("--shear-loads: give at least one normal load [N]");
     const auto t0 = Clock::now();
     const double r = plan.outer_radius;
-    auto site = site_for(soil, o, 2 * r + o.spacing, 2 * r + o.spacing, std::max(0.2, 1.5 * r));
+    // A thin ring under a heavy load sinks a long way (in CRM 0.19 m for 200 kg on the 0.15-0.20 m
+    // annulus): the bed is at least 0.5 m deep, the walls 3 radii away (2 radii: a 1.5x bin moved the torque by 14 %). A thin ring driven into the soil also needs a smaller
+    // CRM step than the CFL limit (it fell through the bed at the CFL step; --shear-step).
+    TerrainOptions so = o;
+    if (plan.shear_step > 0) so.step = plan.shear_step;
+    auto site = site_for(soil, so, 3 * r + o.spacing, 3 * r + o.spacing, std::max(0.5, 2.5 * r));
     if (c.site.empty()) c.site = site->description();
     rigs::ShearTest t;
     t.inner_radius = plan.inner_radius;

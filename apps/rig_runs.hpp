@@ -28,6 +28,7 @@ struct BevameterPlan {
   double inner_radius = 0.15, outer_radius = 0.20;
   std::vector<double> shear_loads;     // [N]
   double shear_rate = 1.0, shear_angle = 1.0, shear_settle = 1.0;
+  double shear_step = 0;               // CRM time step of the annulus runs; 0 = the terrain's (--step)
 };
 
 struct BevameterCurves {

@@ -60,14 +60,24 @@ std::vector<PlateRow> run_plate(const TerrainSite& site, const PlateTest& test, 
   // The phase follows the plate's actual vertical velocity over the last step (the terrain decides
   // at which step a leg of the schedule begins): down before any lift is load, up is unload, down
   // after a lift is reload.
+  // Each leg's turning point is recorded too (the row before the phase changes), so the deepest
+  // sinkage of the load leg is in the file and no unload row lies below it.
   bool lifted = false;
+  const char* last_phase = "load";
+  PlateRow previous;
+  bool previous_recorded = true;
   for (long s = 1; s <= steps; ++s) {
     terrain->step();
     const BodyState& b = terrain->bodies()[0];
     if (b.velocity.z > 0) lifted = true;
-    if (s % every != 0 && s != steps) continue;
     const char* phase = b.velocity.z > 0 ? "unload" : lifted ? "reload" : "load";
-    rows.push_back({test.radius, site.surface_height() - (b.position.z - 0.5 * test.thickness), terrain->wrenches()[0].force.z, phase});
+    const PlateRow row{test.radius, site.surface_height() - (b.position.z - 0.5 * test.thickness), terrain->wrenches()[0].force.z, phase};
+    if (std::string(phase) != last_phase && !previous_recorded) rows.push_back(previous);
+    last_phase = phase;
+    previous = row;
+    previous_recorded = s % every == 0 || s == steps;
+    if (!previous_recorded) continue;
+    rows.push_back(row);
     if (progress) progress(plate.name, terrain->time(), duration);
   }
   return rows;

@@ -4,8 +4,11 @@
 # for CRM; Bekker's law of the SCM set for SCM). Writes OUT/table.md and OUT/cost.png.
 set -euo pipefail
 out=${1:?output folder}
-force_at() {  # plate.csv, sinkage -> force of the first row at or beyond it (not unloading)
-  awk -F, -v z="$2" 'NR > 1 && $4 != "unload" && $2 >= z - 1e-9 { print $3; exit }' "$1"
+force_at() {  # plate.csv, sinkage -> force on the virgin curve (rows that reach a new deepest sinkage),
+  # interpolated linearly between the rows around it; empty if the curve ends more than 1 mm short
+  awk -F, -v z="$2" 'NR > 1 && $2 > deep { if ($2 >= z && deep > 0) { printf "%.6g\n", f + ($3 - f) * (z - deep) / ($2 - deep); done = 1; exit }
+                                             deep = $2; f = $3 }
+                     END { if (!done && deep >= z - 1e-3) printf "%.6g\n", f }' "$1"
 }
 wall_of() { grep -o '"plate_wall_seconds": *[0-9.e+-]*' "$1/run.json" | sed 's/.*: *//'; }
 bekker() { awk -v z="$1" 'BEGIN { r = 0.2; printf "%.6g", 3.14159265358979 * r * r * (990 / r + 1528430) * z ^ 1.1 }'; }
