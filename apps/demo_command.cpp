@@ -64,6 +64,11 @@ Command add_demo(CLI::App& app) {
     p.bevameter.outer_radius = 0.20;
     p.bevameter.shear_loads = {25 * 9.81, 50 * 9.81, 75 * 9.81, 100 * 9.81};
     p.bevameter.shear_settle = 0.3;
+    // Sized for 10 minutes on 2 cores: plate and annulus bins at 0.7x the pipeline's (the walls 2.1
+    // tool radii away), and the annulus turned 0.6 rad (0.06-0.12 m of slip at the ring, 20-40
+    // Janosi lengths: the torque has levelled off).
+    p.bevameter.bin_scale = 0.7;
+    p.bevameter.shear_angle = 0.6;
     p.slips = {0, 0.2, 0.4, 0.6, 0.8};
     p.crm_wheel_run.duration = p.scm_wheel_run.duration = 1.5;
     p.scm_grid = 0.01;

@@ -50,6 +50,8 @@ rigs::RigProgress progress_logger() {
 
 BevameterCurves run_bevameter(const SoilChoice& soil, const TerrainOptions& o, const BevameterPlan& plan, bool plate, bool shear) {
   BevameterCurves c;
+  rigs::check_range("bevameter bin scale", plan.bin_scale, 0.5, 10, "");
+  const double k = plan.bin_scale;
   const auto progress = progress_logger();
   if (plate) {
     if (plan.plates.empty()) throw InputError("--plates: give at least one plate radius");
@@ -59,7 +61,7 @@ BevameterCurves run_bevameter(const SoilChoice& soil, const TerrainOptions& o, c
     const auto t0 = Clock::now();
     // Room for the plate's pressure bulb: 3 radii to the walls and 2.5 radii of soil below the
     // deepest point (with 2 radii and 1 radius below, a 1.5x bin moved the 0.3 m plate's force by 28 %).
-    auto site = site_for(soil, o, 3 * r_max + o.spacing, 3 * r_max + o.spacing, plan.max_sinkage + 2.5 * r_max);
+    auto site = site_for(soil, o, k * 3 * r_max + o.spacing, k * 3 * r_max + o.spacing, k * (plan.max_sinkage + 2.5 * r_max));
     c.site = site->description();
     for (double r : plan.plates) {
       rigs::PlateTest t;
@@ -82,7 +84,7 @@ BevameterCurves run_bevameter(const SoilChoice& soil, const TerrainOptions& o, c
     // CRM step than the CFL limit (it fell through the bed at the CFL step; --shear-step).
     TerrainOptions so = o;
     if (plan.shear_step > 0) so.step = plan.shear_step;
-    auto site = site_for(soil, so, 3 * r + o.spacing, 3 * r + o.spacing, std::max(0.5, 2.5 * r));
+    auto site = site_for(soil, so, k * 3 * r + o.spacing, k * 3 * r + o.spacing, k * std::max(0.5, 2.5 * r));
     if (c.site.empty()) c.site = site->description();
     rigs::ShearTest t;
     t.inner_radius = plan.inner_radius;

@@ -29,6 +29,9 @@ struct BevameterPlan {
   std::vector<double> shear_loads;     // [N]
   double shear_rate = 1.0, shear_angle = 1.0, shear_settle = 1.0;
   double shear_step = 0;               // CRM time step of the annulus runs; 0 = the terrain's (--step)
+  // The plate and annulus bins (walls and depth) scaled by this on top of --bin-scale. Below 1 only
+  // for the coarse demo, whose bins are smaller than the sizes the bin-size check asks for.
+  double bin_scale = 1;
 };
 
 struct BevameterCurves {

@@ -50,6 +50,7 @@ PlateData load_plate_csv(const std::string& path) {
   d.path = path;
   std::map<double, double> max_sinkage;  // per plate radius: the deepest sinkage so far
   std::map<double, double> max_force;    // per plate radius: the largest force so far
+  std::map<double, bool> rejoined;       // per plate radius: this reload is back on the virgin curve
   for (std::size_t i = 0; i < t.rows(); ++i) {
     PlatePoint p;
     p.line = t.line_of(i);
@@ -74,9 +75,14 @@ PlateData load_plate_csv(const std::string& path) {
                                    t.where(i, "sinkage_m"), p.sinkage, p.radius, deepest, deepest));
     // A reload first climbs its elastic branch past the old deepest point (by the spring-back
     // p / Ke); it is back on the virgin curve once its force passes the largest force so far.
+    // Once there it stays there until the next unload: a noisy force (a CRM curve) that dips below
+    // the old largest force is still virgin loading, not a new elastic branch of one row.
     double& strongest = max_force[p.radius];
+    bool& back_on_virgin = rejoined[p.radius];
+    if (p.phase == PlatePhase::kUnload) back_on_virgin = false;
     p.fitted = p.phase != PlatePhase::kUnload && p.sinkage > 0 && p.sinkage > deepest &&
-               (p.phase != PlatePhase::kReload || p.force >= strongest);
+               (p.phase != PlatePhase::kReload || back_on_virgin || p.force >= strongest);
+    if (p.phase == PlatePhase::kReload && p.fitted) back_on_virgin = true;
     deepest = std::max(deepest, p.sinkage);
     if (p.phase != PlatePhase::kReload || p.fitted) strongest = std::max(strongest, p.force);
     d.points.push_back(p);

@@ -10,7 +10,7 @@ force_at() {  # plate.csv, sinkage -> force on the virgin curve (rows that reach
                                              deep = $2; f = $3 }
                      END { if (!done && deep >= z - 1e-3) printf "%.6g\n", f }' "$1"
 }
-wall_of() { grep -o '"plate_wall_seconds": *[0-9.e+-]*' "$1/run.json" | sed 's/.*: *//'; }
+wall_of() { grep -o '"plate_wall_seconds": *[0-9.e+-]*' "$1/run.json" | sed 's/.*: *//' | xargs printf '%.3g'; }
 bekker() { awk -v z="$1" 'BEGIN { r = 0.2; printf "%.6g", 3.14159265358979 * r * r * (990 / r + 1528430) * z ^ 1.1 }'; }
 zs="0.05 0.1 0.15 0.2"
 crm=$(ls -d "$out"/crm_* 2>/dev/null | sort -t_ -k2 -g || true)

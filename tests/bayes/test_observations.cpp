@@ -26,3 +26,21 @@ TEST_CASE("load / unload / reload: only loading beyond the previous maximum is f
   CHECK(fitted == std::vector<double>{0.01, 0.02, 0.03, 0.035, 0.01, 0.02});
   CHECK(d.radii == std::vector<double>{0.1, 0.2});
 }
+
+TEST_CASE("a noisy reload that has rejoined the virgin curve stays on it until the next unload", "[bayes][observations]") {
+  // A CRM plate's force jitters by a few percent: after the reload passes the old largest force
+  // (1000 N), a row at 980 N is still virgin loading, not a one-row elastic branch.
+  const test::ScratchDir dir("rejoin");
+  const std::string path = dir.str() + "/plate.csv";
+  std::ofstream(path) << "plate_radius_m,sinkage_m,force_N,phase\n"
+                         "0.1,0.01,300,load\n0.1,0.02,650,load\n0.1,0.03,1000,load\n"
+                         "0.1,0.025,400,unload\n0.1,0.02,100,unload\n"
+                         "0.1,0.028,700,reload\n0.1,0.031,1010,reload\n0.1,0.032,980,reload\n0.1,0.033,1100,reload\n"
+                         "0.1,0.03,600,unload\n0.1,0.0335,900,reload\n";
+  const PlateData d = load_plate_csv(path);
+  std::vector<double> fitted;
+  for (const auto& p : d.points)
+    if (p.fitted) fitted.push_back(p.sinkage);
+  // The last reload row (900 N < 1100 N) follows a new unload: elastic again, not fitted.
+  CHECK(fitted == std::vector<double>{0.01, 0.02, 0.03, 0.031, 0.032, 0.033});
+}
