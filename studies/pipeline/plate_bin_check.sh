@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Issue 4, point 6, the plate: how far the walls and the floor must be for the 0.3 m plate's loading
+# curve to stop moving. Runs the plate in CRM at several bin scales (1 = the bin the rigs use:
+# walls 3 radii away, max sinkage + 2.5 radii of soil) and prints the change of the loading leg
+# between each scale and the next, measured as the pipeline's bin check does (the curve in five
+# parts by sample; the largest difference of the parts' means over the largest mean).
+# Usage: [SPACING=0.02] plate_bin_check.sh OUT [TERRACAL=build/terracal] [SCALES="1 1.5 2 2.25"] [extra options...]
+set -euo pipefail
+out=${1:?output folder}; bin=${2:-build/terracal}; scales=${3:-1 1.5 2 2.25}; shift $(( $# < 3 ? $# : 3 ))
+here=$(cd "$(dirname "$0")" && pwd)
+mkdir -p "$out"
+for s in $scales; do
+  [ -f "$out/scale_$s/plate.csv" ] && continue
+  "$bin" bevameter --solver crm --soil "$here/bevameter_soil_2022.json" --test plate --plates 0.3 --max-sinkage 0.2 \
+    --spacing "${SPACING:-0.02}" --bin-scale "$s" --no-plots --out "$out/scale_$s" "$@" > "$out/scale_$s.log" 2>&1
+done
+change() {  # two plate.csv files -> change of the loading leg
+  awk -F, 'FNR == 1 { f++; next } $4 == "load" { n[f]++; v[f, n[f]] = $3 }
+    END { m = n[1] < n[2] ? n[1] : n[2]; d = 0; s = 0
+          for (p = 0; p < 5; p++) { lo = int(p * m / 5) + 1; hi = int((p + 1) * m / 5); a = 0; b = 0
+            for (i = lo; i <= hi; i++) { a += v[1, i]; b += v[2, i] }
+            a /= (hi - lo + 1); b /= (hi - lo + 1); x = a > b ? a - b : b - a
+            if (x > d) d = x; if (a > s) s = a; if (b > s) s = b }
+          printf "%.1f %%", 100 * d / s }' "$1" "$2"
+}
+force_at() { awk -F, -v z="$2" 'NR > 1 && ($4 == "load" || $4 == "reload") && $2 >= z - 1e-4 { print $3; exit }' "$1"; }
+{
+  echo "| bin scale | bin | F(0.1 m) [N] | F(0.2 m) [N] | change of the loading leg from the previous scale |"
+  echo "|---|---|---|---|---|"
+  prev=""
+  for s in $scales; do
+    p=$(grep -o 'CRM bin [0-9.]* x [0-9.]* m, soil [0-9.]* m deep' "$out/scale_$s.log" | head -1 | sed 's/CRM bin //' || true)
+    c=$([ -n "$prev" ] && change "$out/scale_$prev/plate.csv" "$out/scale_$s/plate.csv" || echo "-")
+    echo "| $s | ${p:-?} | $(force_at "$out/scale_$s/plate.csv" 0.1) | $(force_at "$out/scale_$s/plate.csv" 0.2) | $c |"
+    prev=$s
+  done
+} | tee "$out/table.md"
