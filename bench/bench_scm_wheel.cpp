@@ -26,13 +26,7 @@ int main(int argc, char** argv) {
   const double grid = argc > 2 ? std::atof(argv[2]) : 0.01;
   const double duration = argc > 3 ? std::atof(argv[3]) : 5.0;
   omp_set_num_threads(1);
-  lowfi::ScmSoil sand;
-  sand.n = 1.1;
-  sand.Kc = 990;
-  sand.Kphi = 1528430;
-  sand.cohesion = 1040;
-  sand.friction_deg = 28;
-  sand.janosi_k = 0.025;
+  const lowfi::ScmSoil sand = lowfi::reference_dry_sand();
   lowfi::ScmSettings s;
   s.grid = grid;
   s.time_step = 1e-3;

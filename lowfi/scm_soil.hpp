@@ -32,4 +32,18 @@ ScmSoil parse_scm_soil(const nlohmann::json& soil_parameters_block, const std::s
 // The "Soil parameters" block, exactly Chrono's names and units.
 nlohmann::json scm_soil_json(const ScmSoil& soil);
 
+// Dry sand (Land Locomotion Lab), Wong's Table 2.3 (shared/reference/bekker_wong_soils.csv). Wong
+// gives no Janosi k for it; k = 0.025 m is a typical value for loose sand. The soil of the SCM
+// tests, the SCM wheel bench and the SCM against Wong-Reece study.
+inline ScmSoil reference_dry_sand() {
+  ScmSoil s;
+  s.n = 1.1;
+  s.Kc = 990;
+  s.Kphi = 1528430;
+  s.cohesion = 1040;
+  s.friction_deg = 28;
+  s.janosi_k = 0.025;
+  return s;
+}
+
 }  // namespace terracal::lowfi

@@ -18,18 +18,7 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-// Dry sand (Land Locomotion Lab) from Wong's Table 2.3 (shared/reference/bekker_wong_soils.csv).
-// Wong gives no Janosi k for it; k = 0.025 m is our choice, a typical value for loose sand.
-ScmSoil dry_sand() {
-  ScmSoil s;
-  s.n = 1.1;
-  s.Kc = 990;
-  s.Kphi = 1528430;
-  s.cohesion = 1040;
-  s.friction_deg = 28;
-  s.janosi_k = 0.025;
-  return s;
-}
+ScmSoil dry_sand() { return reference_dry_sand(); }
 
 const WongReeceWheel kWheel{0.47, 0.25};
 const double kLoad = 108 * 9.81;  // the DESIGN.md wheel: 108 kg on Earth
