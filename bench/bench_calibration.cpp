@@ -14,15 +14,13 @@
 
 #include "bayes/calibrator.hpp"
 #include "bayes/synthetic_data.hpp"
+#include "bench/bench_stats.hpp"
 
 using namespace terracal;
 using namespace terracal::bayes;
 using Clock = std::chrono::steady_clock;
 
-static double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
+using bench::median;
 
 int main(int argc, char** argv) {
   const int repeats = argc > 1 ? std::atoi(argv[1]) : 5;

@@ -16,14 +16,12 @@
 #include <nlohmann/json.hpp>
 
 #include "highfi/crm_solver.hpp"
+#include "bench/bench_stats.hpp"
 
 using namespace terracal;
 using Clock = std::chrono::steady_clock;
 
-static double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
+using bench::median;
 
 static nlohmann::json soil() {
   return {{"density", 1700}, {"young_modulus", 1e6}, {"poisson_ratio", 0.3}, {"mu_s", 0.7}, {"mu_2", 0.7},

@@ -1,6 +1,6 @@
 // Issue 4, point 12: the SCM single wheel (radius 0.47 m, width 0.25 m, 108 kg, 1 rad/s, slip 0.3) on
 // dry sand at a 0.01 m grid and a 1e-3 s step, on one core: simulated seconds per wall second
-// (target >= 20), the median of repeated runs, with the cost per step split into its parts.
+// (target >= 20), the median of repeated runs (where the time goes: perf, see RESULTS.md).
 // Usage: bench_scm_wheel [repeats=5] [grid=0.01] [duration=5]
 #include <algorithm>
 #include <chrono>
@@ -12,14 +12,12 @@
 
 #include "lowfi/scm_terrain.hpp"
 #include "virtual_bevameter/wheel_rig.hpp"
+#include "bench/bench_stats.hpp"
 
 using namespace terracal;
 using Clock = std::chrono::steady_clock;
 
-static double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
+using bench::median;
 
 int main(int argc, char** argv) {
   const int repeats = argc > 1 ? std::atoi(argv[1]) : 5;
