@@ -68,6 +68,10 @@ Command add_demo(CLI::App& app) {
     // tool radii away), and the annulus turned 0.6 rad (0.06-0.12 m of slip at the ring, 20-40
     // Janosi lengths: the torque has levelled off).
     p.bevameter.bin_scale = 0.7;
+    // The demo keeps the small plate bin (walls 3 radii away over max sinkage + 2.5 radii of soil,
+    // then 0.7x): the checked bin is 27x more particles. Its plate curves lie 20-40 % high.
+    p.bevameter.plate_wall_radii = 3;
+    p.bevameter.plate_depth_scale = 1;
     p.bevameter.shear_angle = 0.6;
     p.slips = {0, 0.2, 0.4, 0.6, 0.8};
     p.crm_wheel_run.duration = p.scm_wheel_run.duration = 1.5;

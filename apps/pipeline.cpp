@@ -60,7 +60,8 @@ std::vector<Check> run_checks(const PipelinePlan& plan, const SoilChoice& crm, c
                               const std::vector<rigs::WheelResult>& base_wheel) {
   std::vector<Check> out;
   TerrainOptions big = plan.terrain;
-  big.bin_scale = 1.5;
+  big.bin_scale = 1.5 * plan.terrain.bin_scale;
+  if (big.bin_depth_scale > 0) big.bin_depth_scale *= 1.5;
   // Plate: the largest plate in a 1.5x bin, 1.5x deeper.
   BevameterPlan p = plan.bevameter;
   p.plates = {*std::max_element(p.plates.begin(), p.plates.end())};

@@ -20,7 +20,8 @@ double seconds_since(Clock::time_point t) { return std::chrono::duration<double>
 std::unique_ptr<TerrainSite> site_for(const SoilChoice& soil, const TerrainOptions& o, double half_length, double half_width, double depth) {
   if (soil.solver == "crm") {
     if (!soil.crm) throw InputError("--solver crm needs a CRM soil (--soil SOIL.json)");
-    return crm_site(*soil.crm, o, o.bin_scale * half_length, o.bin_scale * half_width, o.bin_scale * depth);
+    const double depth_scale = o.bin_depth_scale > 0 ? o.bin_depth_scale : o.bin_scale;
+    return crm_site(*soil.crm, o, o.bin_scale * half_length, o.bin_scale * half_width, depth_scale * depth);
   }
   if (soil.solver == "scm") {
     if (!soil.scm) throw InputError("--solver scm needs an SCM parameter set (--scm SCM.json)");
@@ -57,13 +58,14 @@ BevameterCurves run_bevameter(const SoilChoice& soil, const TerrainOptions& o, c
     if (plan.plates.empty()) throw InputError("--plates: give at least one plate radius");
     for (double r : plan.plates) rigs::check_range("--plates radius", r, 0.01, 2, "m");
     rigs::check_range("--max-sinkage", plan.max_sinkage, 1e-3, 2, "m");
-    const double r_max = *std::max_element(plan.plates.begin(), plan.plates.end());
+    rigs::check_range("plate bin wall radii", plan.plate_wall_radii, 1.5, 50, "");
+    rigs::check_range("plate bin depth scale", plan.plate_depth_scale, 0.5, 10, "");
     const auto t0 = Clock::now();
-    // Room for the plate's pressure bulb: 3 radii to the walls and 2.5 radii of soil below the
-    // deepest point (with 2 radii and 1 radius below, a 1.5x bin moved the 0.3 m plate's force by 28 %).
-    auto site = site_for(soil, o, k * 3 * r_max + o.spacing, k * 3 * r_max + o.spacing, k * (plan.max_sinkage + 2.5 * r_max));
-    c.site = site->description();
     for (double r : plan.plates) {
+      // Each plate in a bin sized by its own radius (see BevameterPlan::plate_wall_radii).
+      const double half = k * plan.plate_wall_radii * r + o.spacing;
+      auto site = site_for(soil, o, half, half, k * plan.plate_depth_scale * (plan.max_sinkage + 2.5 * r));
+      if (c.site.find(site->description()) == std::string::npos) c.site += (c.site.empty() ? "" : "; ") + site->description();
       rigs::PlateTest t;
       t.radius = r;
       t.max_sinkage = plan.max_sinkage;

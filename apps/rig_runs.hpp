@@ -32,6 +32,11 @@ struct BevameterPlan {
   // The plate and annulus bins (walls and depth) scaled by this on top of --bin-scale. Below 1 only
   // for the coarse demo, whose bins are smaller than the sizes the bin-size check asks for.
   double bin_scale = 1;
+  // The plate's bin, from the check on the 0.3 m plate (results/plate_bin_check): walls this many
+  // plate radii from the centre and plate_depth_scale x (max sinkage + 2.5 radii) of soil. There a
+  // 1.5x wider bin moves the loading leg by 2.2 % and a 1.5x deeper one by 1.5 %; walls at 3 radii
+  // over half that soil put the curve 20-40 % above it.
+  double plate_wall_radii = 9, plate_depth_scale = 2;
 };
 
 struct BevameterCurves {

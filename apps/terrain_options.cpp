@@ -21,6 +21,7 @@ void add_terrain_options(CLI::App* sub, TerrainOptions& o, bool crm, bool scm) {
     sub->add_option("--cache", o.cache, "folder of settled CRM beds ('' = no cache)")->capture_default_str();
     sub->add_option("--settle-time", o.settle_time, "CRM settling before the test [s]")->capture_default_str();
     sub->add_option("--bin-scale", o.bin_scale, "CRM bin (and bed depth) scaled by this factor: the bin-size check")->capture_default_str();
+    sub->add_option("--bin-depth-scale", o.bin_depth_scale, "CRM bed depth scaled by this factor instead (0: as --bin-scale)")->capture_default_str();
   }
   if (scm) {
     sub->add_option("--scm", o.scm_json, "SCM parameter file (Chrono SCM JSON or terracal's scm_params.json)");
@@ -52,6 +53,8 @@ std::unique_ptr<TerrainSite> crm_site(const CrmSoil& soil, const TerrainOptions&
   if (!(o.spacing > 0 && o.spacing < 1)) throw InputError(fmt::format("--spacing {}: expected in (0, 1) m", o.spacing));
   if (!(o.step >= 0)) throw InputError(fmt::format("--step {}: expected >= 0 s", o.step));
   if (!(o.bin_scale >= 1 && o.bin_scale <= 10)) throw InputError(fmt::format("--bin-scale {}: expected in [1, 10]", o.bin_scale));
+  if (!(o.bin_depth_scale == 0 || (o.bin_depth_scale >= 1 && o.bin_depth_scale <= 10)))
+    throw InputError(fmt::format("--bin-depth-scale {}: expected 0 (as --bin-scale) or in [1, 10]", o.bin_depth_scale));
   CrmScene sc;
   sc.source = o.soil_json.empty() ? "embedded soil" : o.soil_json;
   sc.soil = soil;

@@ -4,15 +4,18 @@
 # walls 3 radii away, max sinkage + 2.5 radii of soil) and prints the change of the loading leg
 # between each scale and the next, measured as the pipeline's bin check does (the curve in five
 # parts by sample; the largest difference of the parts' means over the largest mean).
+# A scale W:D scales the walls by W and the depth by D (to tell which of the two the curve feels).
 # Usage: [SPACING=0.02] plate_bin_check.sh OUT [TERRACAL=build/terracal] [SCALES="1 1.5 2 2.25"] [extra options...]
 set -euo pipefail
 out=${1:?output folder}; bin=${2:-build/terracal}; scales=${3:-1 1.5 2 2.25}; shift $(( $# < 3 ? $# : 3 ))
 here=$(cd "$(dirname "$0")" && pwd)
 mkdir -p "$out"
+tag() { echo "scale_${1/:/_d}"; }  # no ':' in file names
 for s in $scales; do
-  [ -f "$out/scale_$s/plate.csv" ] && continue
+  [ -f "$out/$(tag "$s")/plate.csv" ] && continue
+  w=${s%%:*}; d=${s#*:}
   "$bin" bevameter --solver crm --soil "$here/bevameter_soil_2022.json" --test plate --plates 0.3 --max-sinkage 0.2 \
-    --spacing "${SPACING:-0.02}" --bin-scale "$s" --no-plots --out "$out/scale_$s" "$@" > "$out/scale_$s.log" 2>&1
+    --spacing "${SPACING:-0.02}" --bin-scale "$w" --bin-depth-scale "$d" --no-plots --out "$out/$(tag "$s")" "$@" > "$out/$(tag "$s").log" 2>&1
 done
 change() {  # two plate.csv files -> change of the loading leg
   awk -F, 'FNR == 1 { f++; next } $4 == "load" { n[f]++; v[f, n[f]] = $3 }
@@ -29,9 +32,10 @@ force_at() { awk -F, -v z="$2" 'NR > 1 && ($4 == "load" || $4 == "reload") && $2
   echo "|---|---|---|---|---|"
   prev=""
   for s in $scales; do
-    p=$(grep -o 'CRM bin [0-9.]* x [0-9.]* m, soil [0-9.]* m deep' "$out/scale_$s.log" | head -1 | sed 's/CRM bin //' || true)
-    c=$([ -n "$prev" ] && change "$out/scale_$prev/plate.csv" "$out/scale_$s/plate.csv" || echo "-")
-    echo "| $s | ${p:-?} | $(force_at "$out/scale_$s/plate.csv" 0.1) | $(force_at "$out/scale_$s/plate.csv" 0.2) | $c |"
+    t=$(tag "$s")
+    p=$(grep -o 'CRM bin [0-9.]* x [0-9.]* m, soil [0-9.]* m deep' "$out/$t.log" 2>/dev/null | head -1 | sed 's/CRM bin //' || true)
+    c=$([ -n "$prev" ] && change "$out/$(tag "$prev")/plate.csv" "$out/$t/plate.csv" || echo "-")
+    echo "| $s | ${p:-?} | $(force_at "$out/$t/plate.csv" 0.1) | $(force_at "$out/$t/plate.csv" 0.2) | $c |"
     prev=$s
   done
 } | tee "$out/table.md"
