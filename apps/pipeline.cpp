@@ -221,6 +221,13 @@ int run_pipeline(const PipelinePlan& plan) {
   }
   md += fmt::format("\nCalibration: {} (calibration/summary.txt).\n\n", cal_status == 0 ? "converged" : "NOT converged");
   if (!scm_note.empty()) md += "**Note.** " + scm_note + "\n\n";
+  // The checked plate bin (results/plate_bin_check): walls 9 radii away, depth scale 2.
+  const double walls = plan.bevameter.plate_wall_radii * plan.bevameter.bin_scale * plan.terrain.bin_scale;
+  const double depth = plan.bevameter.plate_depth_scale * plan.bevameter.bin_scale * (plan.terrain.bin_depth_scale > 0 ? plan.terrain.bin_depth_scale : plan.terrain.bin_scale);
+  if (walls < 9 - 1e-9 || depth < 2 - 1e-9)
+    md += fmt::format("**Note.** The CRM plate bin (walls {:.3g} plate radii away, soil {:.3g} x (max sinkage + 2.5 radii)) is smaller than "
+                      "the checked bin (9 radii, 2x): the plate curves read high (20-40 % at 3 radii and 1x, results/plate_bin_check).\n\n",
+                      walls, depth);
   md += fmt::format("## Single wheel (radius {} m, width {} m, mass {} kg, omega {} rad/s)\n\n![wheel](wheel.png)\n\n", plan.wheel.radius,
                     plan.wheel.width, plan.wheel.mass, plan.wheel.angular_velocity);
   md += "| slip | DBP CRM [N] | DBP SCM | DBP W-R | torque CRM [N m] | torque SCM | torque W-R | sinkage CRM [m] | sinkage SCM | sinkage W-R |\n";

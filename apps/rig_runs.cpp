@@ -58,8 +58,8 @@ BevameterCurves run_bevameter(const SoilChoice& soil, const TerrainOptions& o, c
     if (plan.plates.empty()) throw InputError("--plates: give at least one plate radius");
     for (double r : plan.plates) rigs::check_range("--plates radius", r, 0.01, 2, "m");
     rigs::check_range("--max-sinkage", plan.max_sinkage, 1e-3, 2, "m");
-    rigs::check_range("plate bin wall radii", plan.plate_wall_radii, 1.5, 50, "");
-    rigs::check_range("plate bin depth scale", plan.plate_depth_scale, 0.5, 10, "");
+    rigs::check_range("--plate-wall-radii", plan.plate_wall_radii, 1.5, 50, "");
+    rigs::check_range("--plate-depth-scale", plan.plate_depth_scale, 0.5, 10, "");
     const auto t0 = Clock::now();
     for (double r : plan.plates) {
       // Each plate in a bin sized by its own radius (see BevameterPlan::plate_wall_radii).

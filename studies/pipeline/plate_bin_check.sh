@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Issue 4, point 6, the plate: how far the walls and the floor must be for the 0.3 m plate's loading
 # curve to stop moving. Runs the plate in CRM at several bin scales (1 = the bin the rigs use:
-# walls 3 radii away, max sinkage + 2.5 radii of soil) and prints the change of the loading leg
-# between each scale and the next, measured as the pipeline's bin check does (the curve in five
-# parts by sample; the largest difference of the parts' means over the largest mean).
+# walls 9 radii away, 2 x (max sinkage + 2.5 radii) of soil; pass --plate-wall-radii 3
+# --plate-depth-scale 1 to start from the earlier bin, as results/plate_bin_check does) and prints
+# the change of the loading leg between each scale and the next, measured as the pipeline's bin
+# check does (the curve in five parts by sample; the largest difference of the parts' means over
+# the largest mean).
 # A scale W:D scales the walls by W and the depth by D (to tell which of the two the curve feels).
 # Usage: [SPACING=0.02] plate_bin_check.sh OUT [TERRACAL=build/terracal] [SCALES="1 1.5 2 2.25"] [extra options...]
 set -euo pipefail
