@@ -68,18 +68,32 @@ ContactPatches find_contact_patches(const std::vector<GridIndex>& nodes, double 
   };
   std::vector<int> stack;
   std::vector<std::pair<double, double>> pts;
-  std::unordered_map<int, std::pair<int, int>> row_extent;  // per row j of a patch: min and max i
+  // Per row j of the patch being filled: its min and max i (rows indexed from jlo; rows[] holds
+  // the rows touched, so that resetting costs only what the patch used).
+  // Bodies far apart in j (sparse) keep the extents in a map instead of a vector over the gap.
+  const bool dense_rows = h <= 4 * long(nodes.size()) + 4096;
+  std::vector<std::pair<int, int>> extent(dense_rows ? std::size_t(h) : 0, {1, 0});  // empty: min > max
+  std::unordered_map<int, std::pair<int, int>> extent_far;
+  auto row = [&](int j) -> std::pair<int, int>& {
+    return dense_rows ? extent[std::size_t(j - jlo)] : extent_far.try_emplace(j, 1, 0).first->second;
+  };
+  std::vector<int> rows;
   for (std::size_t seed = 0; seed < nodes.size(); ++seed) {
     if (out.patch_of[seed] >= 0) continue;
     const int patch = int(out.count());
     out.patch_of[seed] = patch;
     stack.assign(1, int(seed));
-    row_extent.clear();
+    rows.clear();
     while (!stack.empty()) {
       const int n = stack.back();
       stack.pop_back();
-      auto [it, fresh] = row_extent.try_emplace(nodes[n].j, nodes[n].i, nodes[n].i);
-      if (!fresh) it->second = {std::min(it->second.first, nodes[n].i), std::max(it->second.second, nodes[n].i)};
+      auto& e = row(nodes[n].j);
+      if (e.first > e.second) {
+        e = {nodes[n].i, nodes[n].i};
+        rows.push_back(nodes[n].j);
+      } else {
+        e = {std::min(e.first, nodes[n].i), std::max(e.second, nodes[n].i)};
+      }
       const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
       for (int q = 0; q < 4; ++q) {
         const int m = find(nodes[n].i + di[q], nodes[n].j + dj[q]);
@@ -91,9 +105,11 @@ ContactPatches find_contact_patches(const std::vector<GridIndex>& nodes, double 
     }
     // The hull of a set of grid points is the hull of each row's two ends.
     pts.clear();
-    for (const auto& [j, e] : row_extent) {
+    for (const int j : rows) {
+      auto& e = row(j);
       pts.emplace_back(e.first * grid, j * grid);
       if (e.second != e.first) pts.emplace_back(e.second * grid, j * grid);
+      e = {1, 0};
     }
     double a = 0, p = 0;
     convex_hull_measures(pts, a, p);

@@ -177,7 +177,7 @@ void ScmTerrain::cast_rays(std::vector<Hit>& hits) const {
         const double h = at(ii, jj);
         if (!(h < kInf)) continue;
         const int i = i0 + ii, j = j0 + jj;
-        if (h >= free_surface(i, j)) continue;
+        if (h >= settings_.surface_height + max_level_offset_) continue;  // above any soil; contact() checks this node's
         // The underside z = h(x, y): outward (downward-facing) normal is (dh/dx, dh/dy, -1); the soil
         // pushes along minus that, i.e. along (-dh/dx, -dh/dy, 1).
         const double hx = slope(at(ii - 1, jj), h, at(ii + 1, jj)), hy = slope(at(ii, jj - 1), h, at(ii, jj + 1));
@@ -194,13 +194,28 @@ void ScmTerrain::cast_rays(std::vector<Hit>& hits) const {
   }
 }
 
-void ScmTerrain::contact(const std::vector<Hit>& hits) {
+void ScmTerrain::contact(const std::vector<Hit>& candidates) {
   const double g = settings_.grid, area = g * g, dt = settings_.time_step;
   const double ke = soil_.elastic_stiffness;
   for (auto& w : wrenches_) w = {};
   stats_ = {};
-  stats_.rays = int(hits.size());
   stats_.body_contact_area.assign(bodies_.size(), 0.0);
+  // The hits below their node's free surface, each with its node: one hash lookup per hit, and a
+  // node is stored only once a body has pushed into it.
+  std::vector<Hit> hits;
+  std::vector<ScmNode*> hit_nodes;
+  hits.reserve(candidates.size());
+  hit_nodes.reserve(candidates.size());
+  for (const Hit& c : candidates) {
+    const std::int64_t k = key(c.i, c.j);
+    auto it = nodes_.find(k);
+    const double surface = settings_.surface_height + (it == nodes_.end() ? 0.0 : it->second.level_offset - it->second.plastic_sinkage);
+    if (c.level >= surface) continue;
+    if (it == nodes_.end()) it = nodes_.emplace(k, ScmNode{}).first;
+    hits.push_back(c);
+    hit_nodes.push_back(&it->second);
+  }
+  stats_.rays = int(hits.size());
   // Contact patches and their Bekker widths.
   std::vector<GridIndex> idx;
   idx.reserve(hits.size());
@@ -214,7 +229,7 @@ void ScmTerrain::contact(const std::vector<Hit>& hits) {
   now.reserve(hits.size());
   for (std::size_t h = 0; h < hits.size(); ++h) {
     const Hit& hit = hits[h];
-    ScmNode& n = nodes_[key(hit.i, hit.j)];
+    ScmNode& n = *hit_nodes[h];
     const double undisturbed = settings_.surface_height + n.level_offset;
     const double z = undisturbed - hit.level;  // total sinkage
     const double b = patches.bekker_width[patches.patch_of[h]];
@@ -249,6 +264,7 @@ void ScmTerrain::contact(const std::vector<Hit>& hits) {
     n.tau = tau;
     n.deepest = std::max(n.deepest, z);
     n.in_contact = true;
+    n.contact_step = steps_;
     now.push_back(key(hit.i, hit.j));
     // Pressure on the body's surface element (projected area g^2, true area g^2 / n_z).
     const double surface = area / nrm.z;
@@ -264,10 +280,9 @@ void ScmTerrain::contact(const std::vector<Hit>& hits) {
   }
   // Nodes the bodies left this step: the shear spring is released; without elastic unloading the
   // soil keeps the deepest sinkage it was pushed to.
-  std::sort(now.begin(), now.end());
   for (const std::int64_t k : contact_keys_) {
-    if (std::binary_search(now.begin(), now.end(), k)) continue;
     ScmNode& n = nodes_[k];
+    if (n.contact_step == steps_) continue;  // still in contact
     if (!settings_.effects.elastic_unloading) n.plastic_sinkage = std::max(n.plastic_sinkage, n.deepest);
     n.deepest = 0;
     n.shear = {};

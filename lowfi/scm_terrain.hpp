@@ -55,6 +55,7 @@ struct ScmNode {
   Vec3<double> shear{};        // accumulated shear displacement of the current contact [m]
   double level_offset = 0;     // bulldozing: soil added (+) or removed (-) on top of the undisturbed surface
   bool in_contact = false;
+  long contact_step = -1;      // the last step this node was in contact (releases the others)
 };
 
 struct ScmStepStats {
@@ -100,7 +101,7 @@ class ScmTerrain final : public Terrain {
     Vec3<double> normal;   // outward normal of the body's underside (from neighbouring rays)
   };
   void cast_rays(std::vector<Hit>& hits) const;
-  void contact(const std::vector<Hit>& hits);
+  void contact(const std::vector<Hit>& candidates);  // candidates: hits below the highest soil
   void check_step() const;
   void update_contact();  // rays, contact and wrenches at the current poses
   void bulldoze(const std::vector<Hit>& hits, const ContactPatches& patches, const std::vector<double>& displaced);
