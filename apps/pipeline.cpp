@@ -223,7 +223,7 @@ int run_pipeline(const PipelinePlan& plan) {
   if (!scm_note.empty()) md += "**Note.** " + scm_note + "\n\n";
   // The checked plate bin (results/plate_bin_check): walls 9 radii away, depth scale 2.
   const double walls = plan.bevameter.plate_wall_radii * plan.bevameter.bin_scale * plan.terrain.bin_scale;
-  const double depth = plan.bevameter.plate_depth_scale * plan.bevameter.bin_scale * (plan.terrain.bin_depth_scale > 0 ? plan.terrain.bin_depth_scale : plan.terrain.bin_scale);
+  const double depth = plan.bevameter.plate_depth_scale * plan.bevameter.bin_scale * plan.terrain.depth_scale();
   if (walls < 9 - 1e-9 || depth < 2 - 1e-9)
     md += fmt::format("**Note.** The CRM plate bin (walls {:.3g} plate radii away, soil {:.3g} x (max sinkage + 2.5 radii)) is smaller than "
                       "the checked bin (9 radii, 2x): the plate curves read high (20-40 % at 3 radii and 1x, results/plate_bin_check).\n\n",

@@ -20,8 +20,7 @@ double seconds_since(Clock::time_point t) { return std::chrono::duration<double>
 std::unique_ptr<TerrainSite> site_for(const SoilChoice& soil, const TerrainOptions& o, double half_length, double half_width, double depth) {
   if (soil.solver == "crm") {
     if (!soil.crm) throw InputError("--solver crm needs a CRM soil (--soil SOIL.json)");
-    const double depth_scale = o.bin_depth_scale > 0 ? o.bin_depth_scale : o.bin_scale;
-    return crm_site(*soil.crm, o, o.bin_scale * half_length, o.bin_scale * half_width, depth_scale * depth);
+    return crm_site(*soil.crm, o, o.bin_scale * half_length, o.bin_scale * half_width, o.depth_scale() * depth);
   }
   if (soil.solver == "scm") {
     if (!soil.scm) throw InputError("--solver scm needs an SCM parameter set (--scm SCM.json)");

@@ -26,6 +26,7 @@ struct TerrainOptions {
   std::vector<double> gravity;           // SCM: override Earth gravity
   double bin_scale = 1;                  // CRM bins (and their depth) scaled by this: the bin-size check
   double bin_depth_scale = 0;            // the bed's depth scaled by this instead (0 = bin_scale): which dimension matters
+  double depth_scale() const { return bin_depth_scale > 0 ? bin_depth_scale : bin_scale; }
 };
 void add_terrain_options(CLI::App* sub, TerrainOptions& o, bool crm, bool scm);
 

@@ -177,7 +177,7 @@ void ScmTerrain::cast_rays(std::vector<Hit>& hits) const {
         const double h = at(ii, jj);
         if (!(h < kInf)) continue;
         const int i = i0 + ii, j = j0 + jj;
-        if (h >= settings_.surface_height + max_level_offset_) continue;  // above any soil; contact() checks this node's
+        if (h >= top) continue;  // above any soil; contact() checks against this node's surface
         // The underside z = h(x, y): outward (downward-facing) normal is (dh/dx, dh/dy, -1); the soil
         // pushes along minus that, i.e. along (-dh/dx, -dh/dy, 1).
         const double hx = slope(at(ii - 1, jj), h, at(ii + 1, jj)), hy = slope(at(ii, jj - 1), h, at(ii, jj + 1));
