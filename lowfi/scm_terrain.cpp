@@ -126,10 +126,12 @@ void ScmTerrain::cast_rays(std::vector<Hit>& hits) const {
     // Ray in the body frame: origin R^T (o - c), direction R^T e_z.
     const Quat inv{states_[b].orientation.w, -states_[b].orientation.x, -states_[b].orientation.y, -states_[b].orientation.z};
     const Vec3<double> dir = inv.rotate({0, 0, 1});
+    // Ray origins on the grid are affine in (ii, jj): rotate the first and the two steps once.
+    const Vec3<double> o00 = inv.rotate(Vec3<double>{i0 * g, j0 * g, z0} - states_[b].position);
+    const Vec3<double> step_i = inv.rotate({g, 0, 0}), step_j = inv.rotate({0, g, 0});
     std::vector<double> level(std::size_t(nx) * ny, kInf);
     auto cast = [&](int ii, int jj, double reach) {
-      const Vec3<double> o{(i0 + ii) * g, (j0 + jj) * g, z0};
-      const double t = shapes_[b].first_hit(inv.rotate(o - states_[b].position), dir, reach);
+      const double t = shapes_[b].first_hit(o00 + double(ii) * step_i + double(jj) * step_j, dir, reach);
       return t < kInf ? z0 + t : kInf;
     };
     // Most of a body's bounds is far above the soil (a wheel touches it over a fifth of its length).
