@@ -9,6 +9,22 @@
 
 namespace terracal {
 
+double bed_surface_height(const HostSoil& bed, const CrmScene& scene) {
+  const double d0 = scene.numerics.spacing;
+  const double length = scene.bin.fill_length > 0 ? scene.bin.fill_length : scene.bin.size.x;
+  const double cx = 0.5 * length, cy = 0.5 * scene.bin.size.y, hx = 0.25 * length, hy = 0.25 * scene.bin.size.y;
+  auto middle = [&](const Vec4<double>& p) { return std::abs(p.x - cx) < hx && std::abs(p.y - cy) < hy; };
+  double top = -1e300;
+  for (const auto& p : bed.pos)
+    if (middle(p)) top = std::max(top, p.z);
+  double sum = 0;
+  int n = 0;
+  for (const auto& p : bed.pos)
+    if (middle(p) && p.z > top - 0.5 * d0) sum += p.z, ++n;
+  if (n == 0) throw RunError("CRM: the settled bed has no particles in the middle of the bin");
+  return sum / n + 0.5 * d0;
+}
+
 std::string CrmTerrain::description() const {
   const CrmScene& s = solver_.scene();
   return fmt::format("CRM, spacing {} m, step {:.3g} s", s.numerics.spacing, s.numerics.time_step);
@@ -39,20 +55,7 @@ CrmSite::CrmSite(const CrmScene& base, CrmDevice device, const std::filesystem::
   base_.bodies.clear();
   validate_crm_scene(base_);
   bed_ = settled_bed(base_, device_, cache_dir, &from_cache_);
-  // The surface: the mean height of the top layer of particles in the middle half of the bin (away
-  // from the walls' meniscus), plus half a spacing.
-  const double d0 = base_.numerics.spacing;
-  const Vec3<double> c = centre();
-  const double hx = 0.25 * (base_.bin.fill_length > 0 ? base_.bin.fill_length : base_.bin.size.x), hy = 0.25 * base_.bin.size.y;
-  double top = -1e300;
-  for (const auto& p : bed_.pos)
-    if (std::abs(p.x - c.x) < hx && std::abs(p.y - c.y) < hy) top = std::max(top, p.z);
-  double sum = 0;
-  int n = 0;
-  for (const auto& p : bed_.pos)
-    if (std::abs(p.x - c.x) < hx && std::abs(p.y - c.y) < hy && p.z > top - 0.5 * d0) sum += p.z, ++n;
-  if (n == 0) throw RunError("CRM: the settled bed has no particles in the middle of the bin");
-  surface_ = sum / n + 0.5 * d0;
+  surface_ = bed_surface_height(bed_, base_);
 }
 
 std::string CrmSite::description() const {

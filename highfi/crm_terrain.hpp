@@ -10,6 +10,11 @@
 
 namespace terracal {
 
+// The soil surface of a bed: the mean height of its top layer of particles in the middle half of the
+// bin (away from the walls' meniscus), plus half a spacing. Throws RunError for a bed with no
+// particles there.
+double bed_surface_height(const HostSoil& bed, const CrmScene& scene);
+
 class CrmTerrain final : public Terrain {
  public:
   CrmTerrain(const CrmScene& scene, CrmDevice device, const HostSoil& bed) : solver_(scene, device, &bed) {}

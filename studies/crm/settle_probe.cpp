@@ -2,7 +2,7 @@
 // (initial_bed, as settling starts), with the kinetic energy, the largest particle speed and the
 // surface height of the middle of the bin printed every 0.025 s as CSV. Optionally the velocities
 // are zeroed at t_zero (as settled_bed does at the end of --settle-time) and the run goes on, to
-// show what a rig placed on that bed would meet.
+// show what a rig placed on that bed would meet. The surface is measured as a CrmSite measures it.
 // Usage: crm_settle_probe DEPTH SPACING WIDTH T_END [T_ZERO=0] [cpu|cuda]
 #include <cmath>
 #include <cstdio>
@@ -12,23 +12,9 @@
 
 #include "highfi/crm_scene.hpp"
 #include "highfi/crm_solver.hpp"
+#include "highfi/crm_terrain.hpp"
 
 using namespace terracal;
-
-namespace {
-// Mean height of the top layer of particles in the middle half of the bin (as CrmSite measures it).
-double surface_height(const HostSoil& s, const CrmScene& sc) {
-  const double cx = sc.bin.size.x / 2, cy = sc.bin.size.y / 2, hx = sc.bin.size.x / 4, hy = sc.bin.size.y / 4;
-  auto middle = [&](const Vec4<double>& p) { return std::abs(p.x - cx) < hx && std::abs(p.y - cy) < hy; };
-  double top = -1e300, sum = 0;
-  int n = 0;
-  for (const auto& p : s.pos)
-    if (middle(p)) top = std::max(top, p.z);
-  for (const auto& p : s.pos)
-    if (middle(p) && p.z > top - 0.5 * sc.numerics.spacing) sum += p.z, ++n;
-  return n > 0 ? sum / n : 0;
-}
-}  // namespace
 
 int main(int argc, char** argv) {
   if (argc < 5) {
@@ -64,7 +50,7 @@ int main(int argc, char** argv) {
     if (k % every == 0) {
       const SoilStats st = solver->stats();
       std::printf("%.4f,%.5g,%.4g,%.4g,%.6f\n", k * dt, st.kinetic_energy, std::sqrt(2 * st.kinetic_energy / mass), st.max_speed,
-                  surface_height(solver->soil(), sc));
+                  bed_surface_height(solver->soil(), sc));
       std::fflush(stdout);
     }
   }
