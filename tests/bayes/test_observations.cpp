@@ -10,19 +10,30 @@
 using namespace terracal;
 using namespace terracal::bayes;
 
-TEST_CASE("load / unload / reload: only loading beyond the previous maximum is fitted", "[bayes][observations]") {
-  const test::ScratchDir dir("phases");
+namespace {
+// Writes a plate.csv with these rows, loads it as the calibrator does, and returns the data and the
+// sinkages of the rows it fits.
+PlateData load_rows(const std::string& name, const std::string& rows, std::vector<double>& fitted) {
+  const test::ScratchDir dir(name);
   const std::string path = dir.str() + "/plate.csv";
-  std::ofstream(path) << "plate_radius_m,sinkage_m,force_N,phase\n"
-                         "0.1,0.01,300,load\n0.1,0.02,650,load\n0.1,0.03,1000,load\n"
-                         "0.1,0.025,400,unload\n0.1,0.02,100,unload\n"
-                         "0.1,0.022,200,load\n0.1,0.026,500,reload\n0.1,0.035,1200,reload\n"
-                         "0.2,0.01,1100,\n0.2,0.02,2300,\n"
-                         "0.3,0,0,load\n";  // a plate with no sinkage: no information
-  const PlateData d = load_plate_csv(path);
-  std::vector<double> fitted;
+  std::ofstream(path) << "plate_radius_m,sinkage_m,force_N,phase\n" << rows;
+  PlateData d = load_plate_csv(path);
+  fitted.clear();
   for (const auto& p : d.points)
     if (p.fitted) fitted.push_back(p.sinkage);
+  return d;
+}
+}  // namespace
+
+TEST_CASE("load / unload / reload: only loading beyond the previous maximum is fitted", "[bayes][observations]") {
+  std::vector<double> fitted;
+  const PlateData d = load_rows("phases",
+                                "0.1,0.01,300,load\n0.1,0.02,650,load\n0.1,0.03,1000,load\n"
+                                "0.1,0.025,400,unload\n0.1,0.02,100,unload\n"
+                                "0.1,0.022,200,load\n0.1,0.026,500,reload\n0.1,0.035,1200,reload\n"
+                                "0.2,0.01,1100,\n0.2,0.02,2300,\n"
+                                "0.3,0,0,load\n",  // a plate with no sinkage: no information
+                                fitted);
   CHECK(fitted == std::vector<double>{0.01, 0.02, 0.03, 0.035, 0.01, 0.02});
   CHECK(d.radii == std::vector<double>{0.1, 0.2});
 }
@@ -30,17 +41,13 @@ TEST_CASE("load / unload / reload: only loading beyond the previous maximum is f
 TEST_CASE("a noisy reload that has rejoined the virgin curve stays on it until the next unload", "[bayes][observations]") {
   // A CRM plate's force jitters by a few percent: after the reload passes the old largest force
   // (1000 N), a row at 980 N is still virgin loading, not a one-row elastic branch.
-  const test::ScratchDir dir("rejoin");
-  const std::string path = dir.str() + "/plate.csv";
-  std::ofstream(path) << "plate_radius_m,sinkage_m,force_N,phase\n"
-                         "0.1,0.01,300,load\n0.1,0.02,650,load\n0.1,0.03,1000,load\n"
-                         "0.1,0.025,400,unload\n0.1,0.02,100,unload\n"
-                         "0.1,0.028,700,reload\n0.1,0.031,1010,reload\n0.1,0.032,980,reload\n0.1,0.033,1100,reload\n"
-                         "0.1,0.03,600,unload\n0.1,0.0335,900,reload\n";
-  const PlateData d = load_plate_csv(path);
   std::vector<double> fitted;
-  for (const auto& p : d.points)
-    if (p.fitted) fitted.push_back(p.sinkage);
+  load_rows("rejoin",
+            "0.1,0.01,300,load\n0.1,0.02,650,load\n0.1,0.03,1000,load\n"
+            "0.1,0.025,400,unload\n0.1,0.02,100,unload\n"
+            "0.1,0.028,700,reload\n0.1,0.031,1010,reload\n0.1,0.032,980,reload\n0.1,0.033,1100,reload\n"
+            "0.1,0.03,600,unload\n0.1,0.0335,900,reload\n",
+            fitted);
   // The last reload row (900 N < 1100 N) follows a new unload: elastic again, not fitted.
   CHECK(fitted == std::vector<double>{0.01, 0.02, 0.03, 0.031, 0.032, 0.033});
 }
