@@ -22,6 +22,23 @@ class ShapeRaycaster {
   // unit. Meshes: the first triangle hit, "inside" is not detected (see first_hit's comment).
   double first_hit(const Vec3<double>& origin, const Vec3<double>& dir, double t_max) const;
 
+  // What all rays of one direction share, so that many parallel rays (the SCM casts every ray under
+  // a body along one body-frame direction) divide by the direction once instead of once per ray:
+  // the reciprocals of its components (slab tests) and the leading coefficient of the round
+  // shapes' circle equation with its reciprocal. Belongs to the caster that made it.
+  struct Direction {
+    Direction() = default;  // not an aggregate, so that first_hit({x, y, z}, dir, t) stays unambiguous
+    Vec3<double> d{}, inv{};  // the direction; 1 / its components (0 where the ray counts as parallel)
+    double a = 0, inv_a = 0;  // |d|^2 across the round axis (cylinder: x, z; disc and annulus: x, y); 1 / a
+  };
+  Direction direction(const Vec3<double>& dir) const;
+  // first_hit(origin, dir.d, t_max), with dir from direction().
+  double first_hit(const Direction& dir, const Vec3<double>& origin, double t_max) const;
+  // A row of parallel rays: t[k] = first_hit(dir, origin + k step, t_max) for k in [k0, k1). The
+  // origin of ray k depends on k only, not on [k0, k1), so a ray gives the same answer in any row.
+  void first_hits(const Direction& dir, const Vec3<double>& origin, const Vec3<double>& step, int k0, int k1, double t_max,
+                  double* t) const;
+
   // How far thin features (grousers) reach beyond the smooth body: a coarse ray that hits the rim
   // may miss a grouser this much lower.
   double feature_depth() const { return grousers_.empty() ? 0.0 : g_outer_radius_ - radius_; }
@@ -50,8 +67,9 @@ class ShapeRaycaster {
   struct Grouser {
     double c, s;  // cos and sin of its angle: radial = c x + s z, tangential = -s x + c z
   };
-  double cylinder_hit(const Vec3<double>& o, const Vec3<double>& d, double t_max) const;
-  double round_plate_hit(const Vec3<double>& o, const Vec3<double>& d, double t_max) const;
+  double cylinder_hit(const Vec3<double>& o, const Direction& d, double t_max) const;
+  double grouser_hit(const Vec3<double>& o, const Direction& d, double lo, double hi, double best) const;
+  double round_plate_hit(const Vec3<double>& o, const Direction& d, double t_max) const;
 
   ShapeType type_;
   Vec3<double> half_{};          // box half extents

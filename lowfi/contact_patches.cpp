@@ -2,15 +2,98 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
 
 namespace terracal::lowfi {
 
 namespace {
-std::int64_t key_of(int i, int j) { return (std::int64_t(i) << 32) ^ std::int64_t(std::uint32_t(j)); }
 double cross(const std::pair<double, double>& o, const std::pair<double, double>& a, const std::pair<double, double>& b) {
   return (a.first - o.first) * (b.second - o.second) - (a.second - o.second) * (b.first - o.first);
 }
+
+// Union-find over runs, the root of a set being its smallest run (path halving).
+int root(std::vector<int>& parent, int r) {
+  while (parent[r] != r) r = parent[r] = parent[parent[r]];
+  return r;
+}
+void join(std::vector<int>& parent, int a, int b) {
+  a = root(parent, a);
+  b = root(parent, b);
+  parent[std::max(a, b)] = std::min(a, b);
+}
+
+// The nodes in row order (j, then i), split into runs of consecutive i; run_of: each node's run.
+// The SCM lists its nodes in row order already (one body's rays, row by row), so the sort is for
+// other callers and several bodies.
+void make_runs(const std::vector<GridIndex>& nodes, ContactPatches::Work& w) {
+  auto before = [&](int a, int b) { return nodes[a].j != nodes[b].j ? nodes[a].j < nodes[b].j : nodes[a].i < nodes[b].i; };
+  w.order.resize(nodes.size());
+  for (std::size_t n = 0; n < nodes.size(); ++n) w.order[n] = int(n);
+  if (!std::is_sorted(w.order.begin(), w.order.end(), before)) std::sort(w.order.begin(), w.order.end(), before);
+  w.runs.clear();
+  w.run_of.resize(nodes.size());
+  for (const int n : w.order) {
+    const GridIndex& g = nodes[n];
+    if (w.runs.empty() || w.runs.back().j != g.j || g.i > w.runs.back().i1 + 1) w.runs.push_back({g.j, g.i, g.i});
+    w.runs.back().i1 = g.i;
+    w.run_of[n] = int(w.runs.size()) - 1;
+  }
+}
+
+// Joins the runs of neighbouring rows that overlap in i (4-neighbour contact). Runs are in row
+// order, so each pair of rows is walked together once.
+void join_rows(ContactPatches::Work& w) {
+  const auto& runs = w.runs;
+  const int n = int(runs.size());
+  w.parent.resize(runs.size());
+  for (int r = 0; r < n; ++r) w.parent[r] = r;
+  for (int prev = 0, cur = 0; cur < n;) {  // the first run of the previous row and of this row
+    int end = cur;
+    while (end < n && runs[end].j == runs[cur].j) ++end;
+    if (cur > 0 && runs[prev].j == runs[cur].j - 1)
+      for (int c = cur, p = prev; c < end; ++c) {
+        while (p < cur && runs[p].i1 < runs[c].i0) ++p;  // ends before run c, so before the runs after it
+        for (int q = p; q < cur && runs[q].i0 <= runs[c].i1; ++q) join(w.parent, c, q);
+      }
+    prev = cur;
+    cur = end;
+  }
+}
+
+// Patch numbers in order of each patch's first node, and each patch's runs (in row order):
+// runs_by_patch[first_run[p] .. first_run[p + 1]).
+void number_patches(ContactPatches& out) {
+  auto& w = out.work;
+  w.id_of_root.assign(w.runs.size(), -1);
+  int patches = 0;
+  for (std::size_t n = 0; n < out.patch_of.size(); ++n) {
+    int& id = w.id_of_root[root(w.parent, w.run_of[n])];
+    if (id < 0) id = patches++;
+    out.patch_of[n] = id;
+  }
+  // A counting sort of the runs by patch.
+  w.first_run.assign(std::size_t(patches) + 1, 0);
+  for (int r = 0; r < int(w.runs.size()); ++r) ++w.first_run[w.id_of_root[root(w.parent, r)] + 1];
+  for (int p = 0; p < patches; ++p) w.first_run[p + 1] += w.first_run[p];
+  w.runs_by_patch.resize(w.runs.size());
+  w.cursor.assign(w.first_run.begin(), w.first_run.end() - 1);
+  for (int r = 0; r < int(w.runs.size()); ++r) w.runs_by_patch[w.cursor[w.id_of_root[root(w.parent, r)]]++] = r;
+}
+
+// The convex hull of patch p: the hull of each row's two ends (its runs are in row order, and
+// along a row in order of i).
+void patch_hull(ContactPatches::Work& w, int p, double grid, double& area, double& perimeter) {
+  w.points.clear();
+  const int end = w.first_run[p + 1];
+  for (int k = w.first_run[p]; k < end;) {
+    const ContactPatches::Run& first = w.runs[w.runs_by_patch[k]];
+    while (k + 1 < end && w.runs[w.runs_by_patch[k + 1]].j == first.j) ++k;
+    const int i1 = w.runs[w.runs_by_patch[k++]].i1;
+    w.points.emplace_back(first.i0 * grid, first.j * grid);
+    if (i1 != first.i0) w.points.emplace_back(i1 * grid, first.j * grid);
+  }
+  convex_hull_measures(w.points, area, perimeter);
+}
+
 }  // namespace
 
 void convex_hull_measures(std::vector<std::pair<double, double>> p, double& area, double& perimeter) {
@@ -38,89 +121,24 @@ void convex_hull_measures(std::vector<std::pair<double, double>> p, double& area
   area = 0.5 * std::abs(area);
 }
 
-ContactPatches find_contact_patches(const std::vector<GridIndex>& nodes, double grid) {
-  ContactPatches out;
-  out.patch_of.assign(nodes.size(), -1);
-  if (nodes.empty()) return out;
-  // The nodes' bounding box as a dense index (contacts are compact, so this is small and beats a
-  // hash map by an order of magnitude).
-  int ilo = nodes[0].i, ihi = ilo, jlo = nodes[0].j, jhi = jlo;
-  for (const auto& n : nodes) {
-    ilo = std::min(ilo, n.i), ihi = std::max(ihi, n.i);
-    jlo = std::min(jlo, n.j), jhi = std::max(jhi, n.j);
-  }
-  const long w = long(ihi) - ilo + 1, h = long(jhi) - jlo + 1;
-  std::vector<int> index;
-  std::unordered_map<std::int64_t, int> sparse;  // for scattered contacts (several distant bodies)
-  const bool dense = w * h <= 64 * long(nodes.size()) + 4096;
-  if (dense) {
-    index.assign(std::size_t(w * h), -1);
-    for (std::size_t n = 0; n < nodes.size(); ++n) index[std::size_t((nodes[n].j - jlo) * w + (nodes[n].i - ilo))] = int(n);
-  } else {
-    sparse.reserve(2 * nodes.size());
-    for (std::size_t n = 0; n < nodes.size(); ++n) sparse.emplace(key_of(nodes[n].i, nodes[n].j), int(n));
-  }
-  auto find = [&](int i, int j) -> int {
-    if (i < ilo || i > ihi || j < jlo || j > jhi) return -1;
-    if (dense) return index[std::size_t((j - jlo) * w + (i - ilo))];
-    const auto it = sparse.find(key_of(i, j));
-    return it == sparse.end() ? -1 : it->second;
-  };
-  std::vector<int> stack;
-  std::vector<std::pair<double, double>> pts;
-  // Per row j of the patch being filled: its min and max i (rows indexed from jlo; rows[] holds
-  // the rows touched, so that resetting costs only what the patch used).
-  // Bodies far apart in j (sparse) keep the extents in a map instead of a vector over the gap.
-  const bool dense_rows = h <= 4 * long(nodes.size()) + 4096;
-  std::vector<std::pair<int, int>> extent(dense_rows ? std::size_t(h) : 0, {1, 0});  // empty: min > max
-  std::unordered_map<int, std::pair<int, int>> extent_far;
-  auto row = [&](int j) -> std::pair<int, int>& {
-    return dense_rows ? extent[std::size_t(j - jlo)] : extent_far.try_emplace(j, 1, 0).first->second;
-  };
-  std::vector<int> rows;
-  for (std::size_t seed = 0; seed < nodes.size(); ++seed) {
-    if (out.patch_of[seed] >= 0) continue;
-    const int patch = int(out.count());
-    out.patch_of[seed] = patch;
-    stack.assign(1, int(seed));
-    rows.clear();
-    while (!stack.empty()) {
-      const int n = stack.back();
-      stack.pop_back();
-      auto& e = row(nodes[n].j);
-      if (e.first > e.second) {
-        e = {nodes[n].i, nodes[n].i};
-        rows.push_back(nodes[n].j);
-      } else {
-        e = {std::min(e.first, nodes[n].i), std::max(e.second, nodes[n].i)};
-      }
-      const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
-      for (int q = 0; q < 4; ++q) {
-        const int m = find(nodes[n].i + di[q], nodes[n].j + dj[q]);
-        if (m >= 0 && out.patch_of[m] < 0) {
-          out.patch_of[m] = patch;
-          stack.push_back(m);
-        }
-      }
-    }
-    // The hull of a set of grid points is the hull of each row's two ends.
-    pts.clear();
-    for (const int j : rows) {
-      auto& e = row(j);
-      pts.emplace_back(e.first * grid, j * grid);
-      if (e.second != e.first) pts.emplace_back(e.second * grid, j * grid);
-      e = {1, 0};
-    }
-    double a = 0, p = 0;
-    convex_hull_measures(pts, a, p);
+void find_contact_patches(const std::vector<GridIndex>& nodes, double grid, ContactPatches& out) {
+  out.patch_of.resize(nodes.size());
+  out.bekker_width.clear();
+  out.hull_area.clear();
+  out.hull_perimeter.clear();
+  make_runs(nodes, out.work);
+  join_rows(out.work);
+  number_patches(out);
+  for (std::size_t p = 0; p + 1 < out.work.first_run.size(); ++p) {
+    double a = 0, perim = 0;
+    patch_hull(out.work, int(p), grid, a, perim);
     // Offset the hull by half a cell: A' = A + P d + pi d^2, P' = P + 2 pi d (Steiner's formula).
     const double d = 0.5 * grid;
-    const double area = a + p * d + M_PI * d * d, perimeter = p + 2 * M_PI * d;
+    const double area = a + perim * d + M_PI * d * d, perimeter = perim + 2 * M_PI * d;
     out.hull_area.push_back(area);
     out.hull_perimeter.push_back(perimeter);
     out.bekker_width.push_back(2 * area / perimeter);
   }
-  return out;
 }
 
 }  // namespace terracal::lowfi

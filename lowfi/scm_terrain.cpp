@@ -110,82 +110,15 @@ double ScmTerrain::free_surface(int i, int j) const {
 // the soil reaches. The body's outward normal at each hit comes from the hit heights of the
 // neighbouring rays (central differences where both neighbours hit): shape-independent, and it
 // lets the pressure act normal to the body as in Wong-Reece, so a wheel meets compaction resistance.
-void ScmTerrain::cast_rays(std::vector<Hit>& hits) const {
+void ScmTerrain::cast_rays(std::vector<Hit>& hits) {
   hits.clear();
-  const double g = settings_.grid;
   const double top = settings_.surface_height + max_level_offset_;
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
-    Vec3<double> lo, hi;
-    world_bounds(shapes_[b], states_[b], lo, hi);
-    if (lo.z >= top) continue;  // wholly above the soil
-    const int i0 = int(std::ceil(lo.x / g)), i1 = int(std::floor(hi.x / g));
-    const int j0 = int(std::ceil(lo.y / g)), j1 = int(std::floor(hi.y / g));
-    if (i1 < i0 || j1 < j0) continue;
-    const int nx = i1 - i0 + 1, ny = j1 - j0 + 1;
-    const double z0 = lo.z - 1e-6, t_max = top - z0 + 1e-6;
-    // Ray in the body frame: origin R^T (o - c), direction R^T e_z.
-    const Quat inv{states_[b].orientation.w, -states_[b].orientation.x, -states_[b].orientation.y, -states_[b].orientation.z};
-    const Vec3<double> dir = inv.rotate({0, 0, 1});
-    // Ray origins on the grid are affine in (ii, jj): rotate the first and the two steps once.
-    const Vec3<double> o00 = inv.rotate(Vec3<double>{i0 * g, j0 * g, z0} - states_[b].position);
-    const Vec3<double> step_i = inv.rotate({g, 0, 0}), step_j = inv.rotate({0, g, 0});
-    std::vector<double> level(std::size_t(nx) * ny, kInf);
-    auto cast = [&](int ii, int jj, double reach) {
-      const double t = shapes_[b].first_hit(o00 + double(ii) * step_i + double(jj) * step_j, dir, reach);
-      return t < kInf ? z0 + t : kInf;
-    };
-    // Most of a body's bounds is far above the soil (a wheel touches it over a fifth of its length).
-    // A coarse pass every kStride nodes finds where the underside comes within `margin` of the
-    // highest soil; the fine pass casts only within one coarse cell of those. The margin covers how
-    // far the underside can dip between coarse nodes (ShapeRaycaster::dip_over) plus the grousers'
-    // height, so no contact between coarse nodes is missed. Meshes (which may have thin spikes) and
-    // rings narrower than two coarse cells are cast in full.
-    const int stride = settings_.coarse_rays && shapes_[b].smooth_underside() && nx * ny >= 16 * kCoarseStride * kCoarseStride &&
-                               shapes_[b].narrowest() >= 2 * kCoarseStride * g
-                           ? kCoarseStride
-                           : 1;
-    std::vector<char> wanted;
-    if (stride > 1) {
-      const int cx = (nx - 1) / stride + 2, cy = (ny - 1) / stride + 2;  // coarse nodes, the last at or past the edge
-      const double margin = shapes_[b].dip_over(stride * g) + shapes_[b].feature_depth() + 1e-9;
-      std::vector<char> near(std::size_t(cx) * cy, 0);
-      for (int b2 = 0; b2 < cy; ++b2)
-        for (int a2 = 0; a2 < cx; ++a2) {
-          const double h = cast(std::min(a2 * stride, nx - 1), std::min(b2 * stride, ny - 1), t_max + margin);
-          near[std::size_t(b2) * cx + a2] = h < top + margin;
-        }
-      wanted.assign(std::size_t(nx) * ny, 0);
-      for (int b2 = 0; b2 < cy; ++b2)
-        for (int a2 = 0; a2 < cx; ++a2) {
-          if (!near[std::size_t(b2) * cx + a2]) continue;
-          const int ilo = std::max(0, (a2 - 1) * stride), ihi = std::min(nx - 1, (a2 + 1) * stride);
-          const int jlo = std::max(0, (b2 - 1) * stride), jhi = std::min(ny - 1, (b2 + 1) * stride);
-          for (int jj = jlo; jj <= jhi; ++jj) std::fill(wanted.begin() + std::size_t(jj) * nx + ilo, wanted.begin() + std::size_t(jj) * nx + ihi + 1, 1);
-        }
-    }
-#pragma omp parallel for schedule(static) if (nx * ny > 20000)
-    for (int jj = 0; jj < ny; ++jj)
-      for (int ii = 0; ii < nx; ++ii)
-        if (stride == 1 || wanted[std::size_t(jj) * nx + ii]) level[std::size_t(jj) * nx + ii] = cast(ii, jj, t_max);
-    auto at = [&](int ii, int jj) { return (ii < 0 || jj < 0 || ii >= nx || jj >= ny) ? kInf : level[std::size_t(jj) * nx + ii]; };
-    auto slope = [&](double minus, double here, double plus) {
-      if (minus < kInf && plus < kInf) return (plus - minus) / (2 * g);
-      if (plus < kInf) return (plus - here) / g;
-      if (minus < kInf) return (here - minus) / g;
-      return 0.0;
-    };
-    for (int jj = 0; jj < ny; ++jj)
-      for (int ii = 0; ii < nx; ++ii) {
-        const double h = at(ii, jj);
-        if (!(h < kInf)) continue;
-        const int i = i0 + ii, j = j0 + jj;
-        if (h >= top) continue;  // above any soil; contact() checks against this node's surface
-        // The underside z = h(x, y): outward (downward-facing) normal is (dh/dx, dh/dy, -1); the soil
-        // pushes along minus that, i.e. along (-dh/dx, -dh/dy, 1).
-        const double hx = slope(at(ii - 1, jj), h, at(ii + 1, jj)), hy = slope(at(ii, jj - 1), h, at(ii, jj + 1));
-        const double inv_len = 1.0 / std::sqrt(1 + hx * hx + hy * hy);
-        hits.push_back({i, j, int(b), h, {-hx * inv_len, -hy * inv_len, inv_len}});
-      }
+    RayGrid r;
+    if (!ray_grid(b, top, r)) continue;
+    select_rays(b, r, top);
+    cast_selected(b, r);
+    add_hits(b, r, top, hits);
   }
   if (bodies_.size() > 1) {
     // Where two bodies cover a node, the lower one touches the soil.
@@ -196,18 +129,142 @@ void ScmTerrain::cast_rays(std::vector<Hit>& hits) const {
   }
 }
 
+// The rays of the nodes under the body's bounds; false when there are none or the body is wholly
+// above the soil.
+bool ScmTerrain::ray_grid(std::size_t b, double top, RayGrid& r) const {
+  const double g = settings_.grid;
+  Vec3<double> lo, hi;
+  world_bounds(shapes_[b], states_[b], lo, hi);
+  if (lo.z >= top) return false;
+  r.i0 = int(std::ceil(lo.x / g));
+  r.j0 = int(std::ceil(lo.y / g));
+  r.nx = int(std::floor(hi.x / g)) - r.i0 + 1;
+  r.ny = int(std::floor(hi.y / g)) - r.j0 + 1;
+  if (r.nx <= 0 || r.ny <= 0) return false;
+  r.z0 = lo.z - 1e-6;
+  r.t_max = top - r.z0 + 1e-6;
+  // Ray in the body frame: origin R^T (o - c), direction R^T e_z.
+  const Quat& q = states_[b].orientation;
+  const Quat inv{q.w, -q.x, -q.y, -q.z};
+  r.dir = shapes_[b].direction(inv.rotate({0, 0, 1}));
+  r.o00 = inv.rotate(Vec3<double>{r.i0 * g, r.j0 * g, r.z0} - states_[b].position);
+  r.step_i = inv.rotate({g, 0, 0});
+  r.step_j = inv.rotate({0, g, 0});
+  return true;
+}
+
+// Most of a body's bounds is far above the soil (a wheel touches it over a fifth of its length).
+// A coarse pass every kCoarseStride nodes finds where the underside comes within `margin` of the
+// highest soil; only the nodes within one coarse cell of those are wanted. The margin covers how
+// far the underside can dip between coarse nodes (ShapeRaycaster::dip_over) plus the grousers'
+// height, so no contact between coarse nodes is missed. Meshes (which may have thin spikes) and
+// rings narrower than two coarse cells want every node (scratch_.wanted left empty).
+void ScmTerrain::select_rays(std::size_t b, const RayGrid& r, double top) {
+  const ShapeRaycaster& shape = shapes_[b];
+  const double g = settings_.grid;
+  const int stride = kCoarseStride, nx = r.nx, ny = r.ny;
+  std::vector<char>& wanted = scratch_.wanted;
+  wanted.clear();
+  if (!(settings_.coarse_rays && shape.smooth_underside() && nx * ny >= 16 * stride * stride && shape.narrowest() >= 2 * stride * g))
+    return;
+  const int cx = (nx - 1) / stride + 2, cy = (ny - 1) / stride + 2;  // coarse nodes, the last at or past the edge
+  const double margin = shape.dip_over(stride * g) + shape.feature_depth() + 1e-9;
+  std::vector<char>& near = scratch_.near;
+  near.assign(std::size_t(cx) * cy, 0);
+  for (int b2 = 0; b2 < cy; ++b2)
+    for (int a2 = 0; a2 < cx; ++a2) {
+      const int ii = std::min(a2 * stride, nx - 1), jj = std::min(b2 * stride, ny - 1);
+      const double t = shape.first_hit(r.dir, r.row(jj) + double(ii) * r.step_i, r.t_max + margin);
+      near[std::size_t(b2) * cx + a2] = r.z0 + t < top + margin;
+    }
+  wanted.assign(std::size_t(nx) * ny, 0);
+  for (int b2 = 0; b2 < cy; ++b2)
+    for (int a2 = 0; a2 < cx; ++a2) {
+      if (!near[std::size_t(b2) * cx + a2]) continue;
+      const int ilo = std::max(0, (a2 - 1) * stride), ihi = std::min(nx - 1, (a2 + 1) * stride);
+      const int jlo = std::max(0, (b2 - 1) * stride), jhi = std::min(ny - 1, (b2 + 1) * stride);
+      for (int jj = jlo; jj <= jhi; ++jj) std::fill(wanted.begin() + std::size_t(jj) * nx + ilo, wanted.begin() + std::size_t(jj) * nx + ihi + 1, 1);
+    }
+}
+
+// scratch_.level: the underside's height over each wanted node (+infinity where the ray misses or
+// the node is not wanted). Runs of wanted nodes along a row are cast together (first_hits).
+void ScmTerrain::cast_selected(std::size_t b, const RayGrid& r) {
+  const int nx = r.nx, ny = r.ny;
+  std::vector<double>& level = scratch_.level;
+  level.assign(std::size_t(nx) * ny, kInf);
+  const std::vector<char>& wanted = scratch_.wanted;
+#pragma omp parallel for schedule(static) if (nx * ny > 20000)
+  for (int jj = 0; jj < ny; ++jj) {
+    double* row = level.data() + std::size_t(jj) * nx;
+    const char* want = wanted.empty() ? nullptr : wanted.data() + std::size_t(jj) * nx;
+    for (int ii = 0, end = 0; ii < nx; ii = end) {
+      while (want && ii < nx && !want[ii]) ++ii;
+      for (end = ii; end < nx && (!want || want[end]);) ++end;  // the run [ii, end)
+      shapes_[b].first_hits(r.dir, r.row(jj), r.step_i, ii, end, r.t_max, row);
+      for (int k = ii; k < end; ++k) row[k] += r.z0;  // parameter to height (a miss stays +infinity)
+    }
+  }
+}
+
+// The nodes whose ray hit below the highest soil, with the body's normal there from the heights
+// of the neighbouring rays.
+void ScmTerrain::add_hits(std::size_t b, const RayGrid& r, double top, std::vector<Hit>& hits) const {
+  const double g = settings_.grid;
+  const int nx = r.nx, ny = r.ny;
+  const std::vector<double>& level = scratch_.level;
+  auto at = [&](int ii, int jj) { return (ii < 0 || jj < 0 || ii >= nx || jj >= ny) ? kInf : level[std::size_t(jj) * nx + ii]; };
+  auto slope = [&](double minus, double here, double plus) {
+    if (minus < kInf && plus < kInf) return (plus - minus) / (2 * g);
+    if (plus < kInf) return (plus - here) / g;
+    if (minus < kInf) return (here - minus) / g;
+    return 0.0;
+  };
+  for (int jj = 0; jj < ny; ++jj)
+    for (int ii = 0; ii < nx; ++ii) {
+      const double h = at(ii, jj);
+      if (!(h < top)) continue;  // no hit, or above any soil; contact() checks against this node's surface
+      // The underside z = h(x, y): outward (downward-facing) normal is (dh/dx, dh/dy, -1); the soil
+      // pushes along minus that, i.e. along (-dh/dx, -dh/dy, 1).
+      const double hx = slope(at(ii - 1, jj), h, at(ii + 1, jj)), hy = slope(at(ii, jj - 1), h, at(ii, jj + 1));
+      const double inv_len = 1.0 / std::sqrt(1 + hx * hx + hy * hy);
+      hits.push_back({r.i0 + ii, r.j0 + jj, int(b), h, {-hx * inv_len, -hy * inv_len, inv_len}});
+    }
+}
+
+// The pressure and shear of the nodes the bodies push into, and the wrenches they put on the bodies.
 void ScmTerrain::contact(const std::vector<Hit>& candidates) {
-  const double g = settings_.grid, area = g * g, dt = settings_.time_step;
-  const double ke = soil_.elastic_stiffness;
   for (auto& w : wrenches_) w = {};
   stats_ = {};
   stats_.body_contact_area.assign(bodies_.size(), 0.0);
-  // The hits below their node's free surface, each with its node: one hash lookup per hit, and a
-  // node is stored only once a body has pushed into it.
-  std::vector<Hit> hits;
-  std::vector<ScmNode*> hit_nodes;
-  hits.reserve(candidates.size());
-  hit_nodes.reserve(candidates.size());
+  select_pressed(candidates);
+  const std::vector<Hit>& hits = scratch_.pressed;
+  stats_.rays = int(hits.size());
+  // Contact patches and their Bekker widths.
+  ContactPatches& patches = scratch_.patches;
+  find_contact_patches(scratch_.pressed_at, settings_.grid, patches);
+  stats_.patches = int(patches.count());
+  stats_.patch_bekker_width = patches.bekker_width;
+  check_bekker_strength(hits, patches);
+  std::vector<double>& displaced = scratch_.displaced;
+  displaced.assign(patches.count(), 0.0);
+  for (std::size_t h = 0; h < hits.size(); ++h) {
+    const int p = patches.patch_of[h];
+    press(hits[h], *scratch_.pressed_nodes[h], patches.bekker_width[p], displaced[p]);
+  }
+  release_left_nodes();
+  if (settings_.effects.bulldozing) bulldoze(hits, patches, displaced);
+}
+
+// The hits below their node's free surface, each with its node: one hash lookup per hit, and a
+// node is stored only once a body has pushed into it.
+void ScmTerrain::select_pressed(const std::vector<Hit>& candidates) {
+  std::vector<Hit>& hits = scratch_.pressed;
+  std::vector<ScmNode*>& nodes = scratch_.pressed_nodes;
+  std::vector<GridIndex>& at = scratch_.pressed_at;
+  hits.clear();
+  nodes.clear();
+  at.clear();
   for (const Hit& c : candidates) {
     const std::int64_t k = key(c.i, c.j);
     auto it = nodes_.find(k);
@@ -215,75 +272,79 @@ void ScmTerrain::contact(const std::vector<Hit>& candidates) {
     if (c.level >= surface) continue;
     if (it == nodes_.end()) it = nodes_.emplace(k, ScmNode{}).first;
     hits.push_back(c);
-    hit_nodes.push_back(&it->second);
+    nodes.push_back(&it->second);
+    at.push_back({c.i, c.j});
   }
-  stats_.rays = int(hits.size());
-  // Contact patches and their Bekker widths.
-  std::vector<GridIndex> idx;
-  idx.reserve(hits.size());
-  for (const auto& h : hits) idx.push_back({h.i, h.j});
-  const ContactPatches patches = find_contact_patches(idx, g);
-  stats_.patches = int(patches.count());
-  stats_.patch_bekker_width = patches.bekker_width;
-  std::vector<double> displaced(patches.count(), 0.0);  // plastic volume pushed aside per patch
+}
 
-  std::vector<std::int64_t> now;
-  now.reserve(hits.size());
-  for (std::size_t h = 0; h < hits.size(); ++h) {
-    const Hit& hit = hits[h];
-    ScmNode& n = *hit_nodes[h];
-    const double undisturbed = settings_.surface_height + n.level_offset;
-    const double z = undisturbed - hit.level;  // total sinkage
-    const double b = patches.bekker_width[patches.patch_of[h]];
-    if (!(soil_.Kc / b + soil_.Kphi > 0))
-      throw RunError(fmt::format("SCM: body '{}' at t = {:.4g} s: contact patch of Bekker width b = {:.3g} m gives Kc/b + Kphi = {:.4g} "
-                                 "Pa/m^n <= 0: this set's pressure-sinkage law has no strength for contacts narrower than "
-                                 "|Kc|/Kphi = {:.3g} m (calibrate on plates nearer this width, or fix Kc)",
-                                 bodies_[hit.body].name, time_, b, soil_.Kc / b + soil_.Kphi, std::abs(soil_.Kc) / soil_.Kphi));
-    // Elastic trial, capped at the Bekker yield; yielding moves the plastic sinkage down.
-    double sigma = ke * (z - n.plastic_sinkage);
-    const double yield = soil_.bekker_pressure(z, b);
-    if (sigma > yield) {
-      const double zp = z - yield / ke;
-      displaced[patches.patch_of[h]] += (zp - n.plastic_sinkage) * area;
-      n.plastic_sinkage = zp;
-      sigma = yield;
-    }
-    const BodyState& s = states_[hit.body];
-    const Vec3<double> p{hit.i * g, hit.j * g, hit.level};
-    const Vec3<double> r = p - s.position;
-    const Vec3<double> v = s.velocity + cross(s.omega, r);
-    const Vec3<double> nrm = hit.normal;
-    if (settings_.effects.damping) sigma += soil_.damping * std::max(0.0, -dot(v, nrm));
-    sigma = std::max(sigma, 0.0);
-    // Janosi shear from the displacement accumulated along the body's surface during this contact.
-    const Vec3<double> v_tan = v - dot(v, nrm) * nrm;
-    n.shear += dt * v_tan;
-    n.shear -= dot(n.shear, nrm) * nrm;  // keep it in the current tangent plane
-    const double j = norm(n.shear);
-    const double tau = j > 0 ? (soil_.cohesion + sigma * tan_phi_) * (1.0 - std::exp(-j / soil_.janosi_k)) : 0.0;
-    n.sigma = sigma;
-    n.tau = tau;
-    n.deepest = std::max(n.deepest, z);
-    n.in_contact = true;
-    n.contact_step = steps_;
-    now.push_back(key(hit.i, hit.j));
-    // Pressure on the body's surface element (projected area g^2, true area g^2 / n_z).
-    const double surface = area / nrm.z;
-    Vec3<double> f = (sigma * surface) * nrm;
-    if (j > 0) f -= (tau * surface / j) * n.shear;
-    BodyWrench& w = wrenches_[hit.body];
-    w.force += f;
-    w.torque += cross(r, f);
-    ++stats_.contact_nodes;
-    stats_.contact_area += area;
-    stats_.body_contact_area[hit.body] += area;
-    stats_.max_sinkage = std::max(stats_.max_sinkage, z);
+// Refuses a patch whose Bekker width leaves the pressure-sinkage law without strength, naming the
+// body of its first node. Patches are numbered in order of their first node, so the first failing
+// patch holds the first failing node.
+void ScmTerrain::check_bekker_strength(const std::vector<Hit>& hits, const ContactPatches& patches) const {
+  for (std::size_t p = 0; p < patches.count(); ++p) {
+    const double b = patches.bekker_width[p];
+    if (soil_.Kc / b + soil_.Kphi > 0) continue;
+    const auto h = std::find(patches.patch_of.begin(), patches.patch_of.end(), int(p)) - patches.patch_of.begin();
+    throw RunError(fmt::format("SCM: body '{}' at t = {:.4g} s: contact patch of Bekker width b = {:.3g} m gives Kc/b + Kphi = {:.4g} "
+                               "Pa/m^n <= 0: this set's pressure-sinkage law has no strength for contacts narrower than "
+                               "|Kc|/Kphi = {:.3g} m (calibrate on plates nearer this width, or fix Kc)",
+                               bodies_[hits[h].body].name, time_, b, soil_.Kc / b + soil_.Kphi, std::abs(soil_.Kc) / soil_.Kphi));
   }
-  // Nodes the bodies left this step: the shear spring is released; without elastic unloading the
-  // soil keeps the deepest sinkage it was pushed to.
-  for (const std::int64_t k : contact_keys_) {
-    ScmNode& n = nodes_[k];
+}
+
+// One node under a body: elastic-plastic pressure, damping and Janosi shear, and their force and
+// torque on the body. displaced: the patch's plastic volume pushed aside this step.
+void ScmTerrain::press(const Hit& hit, ScmNode& n, double b, double& displaced) {
+  const double g = settings_.grid, area = g * g, dt = settings_.time_step;
+  const double ke = soil_.elastic_stiffness;
+  const double undisturbed = settings_.surface_height + n.level_offset;
+  const double z = undisturbed - hit.level;  // total sinkage
+  // Elastic trial, capped at the Bekker yield; yielding moves the plastic sinkage down.
+  double sigma = ke * (z - n.plastic_sinkage);
+  const double yield = soil_.bekker_pressure(z, b);
+  if (sigma > yield) {
+    const double zp = z - yield / ke;
+    displaced += (zp - n.plastic_sinkage) * area;
+    n.plastic_sinkage = zp;
+    sigma = yield;
+  }
+  const BodyState& s = states_[hit.body];
+  const Vec3<double> p{hit.i * g, hit.j * g, hit.level};
+  const Vec3<double> r = p - s.position;
+  const Vec3<double> v = s.velocity + cross(s.omega, r);
+  const Vec3<double> nrm = hit.normal;
+  if (settings_.effects.damping) sigma += soil_.damping * std::max(0.0, -dot(v, nrm));
+  sigma = std::max(sigma, 0.0);
+  // Janosi shear from the displacement accumulated along the body's surface during this contact.
+  const Vec3<double> v_tan = v - dot(v, nrm) * nrm;
+  n.shear += dt * v_tan;
+  n.shear -= dot(n.shear, nrm) * nrm;  // keep it in the current tangent plane
+  const double j = norm(n.shear);
+  const double tau = j > 0 ? (soil_.cohesion + sigma * tan_phi_) * (1.0 - std::exp(-j / soil_.janosi_k)) : 0.0;
+  n.sigma = sigma;
+  n.tau = tau;
+  n.deepest = std::max(n.deepest, z);
+  n.in_contact = true;
+  n.contact_step = steps_;
+  // Pressure on the body's surface element (projected area g^2, true area g^2 / n_z).
+  const double surface = area / nrm.z;
+  Vec3<double> f = (sigma * surface) * nrm;
+  if (j > 0) f -= (tau * surface / j) * n.shear;
+  BodyWrench& w = wrenches_[hit.body];
+  w.force += f;
+  w.torque += cross(r, f);
+  ++stats_.contact_nodes;
+  stats_.contact_area += area;
+  stats_.body_contact_area[hit.body] += area;
+  stats_.max_sinkage = std::max(stats_.max_sinkage, z);
+}
+
+// Nodes the bodies left this step: the shear spring is released; without elastic unloading the
+// soil keeps the deepest sinkage it was pushed to. The nodes pressed this step are the next
+// step's contact nodes.
+void ScmTerrain::release_left_nodes() {
+  for (ScmNode* node : contact_nodes_) {
+    ScmNode& n = *node;
     if (n.contact_step == steps_) continue;  // still in contact
     if (!settings_.effects.elastic_unloading) n.plastic_sinkage = std::max(n.plastic_sinkage, n.deepest);
     n.deepest = 0;
@@ -291,8 +352,7 @@ void ScmTerrain::contact(const std::vector<Hit>& candidates) {
     n.sigma = n.tau = 0;
     n.in_contact = false;
   }
-  contact_keys_ = std::move(now);
-  if (settings_.effects.bulldozing) bulldoze(hits, patches, displaced);
+  contact_nodes_.swap(scratch_.pressed_nodes);
 }
 
 // Bulldozing: the volume each patch pushed down plastically this step is laid on the nodes around
@@ -379,9 +439,8 @@ void ScmTerrain::step() {
 }
 
 void ScmTerrain::update_contact() {
-  std::vector<Hit> hits;
-  cast_rays(hits);
-  contact(hits);
+  cast_rays(scratch_.hits);
+  contact(scratch_.hits);
   check_step();
 }
 

@@ -68,6 +68,12 @@ struct ScmStepStats {
 class ScmTerrain final : public Terrain {
  public:
   ScmTerrain(const ScmSoil& soil, const ScmSettings& settings, std::vector<RigidBody> bodies);
+  // A copy's contact_nodes_ would point into the original's nodes; a move keeps them (the map's
+  // nodes move with it).
+  ScmTerrain(const ScmTerrain&) = delete;
+  ScmTerrain& operator=(const ScmTerrain&) = delete;
+  ScmTerrain(ScmTerrain&&) = default;
+  ScmTerrain& operator=(ScmTerrain&&) = default;
 
   std::string description() const override;
   void step() override;
@@ -100,8 +106,27 @@ class ScmTerrain final : public Terrain {
     double level;          // height of the body's underside above the node
     Vec3<double> normal;   // outward normal of the body's underside (from neighbouring rays)
   };
-  void cast_rays(std::vector<Hit>& hits) const;
+  // The vertical rays under one body, in its frame: its window of grid nodes (i0 + ii, j0 + jj) for
+  // ii < nx, jj < ny; each ray starts at height z0 below the body and reaches t_max up to the
+  // highest soil, from row(jj) + ii step_i along dir (the origins are affine in (ii, jj), so one
+  // rotation serves them all, and a node's ray is the same whichever pass casts it).
+  struct RayGrid {
+    int i0 = 0, j0 = 0, nx = 0, ny = 0;
+    double z0 = 0, t_max = 0;
+    ShapeRaycaster::Direction dir;
+    Vec3<double> o00{}, step_i{}, step_j{};
+    Vec3<double> row(int jj) const { return o00 + double(jj) * step_j; }
+  };
+  void cast_rays(std::vector<Hit>& hits);
+  bool ray_grid(std::size_t body, double top, RayGrid& r) const;
+  void select_rays(std::size_t body, const RayGrid& r, double top);
+  void cast_selected(std::size_t body, const RayGrid& r);
+  void add_hits(std::size_t body, const RayGrid& r, double top, std::vector<Hit>& hits) const;
   void contact(const std::vector<Hit>& candidates);  // candidates: hits below the highest soil
+  void select_pressed(const std::vector<Hit>& candidates);
+  void check_bekker_strength(const std::vector<Hit>& hits, const ContactPatches& patches) const;
+  void press(const Hit& hit, ScmNode& n, double bekker_width, double& displaced);
+  void release_left_nodes();
   void check_step() const;
   void update_contact();  // rays, contact and wrenches at the current poses
   void bulldoze(const std::vector<Hit>& hits, const ContactPatches& patches, const std::vector<double>& displaced);
@@ -114,7 +139,20 @@ class ScmTerrain final : public Terrain {
   std::vector<BodyState> states_;
   std::vector<BodyWrench> wrenches_;
   std::unordered_map<std::int64_t, ScmNode> nodes_;
-  std::vector<std::int64_t> contact_keys_;  // nodes in contact at the last step
+  // Nodes in contact at the last step. Pointers into nodes_, which never erases, so they stay valid
+  // (and they save a hash lookup per node and step when the nodes are released).
+  std::vector<ScmNode*> contact_nodes_;
+  // Working memory of a step, kept between steps so that a step allocates nothing once warm.
+  struct Scratch {
+    std::vector<double> level;  // cast_rays: per node of a body's window, the underside's height (+inf: none)
+    std::vector<char> near, wanted;  // cast_rays: coarse nodes near the soil; the nodes to cast (empty: all)
+    std::vector<Hit> hits;      // cast_rays: the candidates
+    std::vector<Hit> pressed;   // contact: the hits below their node's free surface ...
+    std::vector<ScmNode*> pressed_nodes;  // ... and their nodes
+    std::vector<GridIndex> pressed_at;
+    ContactPatches patches;
+    std::vector<double> displaced;  // plastic volume pushed aside per patch
+  } scratch_;
   ScmStepStats stats_;
   double max_level_offset_ = 0;  // the highest the soil was piled (bounds the rays from above)
   double time_ = 0;
