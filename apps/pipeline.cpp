@@ -14,6 +14,7 @@
 #include "core/csv.hpp"
 #include "core/errors.hpp"
 #include "core/json_file.hpp"
+#include "virtual_bevameter/curve_change.hpp"
 
 namespace terracal::app {
 
@@ -32,25 +33,6 @@ double range(const std::vector<rigs::WheelResult>& ref, double rigs::WheelResult
   return hi - lo;
 }
 
-// Relative change of a curve between a run and its check (bigger bin or longer run): both cut into
-// five equal parts by sample, the largest difference of the parts' means over the largest part mean.
-// Averaging over a fifth of the curve keeps CRM's step-to-step force noise (about 10 % on the annulus)
-// out of a measure of where the curve lies.
-double curve_change(const std::vector<double>& a, const std::vector<double>& b) {
-  const std::size_t n = std::min(a.size(), b.size()), parts = 5;
-  if (n < parts) return 0;
-  double diff = 0, scale = 0;
-  for (std::size_t p = 0; p < parts; ++p) {
-    double ma = 0, mb = 0;
-    const std::size_t lo = p * n / parts, hi = (p + 1) * n / parts;
-    for (std::size_t i = lo; i < hi; ++i) ma += a[i], mb += b[i];
-    ma /= double(hi - lo), mb /= double(hi - lo);
-    diff = std::max(diff, std::abs(ma - mb));
-    scale = std::max({scale, std::abs(ma), std::abs(mb)});
-  }
-  return scale > 0 ? diff / scale : 0;
-}
-
 struct Check {
   std::string rig, what;
   double change;
@@ -66,30 +48,33 @@ std::vector<Check> run_checks(const PipelinePlan& plan, const SoilChoice& crm, c
   BevameterPlan p = plan.bevameter;
   p.plates = {*std::max_element(p.plates.begin(), p.plates.end())};
   const auto plate_big = run_bevameter(crm, big, p, true, false);
-  std::vector<double> a, b;
-  // The loading leg (Bekker's law); the elastic unload is a few millimetres wide and compared by sample.
-  for (const auto& r : base_bev.plate)
-    if (r.radius == p.plates[0] && r.phase == "load") a.push_back(r.force);
-  for (const auto& r : plate_big.plate)
-    if (r.phase == "load") b.push_back(r.force);
-  out.push_back({"plate", fmt::format("r = {} m, loading leg: bin 1.5x larger and deeper", p.plates[0]), curve_change(a, b)});
+  // The loading leg (Bekker's law), force against sinkage.
+  auto loading_leg = [&](const std::vector<rigs::PlateRow>& rows) {
+    rigs::Curve c;
+    for (const auto& r : rows)
+      if (r.radius == p.plates[0] && r.phase == "load") c.x.push_back(r.sinkage), c.y.push_back(r.force);
+    return c;
+  };
+  out.push_back({"plate", fmt::format("r = {} m, loading leg: bin 1.5x larger and deeper", p.plates[0]),
+                 rigs::curve_change(loading_leg(base_bev.plate), loading_leg(plate_big.plate))});
   // Annulus: the heaviest load, in a 1.5x bin, then turned 1.5x further.
   BevameterPlan s = plan.bevameter;
   s.shear_loads = {*std::max_element(s.shear_loads.begin(), s.shear_loads.end())};
-  auto base_shear = [&](const BevameterCurves& c) {
-    std::vector<double> t;
+  auto base_shear = [&](const BevameterCurves& c) {  // torque against angle
+    rigs::Curve t;
     for (const auto& r : c.shear)
-      if (r.normal_load == s.shear_loads[0]) t.push_back(r.torque);
+      if (r.normal_load == s.shear_loads[0]) t.x.push_back(r.angle), t.y.push_back(r.torque);
     return t;
   };
   const auto shear_big = run_bevameter(crm, big, s, false, true);
-  out.push_back({"annulus", fmt::format("{:.4g} N: bin 1.5x larger and deeper", s.shear_loads[0]), curve_change(base_shear(base_bev), base_shear(shear_big))});
+  out.push_back({"annulus", fmt::format("{:.4g} N: bin 1.5x larger and deeper", s.shear_loads[0]), rigs::curve_change(base_shear(base_bev), base_shear(shear_big))});
   BevameterPlan longer = s;
   longer.shear_angle *= 1.5;
   const auto shear_long = run_bevameter(crm, plan.terrain, longer, false, true);
   // The longer run's first 2/3 covers the base run's angles at the same samples only approximately;
   // compare the fully developed torque (mean of the last fifth of each run).
-  auto tail_mean = [](const std::vector<double>& t) {
+  auto tail_mean = [](const rigs::Curve& c) {
+    const std::vector<double>& t = c.y;
     double sum = 0;
     const std::size_t from = t.size() * 4 / 5;
     for (std::size_t i = from; i < t.size(); ++i) sum += t[i];

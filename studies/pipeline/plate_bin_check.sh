@@ -4,10 +4,10 @@
 # walls 9 radii away, 2 x (max sinkage + 2.5 radii) of soil; pass --plate-wall-radii 3
 # --plate-depth-scale 1 to start from the earlier bin, as results/plate_bin_check does) and prints
 # the change of the loading leg between each scale and the next, measured as the pipeline's bin
-# check does (the curve in five parts by sample; the largest difference of the parts' means over
-# the largest mean).
+# check does (rigs::curve_change: the second curve read at the first one's sinkages, in five parts;
+# the largest difference of the parts' means over the largest mean).
 # A scale W:D scales the walls by W and the depth by D (to tell which of the two the curve feels).
-# Usage: [SPACING=0.02] plate_bin_check.sh OUT [TERRACAL=build/terracal] [SCALES="1 1.5 2 2.25"] [extra options...]
+# Usage: [SPACING=0.02] [PLATE=0.3] plate_bin_check.sh OUT [TERRACAL=build/terracal] [SCALES="1 1.5 2 2.25"] [extra options...]
 set -euo pipefail
 out=${1:?output folder}; bin=${2:-build/terracal}; scales=${3:-1 1.5 2 2.25}; shift $(( $# < 3 ? $# : 3 ))
 here=$(cd "$(dirname "$0")" && pwd)
@@ -16,17 +16,22 @@ tag() { echo "scale_${1/:/_d}"; }  # no ':' in file names
 for s in $scales; do
   [ -f "$out/$(tag "$s")/plate.csv" ] && continue
   w=${s%%:*}; d=${s#*:}
-  "$bin" bevameter --solver crm --soil "$here/bevameter_soil_2022.json" --test plate --plates 0.3 --max-sinkage 0.2 \
+  "$bin" bevameter --solver crm --soil "$here/bevameter_soil_2022.json" --test plate --plates "${PLATE:-0.3}" --max-sinkage 0.2 \
     --spacing "${SPACING:-0.02}" --bin-scale "$w" --bin-depth-scale "$d" --no-plots --out "$out/$(tag "$s")" "$@" > "$out/$(tag "$s").log" 2>&1
 done
-change() {  # two plate.csv files -> change of the loading leg
-  awk -F, 'FNR == 1 { f++; next } $4 == "load" { n[f]++; v[f, n[f]] = $3 }
-    END { m = n[1] < n[2] ? n[1] : n[2]; d = 0; s = 0
-          for (p = 0; p < 5; p++) { lo = int(p * m / 5) + 1; hi = int((p + 1) * m / 5); a = 0; b = 0
-            for (i = lo; i <= hi; i++) { a += v[1, i]; b += v[2, i] }
+change() {  # two plate.csv files -> change of the loading leg, as rigs::curve_change measures it
+  awk -F, 'FNR == 1 { f++; next } $4 == "load" { n[f]++; z[f, n[f]] = $2; v[f, n[f]] = $3 }
+    END { m = 0  # curve 2 read at the sinkages of curve 1, where both reach
+          for (i = 1; i <= n[1]; i++) { x = z[1, i]; if (x < z[2, 1] || x > z[2, n[2]]) continue
+            for (k = 1; k < n[2] && z[2, k] < x; k++);
+            w = k > 1 && z[2, k] > z[2, k - 1] ? (x - z[2, k - 1]) / (z[2, k] - z[2, k - 1]) : 1
+            m++; A[m] = v[1, i]; B[m] = k > 1 ? v[2, k - 1] + w * (v[2, k] - v[2, k - 1]) : v[2, 1] }
+          d = 0; s = 0
+          for (p = 0; p < 5 && m >= 5; p++) { lo = int(p * m / 5) + 1; hi = int((p + 1) * m / 5); a = 0; b = 0
+            for (i = lo; i <= hi; i++) { a += A[i]; b += B[i] }
             a /= (hi - lo + 1); b /= (hi - lo + 1); x = a > b ? a - b : b - a
             if (x > d) d = x; if (a > s) s = a; if (b > s) s = b }
-          printf "%.1f %%", 100 * d / s }' "$1" "$2"
+          printf "%.1f %%", (s > 0 ? 100 * d / s : 0) }' "$1" "$2"
 }
 force_at() { awk -F, -v z="$2" 'NR > 1 && ($4 == "load" || $4 == "reload") && $2 >= z - 1e-4 { print $3; exit }' "$1"; }
 {
