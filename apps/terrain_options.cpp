@@ -20,6 +20,9 @@ void add_terrain_options(CLI::App* sub, TerrainOptions& o, bool crm, bool scm) {
     sub->add_option("--device", o.device, "CRM device: cpu, cuda or auto")->capture_default_str();
     sub->add_option("--cache", o.cache, "folder of settled CRM beds ('' = no cache)")->capture_default_str();
     sub->add_option("--settle-time", o.settle_time, "CRM settling before the test [s]")->capture_default_str();
+    sub->add_option("--settle-jitter", o.settle_jitter,
+                    "CRM settling starts up to this fraction of the spacing off the lattice, seeded (0: the exact lattice; results/crm_settling)")
+        ->capture_default_str();
     sub->add_option("--bin-scale", o.bin_scale, "CRM bin (and bed depth) scaled by this factor: the bin-size check")->capture_default_str();
     sub->add_option("--bin-depth-scale", o.bin_depth_scale, "CRM bed depth scaled by this factor instead (0: as --bin-scale)")->capture_default_str();
   }
@@ -52,6 +55,8 @@ CrmDevice resolve_device(const std::string& device) {
 std::unique_ptr<TerrainSite> crm_site(const CrmSoil& soil, const TerrainOptions& o, double half_length, double half_width, double depth) {
   if (!(o.spacing > 0 && o.spacing < 1)) throw InputError(fmt::format("--spacing {}: expected in (0, 1) m", o.spacing));
   if (!(o.step >= 0)) throw InputError(fmt::format("--step {}: expected >= 0 s", o.step));
+  if (!(o.settle_jitter >= 0 && o.settle_jitter <= 0.3))
+    throw InputError(fmt::format("--settle-jitter {}: expected in [0, 0.3] (a fraction of the spacing)", o.settle_jitter));
   if (!(o.bin_scale >= 1 && o.bin_scale <= 10)) throw InputError(fmt::format("--bin-scale {}: expected in [1, 10]", o.bin_scale));
   if (!(o.bin_depth_scale == 0 || (o.bin_depth_scale >= 1 && o.bin_depth_scale <= 10)))
     throw InputError(fmt::format("--bin-depth-scale {}: expected 0 (as --bin-scale) or in [1, 10]", o.bin_depth_scale));
@@ -67,6 +72,7 @@ std::unique_ptr<TerrainSite> crm_site(const CrmSoil& soil, const TerrainOptions&
   sc.bin.size = {2 * std::ceil(half_length / d0) * d0, 2 * std::ceil(half_width / d0) * d0, std::ceil(1.5 * depth / d0) * d0};
   sc.bin.fill_height = std::ceil(depth / d0) * d0;
   sc.settle_time = o.settle_time;
+  sc.settle_jitter = o.settle_jitter;
   spdlog::info("CRM bin {:.3g} x {:.3g} m, soil {:.3g} m deep at spacing {} m: settling (or reading the cached bed)", sc.bin.size.x,
                sc.bin.size.y, sc.bin.fill_height, d0);
   return std::make_unique<CrmSite>(sc, resolve_device(o.device), o.cache);

@@ -20,6 +20,7 @@ struct TerrainOptions {
   std::string device = "auto";           // cpu | cuda | auto (cuda when a device is present)
   std::string cache = "results/runs/bed_cache";
   double settle_time = 0.3;              // CRM settling [s]
+  double settle_jitter = 0;              // CRM settling starts up to this fraction of the spacing off the lattice
   double grid = 0.01;                    // SCM grid [m]
   double step = 0;                       // time step [s]; 0 = CRM's CFL step, SCM 1e-3
   std::vector<std::string> scm_effects = {"damping"};

@@ -97,13 +97,13 @@ CrmCheckpoint read_crm_checkpoint(const std::filesystem::path& file) {
 
 std::string crm_fingerprint(const CrmScene& sc, CrmDevice device, bool include_bodies) {
   std::string d = fmt::format(
-      "{} {} {} {} {} {} {} {} {} {} {} | {} {} {} {} {} {} | {} {} {} {} {} {} {} {} | {}{}{}{} | {} {}",
+      "{} {} {} {} {} {} {} {} {} {} {} | {} {} {} {} {} {} | {} {} {} {} {} {} {} {} | {}{}{}{} | {} {} {}",
       sc.soil.density, sc.soil.young_modulus, sc.soil.poisson_ratio, sc.soil.mu_s, sc.soil.mu_2, sc.soil.I0,
       sc.soil.grain_diameter, sc.soil.cohesion, sc.soil.gravity.x, sc.soil.gravity.y, sc.soil.gravity.z, sc.bin.size.x,
       sc.bin.size.y, sc.bin.size.z, sc.bin.fill_height, sc.bin.fill_length, sc.bin.boundary_layers, sc.numerics.spacing,
       sc.numerics.h_over_d0, int(sc.numerics.kernel), sc.numerics.time_step, sc.numerics.viscosity_alpha,
       sc.numerics.xsph, sc.numerics.free_surface_support, int(sc.numerics.cpu_precision), sc.effects.cohesion,
-      sc.effects.artificial_viscosity, sc.effects.shifting, sc.effects.active_domain, int(device), sc.settle_time);
+      sc.effects.artificial_viscosity, sc.effects.shifting, sc.effects.active_domain, int(device), sc.settle_time, sc.settle_jitter);
   if (include_bodies)
     for (const auto& b : sc.bodies) {
       d += fmt::format("|{} {} {} {} {} {} {}", b.name, int(b.shape.type), b.position.x, b.position.y, b.position.z,

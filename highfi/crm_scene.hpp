@@ -75,6 +75,7 @@ struct CrmScene {
   CrmOutputSettings output;
   double duration = 0;         // simulated seconds after settling
   double settle_time = 0;      // simulated seconds of settling (cached per soil, bin and spacing)
+  double settle_jitter = 0;    // settling starts up to this fraction of the spacing off the lattice (seeded)
   std::string source;          // where the scene came from, for messages
 };
 

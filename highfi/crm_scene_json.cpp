@@ -182,6 +182,8 @@ void validate_crm_scene(CrmScene& sc) {
     fail("soil.poisson_ratio", fmt::format("value {} is outside [0, 0.5)", soil.poisson_ratio));
   if (soil.cohesion > 0 && !sc.effects.cohesion)
     fail("soil.cohesion", fmt::format("value {} Pa needs the effect \"cohesion\" in 'effects'", soil.cohesion));
+  if (!(sc.settle_jitter >= 0 && sc.settle_jitter <= 0.3))
+    fail("settle_jitter", fmt::format("value {} is outside [0, 0.3] (a fraction of the particle spacing)", sc.settle_jitter));
   const CrmNumerics& n = sc.numerics;
   const double d0 = n.spacing;
   if (!(d0 > 0)) fail("resolution.spacing", fmt::format("value {} must be > 0", d0));
@@ -312,6 +314,7 @@ CrmScene parse_crm_scene(const nlohmann::json& j, const std::string& where) {
       sc.bodies.push_back(parse_body(JsonObject(bodies[i], where, fmt::format("bodies[{}]", i)), base, int(i)));
   }
   sc.settle_time = o.number_or("settle_time", 0, 0, 1e4);
+  sc.settle_jitter = o.number_or("settle_jitter", 0, 0, 0.3);
   sc.duration = o.number_or("duration", 0, 0, 1e6);
   if (o.has("output")) {
     JsonObject out = o.object("output");

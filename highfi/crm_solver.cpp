@@ -1,3 +1,4 @@
+#include "core/rng.hpp"
 #include "highfi/crm_solver.hpp"
 
 #include <algorithm>
@@ -74,6 +75,24 @@ HostSoil initial_bed(const CrmScene& sc) {
         s.ids.push_back(int(s.ids.size()));
       }
   return s;
+}
+
+void jitter_positions(HostSoil& soil, double amplitude, std::uint64_t seed) {
+  if (!(amplitude > 0)) return;
+  Rng rng(seed);
+  auto offset = [&] { return amplitude * (2 * rng.uniform() - 1); };
+  for (auto& p : soil.pos) {
+    p.x += offset();
+    p.y += offset();
+    p.z += offset();
+  }
+}
+
+HostSoil settling_start(const CrmScene& scene) {
+  constexpr std::uint64_t kSeed = 20221;
+  HostSoil soil = initial_bed(scene);
+  jitter_positions(soil, scene.settle_jitter * scene.numerics.spacing, kSeed);
+  return soil;
 }
 
 CrmSolver::CrmSolver(const CrmScene& scene, CrmDevice device, const HostSoil* bed) : scene_(scene) {

@@ -2,6 +2,7 @@
 // CrmSolver: the CRM time loop on one engine (CPU or CUDA). It owns the rigid bodies (prescribed
 // or dynamic degrees of freedom, integrated with the same midpoint rule as the soil) and returns
 // the wrench of the soil on each body. Settling and caching of beds live in crm_bed.hpp.
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -13,6 +14,16 @@ namespace terracal {
 // The initial bed: particles on a lattice of spacing d0 filling the bin to fill_height, at rest,
 // with the lithostatic stress sigma_zz = -rho |g| depth and sigma_xx = sigma_yy = nu/(1-nu) sigma_zz.
 HostSoil initial_bed(const CrmScene& scene);
+
+// Moves every particle of `soil` by a uniform random offset in [-amplitude, amplitude] along each
+// axis, drawn from a generator seeded with `seed` (the same seed gives the same bed). Settling starts
+// from such a bed: one released from the exact lattice stays still for 0.15-0.4 s, then rearranges in
+// a burst that takes about a second to die out (results/crm_settling).
+void jitter_positions(HostSoil& soil, double amplitude, std::uint64_t seed);
+
+// Where settling starts: initial_bed moved by scene.settle_jitter spacings at most, from one fixed
+// seed (a settled bed is a function of its scene, and is cached as one).
+HostSoil settling_start(const CrmScene& scene);
 
 class CrmSolver {
  public:
