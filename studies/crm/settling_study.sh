@@ -2,7 +2,7 @@
 # How long a CRM bed takes to come to rest after its release from the lattice (results/crm_settling):
 # beds 0.96 m and 2.85 m deep (the plate bins of results/plate_bin_check) at 0.06 m, and 0.96 m at
 # 0.03 m, on the CPU; then a plot of the rms particle speed against time.
-# Usage: studies/crm/settling_study.sh [OUT=results/crm_settling] [PROBE=build/crm_settle_probe]   (about 6 min on 2 cores)
+# Usage: studies/crm/settling_study.sh [OUT=results/crm_settling] [PROBE=build/crm_settle_probe]   (about 12 min on 2 cores)
 set -euo pipefail
 out=${1:-results/crm_settling}; probe=${2:-build/crm_settle_probe}
 mkdir -p "$out"
@@ -10,6 +10,9 @@ run() { [ -f "$out/$1" ] || { "$probe" "${@:2}" > "$out/$1.tmp" && mv "$out/$1.t
 run bed_0.96m_d0.06.csv 0.96 0.06 1.5 1.5
 run bed_2.85m_d0.06.csv 2.85 0.06 1.5 1.5
 run bed_0.96m_d0.03.csv 0.96 0.03 1.5 1.0
+# The same beds started 0.1 spacing off the lattice (settle_jitter 0.1).
+run bed_0.96m_d0.06_jitter0.1.csv 0.96 0.06 1.5 1.5 0 cpu 0.1
+run bed_2.85m_d0.06_jitter0.1.csv 2.85 0.06 1.5 1.0 0 cpu 0.1
 command -v gnuplot > /dev/null || { echo "gnuplot missing: no plot"; exit 0; }
 gnuplot <<GP
 set terminal pngcairo size 900,520 font ",11"
@@ -24,6 +27,8 @@ set arrow from 0.3, graph 0 to 0.3, graph 1 nohead dt 2 lc rgb "gray40"
 set label "end of the default settling (0.3 s)" at 0.32, graph 0.95 tc rgb "gray30"
 plot "$out/bed_0.96m_d0.06.csv" every ::2 using 1:3 with lines lw 2 title "0.96 m deep, 0.06 m", \
      "$out/bed_2.85m_d0.06.csv" every ::2 using 1:3 with lines lw 2 title "2.85 m deep, 0.06 m", \
-     "$out/bed_0.96m_d0.03.csv" every ::2 using 1:3 with lines lw 2 title "0.96 m deep, 0.03 m"
+     "$out/bed_0.96m_d0.03.csv" every ::2 using 1:3 with lines lw 2 title "0.96 m deep, 0.03 m", \
+     "$out/bed_0.96m_d0.06_jitter0.1.csv" every ::2 using 1:3 with lines lw 2 dt 2 title "0.96 m deep, 0.06 m, jitter 0.1", \
+     "$out/bed_2.85m_d0.06_jitter0.1.csv" every ::2 using 1:3 with lines lw 2 dt 2 title "2.85 m deep, 0.06 m, jitter 0.1"
 GP
 mv "$out/settling.png.tmp" "$out/settling.png"
