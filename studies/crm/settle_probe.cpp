@@ -4,11 +4,13 @@
 // are zeroed at t_zero (as settled_bed does at the end of --settle-time) and the run goes on, to
 // show what a rig placed on that bed would meet. The surface is measured as a CrmSite measures it.
 // Usage: crm_settle_probe DEPTH SPACING WIDTH T_END [T_ZERO=0] [cpu|cuda] [JITTER=0 (settle_jitter)]
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "highfi/crm_scene.hpp"
 #include "highfi/crm_solver.hpp"
@@ -57,5 +59,27 @@ int main(int argc, char** argv) {
       std::fflush(stdout);
     }
   }
+  // What settling left near the surface, per layer of the middle of the bin (a comment block after
+  // the CSV rows, top ten layers): mean density, accumulated plastic shear strain, and the friction
+  // the stress mobilises, tau / (mu_s p) (1 = at yield; the lithostatic start is 0.76 at nu = 0.3).
+  const HostSoil end = solver->soil();
+  const double top = bed_surface_height(end, sc);
+  constexpr int kLayers = 10;
+  std::vector<std::array<double, 4>> acc(kLayers, {0, 0, 0, 0});  // density, plastic strain, mobilised, count
+  for (std::size_t i = 0; i < end.size(); ++i) {
+    const auto& p = end.pos[i];
+    if (std::abs(p.x - 0.5 * width) > 0.25 * width || std::abs(p.y - 0.5 * width) > 0.25 * width) continue;
+    const int layer = int((top - p.z) / d0);
+    if (layer < 0 || layer >= kLayers) continue;
+    const auto &a0 = end.s0[i], &a1 = end.s1[i];
+    const double pressure = -(a0.x + a0.y + a0.z) / 3;
+    const double dx = a0.x + pressure, dy = a0.y + pressure, dz = a0.z + pressure;
+    const double tau = std::sqrt(0.5 * (dx * dx + dy * dy + dz * dz) + a0.w * a0.w + a1.x * a1.x + a1.y * a1.y);
+    auto& a = acc[std::size_t(layer)];
+    a[0] += p.w, a[1] += a1.z, a[2] += pressure > 0 ? tau / (sc.soil.mu_s * pressure) : 1.0, a[3] += 1;
+  }
+  std::printf("# by layer below the surface (%.4f m), middle of the bin: layer, density kg/m^3, plastic shear strain, tau/(mu_s p), particles\n", top);
+  for (int l = 0; l < kLayers; ++l)
+    if (const auto& a = acc[std::size_t(l)]; a[3] > 0) std::printf("# %d, %.2f, %.3g, %.3f, %d\n", l, a[0] / a[3], a[1] / a[3], a[2] / a[3], int(a[3]));
   return 0;
 }
