@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -81,5 +82,27 @@ int main(int argc, char** argv) {
   std::printf("# by layer below the surface (%.4f m), middle of the bin: layer, density kg/m^3, plastic shear strain, tau/(mu_s p), particles\n", top);
   for (int l = 0; l < kLayers; ++l)
     if (const auto& a = acc[std::size_t(l)]; a[3] > 0) std::printf("# %d, %.2f, %.3g, %.3f, %d\n", l, a[0] / a[3], a[1] / a[3], a[2] / a[3], int(a[3]));
+  // Is the motion smooth or does it alternate from one particle to the next? The correlation of the
+  // velocities of neighbours one spacing apart along x, y and z, sum v_i . v_j / sum |v_i|^2 over
+  // the particles near their lattice site: near +1 for a smooth (physical) motion, near -1 for a
+  // checkerboard (a mode the SPH gradients do not see).
+  std::map<std::array<long, 3>, std::size_t> site;
+  auto lattice = [&](const Vec4<double>& p) {
+    return std::array<long, 3>{std::lround(p.x / d0 - 0.5), std::lround(p.y / d0 - 0.5), std::lround(p.z / d0 - 0.5)};
+  };
+  for (std::size_t i = 0; i < end.size(); ++i) site[lattice(end.pos[i])] = i;
+  for (int axis = 0; axis < 3; ++axis) {
+    double vv = 0, v2 = 0;
+    for (std::size_t i = 0; i < end.size(); ++i) {
+      auto key = lattice(end.pos[i]);
+      ++key[std::size_t(axis)];
+      const auto it = site.find(key);
+      if (it == site.end()) continue;
+      const auto &a = end.vel[i], &b = end.vel[it->second];
+      vv += a.x * b.x + a.y * b.y + a.z * b.z;
+      v2 += a.x * a.x + a.y * a.y + a.z * a.z;
+    }
+    std::printf("# velocity correlation of neighbours along %c: %.3f\n", "xyz"[axis], v2 > 0 ? vv / v2 : 0.0);
+  }
   return 0;
 }
