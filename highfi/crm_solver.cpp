@@ -1,4 +1,3 @@
-#include "core/rng.hpp"
 #include "highfi/crm_solver.hpp"
 
 #include <algorithm>
@@ -7,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "core/rng.hpp"
 #include "highfi/body_markers.hpp"
 
 namespace terracal {
