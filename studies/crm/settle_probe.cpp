@@ -3,7 +3,7 @@
 // surface height of the middle of the bin printed every 0.025 s as CSV. Optionally the velocities
 // are zeroed at t_zero (as settled_bed does at the end of --settle-time) and the run goes on, to
 // show what a rig placed on that bed would meet. The surface is measured as a CrmSite measures it.
-// Usage: crm_settle_probe DEPTH SPACING WIDTH T_END [T_ZERO=0] [cpu|cuda] [JITTER=0 (settle_jitter)]
+// Usage: crm_settle_probe DEPTH SPACING WIDTH T_END [T_ZERO=0] [cpu|cuda] [JITTER=0 (settle_jitter)] [shifting]
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -21,18 +21,20 @@ using namespace terracal;
 
 int main(int argc, char** argv) {
   if (argc < 5) {
-    std::fprintf(stderr, "usage: %s DEPTH SPACING WIDTH T_END [T_ZERO=0] [cpu|cuda] [JITTER=0]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s DEPTH SPACING WIDTH T_END [T_ZERO=0] [cpu|cuda] [JITTER=0] [shifting]\n", argv[0]);
     return 2;
   }
   const double depth = std::atof(argv[1]), d0 = std::atof(argv[2]), width = std::atof(argv[3]), t_end = std::atof(argv[4]);
   const double t_zero = argc > 5 ? std::atof(argv[5]) : 0;
   const CrmDevice device = argc > 6 && std::string(argv[6]) == "cuda" ? CrmDevice::kCuda : CrmDevice::kCpu;
   const double jitter = argc > 7 ? std::atof(argv[7]) : 0;
+  const bool shifting = argc > 8 && std::string(argv[8]) == "shifting";  // the XSPH effect as well
   CrmScene sc;  // CrmSoil's defaults are the bevameter study soil (2022) of shared/reference
   sc.bin.size = {width, width, 1.5 * depth};
   sc.bin.fill_height = depth;
   sc.numerics.spacing = d0;
   sc.effects.artificial_viscosity = true;  // as the rigs' sites
+  sc.effects.shifting = shifting;
   sc.settle_jitter = jitter;               // 0: released from the exact lattice
   validate_crm_scene(sc);
   const HostSoil bed0 = settling_start(sc);
