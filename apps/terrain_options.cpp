@@ -23,6 +23,10 @@ void add_terrain_options(CLI::App* sub, TerrainOptions& o, bool crm, bool scm) {
     sub->add_option("--settle-jitter", o.settle_jitter,
                     "CRM settling starts up to this fraction of the spacing off the lattice, seeded (0: the exact lattice; results/crm_settling)")
         ->capture_default_str();
+    sub->add_option("--hourglass-damping", o.hourglass_damping,
+                    "CRM effect hourglass_damping with this alpha: a Laplacian viscosity nu = alpha h c/10 that damps the "
+                    "lattice's checkerboard mode (0: off; results/crm_settling)")
+        ->capture_default_str();
     sub->add_option("--bin-scale", o.bin_scale, "CRM bin (and bed depth) scaled by this factor: the bin-size check")->capture_default_str();
     sub->add_option("--bin-depth-scale", o.bin_depth_scale, "CRM bed depth scaled by this factor instead (0: as --bin-scale)")->capture_default_str();
   }
@@ -57,6 +61,8 @@ std::unique_ptr<TerrainSite> crm_site(const CrmSoil& soil, const TerrainOptions&
   if (!(o.step >= 0)) throw InputError(fmt::format("--step {}: expected >= 0 s", o.step));
   if (!(o.settle_jitter >= 0 && o.settle_jitter <= 0.3))
     throw InputError(fmt::format("--settle-jitter {}: expected in [0, 0.3] (a fraction of the spacing)", o.settle_jitter));
+  if (!(o.hourglass_damping >= 0 && o.hourglass_damping <= 2))
+    throw InputError(fmt::format("--hourglass-damping {}: expected in [0, 2] (0: off)", o.hourglass_damping));
   if (!(o.bin_scale >= 1 && o.bin_scale <= 10)) throw InputError(fmt::format("--bin-scale {}: expected in [1, 10]", o.bin_scale));
   if (!(o.bin_depth_scale == 0 || (o.bin_depth_scale >= 1 && o.bin_depth_scale <= 10)))
     throw InputError(fmt::format("--bin-depth-scale {}: expected 0 (as --bin-scale) or in [1, 10]", o.bin_depth_scale));
@@ -65,6 +71,8 @@ std::unique_ptr<TerrainSite> crm_site(const CrmSoil& soil, const TerrainOptions&
   sc.soil = soil;
   sc.effects.artificial_viscosity = true;
   sc.effects.cohesion = soil.cohesion > 0;
+  sc.effects.hourglass_damping = o.hourglass_damping > 0;
+  if (o.hourglass_damping > 0) sc.numerics.hourglass_alpha = o.hourglass_damping;
   sc.numerics.spacing = o.spacing;
   sc.numerics.time_step = o.step;
   // Whole spacings, and a bin at least a few spacings around the rig.

@@ -21,6 +21,7 @@ struct TerrainOptions {
   std::string cache = "results/runs/bed_cache";
   double settle_time = 0.3;              // CRM settling [s]
   double settle_jitter = 0;              // CRM settling starts up to this fraction of the spacing off the lattice
+  double hourglass_damping = 0;          // CRM effect hourglass_damping with this alpha (0 = off)
   double grid = 0.01;                    // SCM grid [m]
   double step = 0;                       // time step [s]; 0 = CRM's CFL step, SCM 1e-3
   std::vector<std::string> scm_effects = {"damping"};

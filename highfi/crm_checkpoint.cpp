@@ -104,6 +104,8 @@ std::string crm_fingerprint(const CrmScene& sc, CrmDevice device, bool include_b
       sc.numerics.h_over_d0, int(sc.numerics.kernel), sc.numerics.time_step, sc.numerics.viscosity_alpha,
       sc.numerics.xsph, sc.numerics.free_surface_support, int(sc.numerics.cpu_precision), sc.effects.cohesion,
       sc.effects.artificial_viscosity, sc.effects.shifting, sc.effects.active_domain, int(device), sc.settle_time, sc.settle_jitter);
+  // Appended only when on, so that the keys of runs without it (caches, checkpoints) stay as they were.
+  if (sc.effects.hourglass_damping) d += fmt::format(" | hourglass {}", sc.numerics.hourglass_alpha);
   if (include_bodies)
     for (const auto& b : sc.bodies) {
       d += fmt::format("|{} {} {} {} {} {} {}", b.name, int(b.shape.type), b.position.x, b.position.y, b.position.z,

@@ -27,9 +27,10 @@ struct CrmSoil {
 
 // Effects a scene may name; anything not named costs nothing.
 struct CrmEffects {
-  bool cohesion = false, artificial_viscosity = false, shifting = false, active_domain = false;
+  bool cohesion = false, artificial_viscosity = false, shifting = false, active_domain = false, hourglass_damping = false;
 };
-inline const std::array<const char*, 4> kCrmEffectNames = {"cohesion", "artificial_viscosity", "shifting", "active_domain"};
+inline const std::array<const char*, 5> kCrmEffectNames = {"cohesion", "artificial_viscosity", "shifting", "active_domain",
+                                                           "hourglass_damping"};
 
 // A scene body is a rigid body of core/rigid_body.hpp (shape, motion program, mass properties).
 using CrmBody = RigidBody;
@@ -50,6 +51,7 @@ struct CrmNumerics {
   double expected_speed = 0;   // the v_max used in the CFL limit
   double viscosity_alpha = 0.1;
   double xsph = 0.5;
+  double hourglass_alpha = 0.4;   // hourglass damping: nu = alpha h c_s / 10 (Monaghan's alpha on the same scale; 0.4: results/plate_bin_check)
   double active_margin = 0.1;
   double free_surface_support = 0.8;
   int grid_reach = 2;          // neighbour cells of size 2h / reach (1: the 2h grid of DESIGN.md)

@@ -185,6 +185,8 @@ void validate_crm_scene(CrmScene& sc) {
   if (!(sc.settle_jitter >= 0 && sc.settle_jitter <= 0.3))
     fail("settle_jitter", fmt::format("value {} is outside [0, 0.3] (a fraction of the particle spacing)", sc.settle_jitter));
   const CrmNumerics& n = sc.numerics;
+  if (sc.effects.hourglass_damping && !(n.hourglass_alpha > 0 && n.hourglass_alpha <= 2))
+    fail("hourglass_damping.alpha", fmt::format("value {} is outside (0, 2]", n.hourglass_alpha));
   const double d0 = n.spacing;
   if (!(d0 > 0)) fail("resolution.spacing", fmt::format("value {} must be > 0", d0));
   if (!(n.h_over_d0 >= 1.0 && n.h_over_d0 <= 1.6))
@@ -285,6 +287,7 @@ CrmScene parse_crm_scene(const nlohmann::json& j, const std::string& where) {
     if (e == "artificial_viscosity") sc.effects.artificial_viscosity = true;
     if (e == "shifting") sc.effects.shifting = true;
     if (e == "active_domain") sc.effects.active_domain = true;
+    if (e == "hourglass_damping") sc.effects.hourglass_damping = true;
   }
   auto settings = [&](const char* name, bool on) {
     if (o.has(name) && !on) o.fail(name, fmt::format("settings given, but \"{}\" is not named in 'effects'", name));
@@ -292,6 +295,7 @@ CrmScene parse_crm_scene(const nlohmann::json& j, const std::string& where) {
   settings("artificial_viscosity", sc.effects.artificial_viscosity);
   settings("shifting", sc.effects.shifting);
   settings("active_domain", sc.effects.active_domain);
+  settings("hourglass_damping", sc.effects.hourglass_damping);
   if (o.has("artificial_viscosity")) {
     JsonObject a = o.object("artificial_viscosity");
     sc.numerics.viscosity_alpha = a.number_or("alpha", 0.1, 0, 2);
@@ -300,6 +304,11 @@ CrmScene parse_crm_scene(const nlohmann::json& j, const std::string& where) {
   if (o.has("shifting")) {
     JsonObject a = o.object("shifting");
     sc.numerics.xsph = a.number_or("xsph", 0.5, 0, 1);
+    a.finish();
+  }
+  if (o.has("hourglass_damping")) {
+    JsonObject a = o.object("hourglass_damping");
+    sc.numerics.hourglass_alpha = a.number_or("alpha", 0.4, 0, 2, true);
     a.finish();
   }
   if (o.has("active_domain")) {

@@ -29,6 +29,8 @@ SphConstants<double> crm_constants(const CrmScene& sc) {
   k.sound_speed = s.sound_speed();
   k.viscosity_alpha = sc.effects.artificial_viscosity ? n.viscosity_alpha : 0.0;
   k.xsph = sc.effects.shifting ? n.xsph : 0.0;
+  // nu = alpha h c / 10: the shear viscosity that Monaghan's term with the same alpha carries in 3D.
+  k.hourglass_nu = sc.effects.hourglass_damping ? n.hourglass_alpha * n.smoothing_length() * s.sound_speed() / 10 : 0.0;
   k.free_surface_support = n.free_surface_support;
   return k;
 }
@@ -108,6 +110,7 @@ CrmSolver::CrmSolver(const CrmScene& scene, CrmDevice device, const HostSoil* be
   setup.soil = bed ? *bed : initial_bed(scene_);
   setup.viscosity = scene_.effects.artificial_viscosity;
   setup.shifting = scene_.effects.shifting;
+  setup.hourglass = scene_.effects.hourglass_damping;
   setup.bodies = int(scene_.bodies.size()) + 1;
   const double rho = scene_.soil.density;
   for (const auto& p : bin_marker_positions(scene_.bin, d0)) {

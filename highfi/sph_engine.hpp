@@ -34,7 +34,7 @@ struct EngineSetup {
   HostSoil soil;
   HostMarkers markers;
   int bodies = 1;
-  bool viscosity = false, shifting = false;
+  bool viscosity = false, shifting = false, hourglass = false;
   // The soil's room: a particle whose centre gets further than half a spacing into the bin's walls
   // has broken through the boundary (a violent impact can squeeze one in) and is marked lost.
   Vec3<double> room_lo{-1e30, -1e30, -1e30}, room_hi{1e30, 1e30, 1e30};

@@ -32,6 +32,7 @@ SphConstants<T> constants_in(const SphConstants<double>& c) {
   k.sound_speed = T(c.sound_speed);
   k.viscosity_alpha = T(c.viscosity_alpha);
   k.xsph = T(c.xsph);
+  k.hourglass_nu = T(c.hourglass_nu);
   k.free_surface_support = T(c.free_surface_support);
   return k;
 }
@@ -63,7 +64,7 @@ class SphEngineImpl final : public SphEngine {
  public:
   explicit SphEngineImpl(const EngineSetup& s)
       : k_(constants_in<T>(s.constants)), grid_(grid_in<T>(s.grid)), n_(s.soil.size()), nm_(s.markers.size()),
-        bodies_(s.bodies), viscosity_(s.viscosity), shifting_(s.shifting), room_lo_(to_t<T>(s.room_lo)),
+        bodies_(s.bodies), viscosity_(s.viscosity), shifting_(s.shifting), hourglass_(s.hourglass), room_lo_(to_t<T>(s.room_lo)),
         room_hi_(to_t<T>(s.room_hi)) {
     const std::size_t nn = n_ > 0 ? n_ : 1, mm = nm_ > 0 ? nm_ : 1;
     A_.allocate(nn);
@@ -203,14 +204,20 @@ class SphEngineImpl final : public SphEngine {
   }
 
  private:
+  // The effects are template arguments, so that an effect a scene does not name costs nothing.
   template <bool kVisc>
   void run_stage(const SoilArrays<T>& eval, const SoilArrays<T>& out, T dt) {
     if (nm_ > 0) B::parallel_for_heavy(long(nm_), MarkerStage<T, kVisc>{k_, grid_, soil_begin_, eval, mk_});
     if (n_ == 0) return;
-    if (shifting_)
-      B::parallel_for_heavy(long(n_), SoilStage<T, kVisc, true>{k_, grid_, soil_begin_, marker_begin_, eval, A_.a, out, mk_, dt});
+    if (shifting_) run_soil_stage<kVisc, true>(eval, out, dt);
+    else run_soil_stage<kVisc, false>(eval, out, dt);
+  }
+  template <bool kVisc, bool kShift>
+  void run_soil_stage(const SoilArrays<T>& eval, const SoilArrays<T>& out, T dt) {
+    if (hourglass_)
+      B::parallel_for_heavy(long(n_), SoilStage<T, kVisc, kShift, true>{k_, grid_, soil_begin_, marker_begin_, eval, A_.a, out, mk_, dt});
     else
-      B::parallel_for_heavy(long(n_), SoilStage<T, kVisc, false>{k_, grid_, soil_begin_, marker_begin_, eval, A_.a, out, mk_, dt});
+      B::parallel_for_heavy(long(n_), SoilStage<T, kVisc, kShift, false>{k_, grid_, soil_begin_, marker_begin_, eval, A_.a, out, mk_, dt});
   }
 
   // Markers are re-derived from their canonical (construction-order) arrays at every sort, so that
@@ -251,7 +258,7 @@ class SphEngineImpl final : public SphEngine {
   GridGeometry<T> grid_;
   std::size_t n_, nm_;
   int bodies_;
-  bool viscosity_, shifting_;
+  bool viscosity_, shifting_, hourglass_;
   Vec3<T> room_lo_, room_hi_;
   bool markers_sorted_ = false;
   SoilBuffers<T, B> A_, B_;

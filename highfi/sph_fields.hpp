@@ -104,6 +104,7 @@ struct SphConstants {
   T sound_speed = 0;          // sqrt(K / rho0)
   T viscosity_alpha = 0;      // Monaghan's alpha; zero unless the scene names artificial_viscosity
   T xsph = 0;                 // XSPH epsilon; zero unless the scene names shifting
+  T hourglass_nu = 0;         // kinematic viscosity of the hourglass damping; zero unless the scene names it
   T free_surface_support = 0; // kernel support (Shepard sum) below which a particle is on the free surface
 };
 

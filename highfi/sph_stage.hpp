@@ -39,7 +39,7 @@ TERRACAL_HD inline Vec3<T> pair_acceleration(const SphConstants<T>& k, const Sym
 template <typename T>
 struct SoilSelf {
   Vec3<T> x, v;
-  T rho, inv_rho2;
+  T rho, inv_rho, inv_rho2;
   Sym3<T> s;
 };
 
@@ -63,7 +63,8 @@ struct SoilSums {
 // The share of neighbour j (soil particle or boundary marker, within the support) in the sums of
 // `me`. Records in and sums out by value, so that the CPU's SIMD loop keeps them in registers
 // (GCC privatises any local whose address is taken inside an `omp simd` loop into memory).
-template <typename T, bool kViscosity, bool kShifting>
+// kHourglass adds the hourglass damping between soil particles (the caller passes false for markers).
+template <typename T, bool kViscosity, bool kShifting, bool kHourglass>
 TERRACAL_HD inline SoilSums<T> neighbour_share(const SphConstants<T>& k, const SoilSelf<T>& me, Vec4<T> pj, Vec4<T> vj4,
                                                Vec4<T> s0j, Vec4<T> s1j) {
   const Vec3<T> r = me.x - pj.xyz();
@@ -77,6 +78,16 @@ TERRACAL_HD inline SoilSums<T> neighbour_share(const SphConstants<T>& k, const S
   SoilSums<T> c;
   c.acc = pair_acceleration<T, kViscosity>(k, me.s, me.inv_rho2, me.rho, me.v, stress_of(s0j, s1j),
                                            inv_rho_j * inv_rho_j, pj.w, vj, r, r2, grad);
+  if (kHourglass) {
+    // Morris' SPH Laplacian nu lap(v) on the whole relative velocity. It vanishes on any linear
+    // velocity field (interior, symmetric neighbourhood), so uniform strain rates and rigid
+    // rotation go undamped, but it damps the lattice's checkerboard modes, in which neighbours
+    // move past each other and which neither the velocity gradient nor the artificial viscosity
+    // (along r_ij only) sees. Symmetric in i and j: momentum is conserved.
+    const T h = k.kernel.h;
+    const T lap = k.hourglass_nu * (me.inv_rho + inv_rho_j) * kv.f * r2 / (r2 + T(0.01) * h * h);
+    c.acc -= lap * dv;
+  }
   c.L = outer(vol_j * dv, grad);
   c.support = vol_j * kv.w;
   if (kShifting) c.xsph = (vol_j * kv.w) * dv;
@@ -89,7 +100,7 @@ TERRACAL_HD inline SoilSums<T> neighbour_share(const SphConstants<T>& k, const S
 // gathers are slow, contiguous loads are not. The arithmetic is neighbour_share's; only the loop
 // differs from the GPU's.
 constexpr int kSimdChunk = 128;
-template <typename T, bool kViscosity, bool kShifting>
+template <typename T, bool kViscosity, bool kShifting, bool kHourglass>
 inline void add_neighbours_simd(SoilSums<T>& sum, const SphConstants<T>& k, const SoilSelf<T>& me,
                                 const Vec4<T>* pos, const Vec4<T>* vel, const Vec4<T>* s0, const Vec4<T>* s1,
                                 int* list, int n) {
@@ -103,7 +114,7 @@ inline void add_neighbours_simd(SoilSums<T>& sum, const SphConstants<T>& k, cons
   T l00 = 0, l01 = 0, l02 = 0, l10 = 0, l11 = 0, l12 = 0, l20 = 0, l21 = 0, l22 = 0;
 #pragma omp simd reduction(+ : ax, ay, az, dx, dy, dz, sup, l00, l01, l02, l10, l11, l12, l20, l21, l22)
   for (int q = 0; q < n; ++q) {
-    const SoilSums<T> c = neighbour_share<T, kViscosity, kShifting>(
+    const SoilSums<T> c = neighbour_share<T, kViscosity, kShifting, kHourglass>(
         k, me, Vec4<T>{px[q], py[q], pz[q], pr[q]}, Vec4<T>{vx[q], vy[q], vz[q], T(0)},
         Vec4<T>{sxx[q], syy[q], szz[q], sxy[q]}, Vec4<T>{sxz[q], syz[q], T(0), T(0)});
     ax += c.acc.x; ay += c.acc.y; az += c.acc.z;
@@ -242,7 +253,7 @@ struct MarkerStage {
 
 // One stage for one soil particle: accumulate the momentum balance, the velocity gradient and
 // the kernel support over soil and marker neighbours, then integrate and return-map the stress.
-template <typename T, bool kViscosity, bool kShifting>
+template <typename T, bool kViscosity, bool kShifting, bool kHourglass>
 struct SoilStage {
   SphConstants<T> k;
   GridGeometry<T> grid;
@@ -269,6 +280,7 @@ struct SoilStage {
     me.v = eval.vel[i].xyz();
     me.rho = pi4.w;
     me.inv_rho2 = T(1) / (me.rho * me.rho);
+    me.inv_rho = kHourglass ? T(1) / me.rho : T(0);  // only the hourglass damping needs it
     me.s = stress_of(eval.s0[i], eval.s1[i]);
     const T support2 = k.kernel.support2();
 
@@ -278,13 +290,13 @@ struct SoilStage {
     // GPU: one thread per particle walks its neighbour rows, testing a row before summing its hits.
     grid.for_each_neighbour_range(me.x, soil_begin, [&](int first, int last) {
       for_each_hit(eval.pos, first, last, int(i), me.x, support2, [&](int j) {
-        sum += neighbour_share<T, kViscosity, kShifting>(k, me, load(eval.pos + j), load(eval.vel + j),
+        sum += neighbour_share<T, kViscosity, kShifting, kHourglass>(k, me, load(eval.pos + j), load(eval.vel + j),
                                                          load(eval.s0 + j), load(eval.s1 + j));
       });
     });
     grid.for_each_neighbour_range(me.x, marker_begin, [&](int first, int last) {
       for_each_hit(mk.pos, first, last, -1, me.x, support2, [&](int j) {
-        sum += neighbour_share<T, kViscosity, kShifting>(k, me, load(mk.pos + j), load(mk.vel + j), load(mk.s0 + j),
+        sum += neighbour_share<T, kViscosity, kShifting, false>(k, me, load(mk.pos + j), load(mk.vel + j), load(mk.s0 + j),
                                                          load(mk.s1 + j));
       });
     });
@@ -307,12 +319,12 @@ struct SoilStage {
       }
     };
     auto flush_soil = [&] {
-      add_neighbours_simd<T, kViscosity, kShifting>(sum, k, me, eval.pos, eval.vel, eval.s0, eval.s1, list, n);
+      add_neighbours_simd<T, kViscosity, kShifting, kHourglass>(sum, k, me, eval.pos, eval.vel, eval.s0, eval.s1, list, n);
     };
     grid.for_each_neighbour_range(me.x, soil_begin, [&](int first, int last) { collect(eval.pos, first, last, i, flush_soil); });
     flush_soil();
     n = 0;
-    auto flush_markers = [&] { add_neighbours_simd<T, kViscosity, kShifting>(sum, k, me, mk.pos, mk.vel, mk.s0, mk.s1, list, n); };
+    auto flush_markers = [&] { add_neighbours_simd<T, kViscosity, kShifting, false>(sum, k, me, mk.pos, mk.vel, mk.s0, mk.s1, list, n); };
     grid.for_each_neighbour_range(me.x, marker_begin, [&](int first, int last) { collect(mk.pos, first, last, -1, flush_markers); });
     flush_markers();
 #endif

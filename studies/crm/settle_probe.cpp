@@ -3,7 +3,8 @@
 // surface height of the middle of the bin printed every 0.025 s as CSV. Optionally the velocities
 // are zeroed at t_zero (as settled_bed does at the end of --settle-time) and the run goes on, to
 // show what a rig placed on that bed would meet. The surface is measured as a CrmSite measures it.
-// Usage: crm_settle_probe DEPTH SPACING WIDTH T_END [T_ZERO=0] [cpu|cuda] [JITTER=0 (settle_jitter)] [shifting]
+// Usage: crm_settle_probe DEPTH SPACING WIDTH T_END [T_ZERO=0] [cpu|cuda] [JITTER=0 (settle_jitter)] [EFFECTS]
+// EFFECTS: a comma-separated list of effects besides artificial_viscosity: shifting, hourglass_damping[:ALPHA].
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -21,28 +22,46 @@ using namespace terracal;
 
 int main(int argc, char** argv) {
   if (argc < 5) {
-    std::fprintf(stderr, "usage: %s DEPTH SPACING WIDTH T_END [T_ZERO=0] [cpu|cuda] [JITTER=0] [shifting]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s DEPTH SPACING WIDTH T_END [T_ZERO=0] [cpu|cuda] [JITTER=0] [shifting,hourglass_damping[:ALPHA]]\n",
+                 argv[0]);
     return 2;
   }
   const double depth = std::atof(argv[1]), d0 = std::atof(argv[2]), width = std::atof(argv[3]), t_end = std::atof(argv[4]);
   const double t_zero = argc > 5 ? std::atof(argv[5]) : 0;
   const CrmDevice device = argc > 6 && std::string(argv[6]) == "cuda" ? CrmDevice::kCuda : CrmDevice::kCpu;
   const double jitter = argc > 7 ? std::atof(argv[7]) : 0;
-  const bool shifting = argc > 8 && std::string(argv[8]) == "shifting";  // the XSPH effect as well
+  const std::string extra = argc > 8 ? argv[8] : "";
   CrmScene sc;  // CrmSoil's defaults are the bevameter study soil (2022) of shared/reference
   sc.bin.size = {width, width, 1.5 * depth};
   sc.bin.fill_height = depth;
   sc.numerics.spacing = d0;
   sc.effects.artificial_viscosity = true;  // as the rigs' sites
-  sc.effects.shifting = shifting;
+  for (std::size_t at = 0; at < extra.size();) {
+    std::size_t end = extra.find(',', at);
+    if (end == std::string::npos) end = extra.size();
+    const std::string item = extra.substr(at, end - at);
+    at = end + 1;
+    if (item == "shifting") {
+      sc.effects.shifting = true;
+    } else if (item.rfind("hourglass_damping", 0) == 0) {
+      sc.effects.hourglass_damping = true;
+      if (item.size() > 18 && item[17] == ':') sc.numerics.hourglass_alpha = std::atof(item.c_str() + 18);
+    } else {
+      std::fprintf(stderr, "unknown effect '%s' (expected shifting or hourglass_damping[:ALPHA])\n", item.c_str());
+      return 2;
+    }
+  }
   sc.settle_jitter = jitter;               // 0: released from the exact lattice
   validate_crm_scene(sc);
   const HostSoil bed0 = settling_start(sc);
   auto solver = std::make_unique<CrmSolver>(sc, device, &bed0);
   const double dt = solver->time_step();
   const double mass = sc.soil.density * width * width * depth;
-  std::printf("# bed %.3g m deep, %.3g x %.3g m, spacing %.3g m, jitter %.3g, %zu particles, step %.3g s; 4H/c = %.3g s\n", depth, width, width, d0, jitter,
-              solver->soil().size(), dt, 4 * depth / sc.soil.sound_speed());
+  std::printf("# bed %.3g m deep, %.3g x %.3g m, spacing %.3g m, jitter %.3g, %zu particles, step %.3g s; 4H/c = %.3g s; effects: "
+              "artificial_viscosity%s%s\n",
+              depth, width, width, d0, jitter, solver->soil().size(), dt, 4 * depth / sc.soil.sound_speed(),
+              sc.effects.shifting ? ", shifting" : "",
+              sc.effects.hourglass_damping ? (", hourglass_damping " + std::to_string(sc.numerics.hourglass_alpha)).c_str() : "");
   std::printf("t_s,kinetic_energy_J,rms_speed_m_s,max_speed_m_s,surface_m\n");
   const long every = std::max(1L, long(std::lround(0.025 / dt)));
   bool zeroed = !(t_zero > 0);
@@ -84,6 +103,21 @@ int main(int argc, char** argv) {
   std::printf("# by layer below the surface (%.4f m), middle of the bin: layer, density kg/m^3, plastic shear strain, tau/(mu_s p), particles\n", top);
   for (int l = 0; l < kLayers; ++l)
     if (const auto& a = acc[std::size_t(l)]; a[3] > 0) std::printf("# %d, %.2f, %.3g, %.3f, %d\n", l, a[0] / a[3], a[1] / a[3], a[2] / a[3], int(a[3]));
+  // How rough the surface a rig meets is: the heights of the top layer's particles (middle of the
+  // bin) about their mean; a lattice bed starts with all of them at one height.
+  {
+    double sum = 0, sum2 = 0, lo = 1e30, hi = -1e30;
+    long n = 0;
+    for (std::size_t i = 0; i < end.size(); ++i) {
+      const auto& p = end.pos[i];
+      if (std::abs(p.x - 0.5 * width) > 0.25 * width || std::abs(p.y - 0.5 * width) > 0.25 * width) continue;
+      if (p.z < top - d0) continue;  // within half a spacing of the top layer's mean height
+      sum += p.z, sum2 += p.z * p.z, lo = std::min(lo, p.z), hi = std::max(hi, p.z), ++n;
+    }
+    const double mean = n ? sum / double(n) : 0;
+    std::printf("# top layer heights (middle of the bin, %ld particles): rms %.3g m about the mean, range %.3g m\n", n,
+                n ? std::sqrt(std::max(0.0, sum2 / double(n) - mean * mean)) : 0.0, hi - lo);
+  }
   // Is the motion smooth or does it alternate from one particle to the next? The correlation of the
   // velocities of neighbours one spacing apart along x, y and z, sum v_i . v_j / sum |v_i|^2 over
   // the particles near their lattice site: near +1 for a smooth (physical) motion, near -1 for a

@@ -78,6 +78,7 @@ TEST_CASE("rig commands: bad input exits 2 naming the option or key, and writes 
       {"bevameter --solver crm --soil " + d + "/soil.json --test plate --device cpu --bin-depth-scale 0.5" + out, {"--bin-depth-scale", "0.5"}},
       {"bevameter --solver crm --soil " + d + "/soil.json --test plate --device cpu --plate-wall-radii 1" + out, {"--plate-wall-radii", "1"}},
       {"bevameter --solver crm --soil " + d + "/soil.json --test plate --device cpu --settle-jitter 0.5" + out, {"--settle-jitter", "0.5"}},
+      {"bevameter --solver crm --soil " + d + "/soil.json --test plate --device cpu --hourglass-damping 3" + out, {"--hourglass-damping", "3"}},
       {"wheel --terrain scm --scm " + d + "/sand.json --wheel " + d + "/wheel_typo.json" + out, {"width", "missing"}},
       {"wheel --terrain scm --scm " + d + "/sand.json --wheel " + d + "/wheel_neg.json" + out, {"radius", "-0.47"}},
       {"wheel --terrain scm --scm " + d + "/sand.json --wheel " + d + "/wheel.json --slips 0.2,1.5" + out, {"slip", "1.5"}},
