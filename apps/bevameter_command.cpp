@@ -8,6 +8,7 @@
 #include <spdlog/spdlog.h>
 
 #include "apps/commands.hpp"
+#include "apps/plate_options.hpp"
 #include "apps/report_plots.hpp"
 #include "apps/soil_choice.hpp"
 #include "core/atomic_file.hpp"
@@ -18,8 +19,8 @@ namespace terracal::app {
 namespace {
 struct BevameterArgs {
   std::string solver, test = "all", out, plates = "0.2,0.3", loads, annulus = "0.15,0.20";
-  double max_sinkage = 0.2, plate_speed = 0.1, shear_angle = 1.0, shear_rate = 1.0, shear_settle = 1.0, shear_step = 0;
-  double plate_wall_radii = BevameterPlan{}.plate_wall_radii, plate_depth_scale = BevameterPlan{}.plate_depth_scale;
+  double max_sinkage = 0.2, shear_angle = 1.0, shear_rate = 1.0, shear_settle = 1.0, shear_step = 0;
+  BevameterPlan plate;  // speed and CRM bin (apps/plate_options.hpp)
   bool plots = true;
   TerrainOptions terrain;
 };
@@ -33,11 +34,7 @@ Command add_bevameter(CLI::App& app) {
   sub->add_option("--out", a->out, "output folder")->required();
   sub->add_option("--plates", a->plates, "plate radii [m], comma-separated")->capture_default_str();
   sub->add_option("--max-sinkage", a->max_sinkage, "plate sinkage at the end of the stroke [m]")->capture_default_str();
-  sub->add_option("--plate-speed", a->plate_speed, "plate speed [m/s]")->capture_default_str();
-  sub->add_option("--plate-wall-radii", a->plate_wall_radii, "CRM plate bin: walls this many plate radii from the centre (checked: 9)")
-      ->capture_default_str();
-  sub->add_option("--plate-depth-scale", a->plate_depth_scale, "CRM plate bin: soil depth = this x (max sinkage + 2.5 radii) (checked: 2)")
-      ->capture_default_str();
+  add_plate_options(sub, a->plate);
   sub->add_option("--shear-loads", a->loads, "annulus normal loads [N], comma-separated (required for shear)");
   sub->add_option("--annulus", a->annulus, "annulus inner,outer radius [m]")->capture_default_str();
   sub->add_option("--shear-angle", a->shear_angle, "angle turned [rad]")->capture_default_str();
@@ -51,12 +48,9 @@ Command add_bevameter(CLI::App& app) {
       throw InputError(fmt::format("--test {}: expected plate, shear or all", a->test));
     if (a->solver != "crm" && a->solver != "scm") throw InputError(fmt::format("--solver {}: expected crm or scm", a->solver));
     const bool plate = a->test != "shear", shear = a->test != "plate";
-    BevameterPlan plan;
+    BevameterPlan plan = a->plate;
     plan.plates = parse_list(a->plates, "--plates");
     plan.max_sinkage = a->max_sinkage;
-    plan.plate_speed = a->plate_speed;
-    plan.plate_wall_radii = a->plate_wall_radii;
-    plan.plate_depth_scale = a->plate_depth_scale;
     const auto ann = parse_list(a->annulus, "--annulus");
     if (ann.size() != 2) throw InputError(fmt::format("--annulus '{}': expected two radii INNER,OUTER", a->annulus));
     plan.inner_radius = ann[0];

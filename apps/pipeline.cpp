@@ -1,5 +1,6 @@
 #include "apps/pipeline.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -38,17 +39,21 @@ struct Check {
   double change;
 };
 
-std::vector<Check> run_checks(const PipelinePlan& plan, const SoilChoice& crm, const BevameterCurves& base_bev,
-                              const std::vector<rigs::WheelResult>& base_wheel) {
-  std::vector<Check> out;
-  TerrainOptions big = plan.terrain;
-  big.bin_scale = 1.5 * plan.terrain.bin_scale;
+// Each check reruns one rig: in a bin 1.5x larger (and deeper), and where the rig has a run length,
+// for a 1.5x longer run; each Check is the largest relative change of the measured curve.
+TerrainOptions larger_bin(const TerrainOptions& o) {
+  TerrainOptions big = o;
+  big.bin_scale = 1.5 * o.bin_scale;
   if (big.bin_depth_scale > 0) big.bin_depth_scale *= 1.5;
-  // Plate: the largest plate in a 1.5x bin, 1.5x deeper.
+  return big;
+}
+
+// Plate: the largest plate in a 1.5x bin, 1.5x deeper; its loading leg (Bekker's law), force
+// against sinkage. The plate's run is its stroke, set by the sinkage: there is no longer run.
+void check_plate(const PipelinePlan& plan, const SoilChoice& crm, const BevameterCurves& base, std::vector<Check>& out) {
   BevameterPlan p = plan.bevameter;
   p.plates = {*std::max_element(p.plates.begin(), p.plates.end())};
-  const auto plate_big = run_bevameter(crm, big, p, true, false);
-  // The loading leg (Bekker's law), force against sinkage.
+  const auto big = run_bevameter(crm, larger_bin(plan.terrain), p, true, false);
   auto loading_leg = [&](const std::vector<rigs::PlateRow>& rows) {
     rigs::Curve c;
     for (const auto& r : rows)
@@ -56,21 +61,25 @@ std::vector<Check> run_checks(const PipelinePlan& plan, const SoilChoice& crm, c
     return c;
   };
   out.push_back({"plate", fmt::format("r = {} m, loading leg: bin 1.5x larger and deeper", p.plates[0]),
-                 rigs::curve_change(loading_leg(base_bev.plate), loading_leg(plate_big.plate))});
-  // Annulus: the heaviest load, in a 1.5x bin, then turned 1.5x further.
+                 rigs::curve_change(loading_leg(base.plate), loading_leg(big.plate))});
+}
+
+// Annulus: the heaviest load, in a 1.5x bin, then turned 1.5x further.
+void check_annulus(const PipelinePlan& plan, const SoilChoice& crm, const BevameterCurves& base, std::vector<Check>& out) {
   BevameterPlan s = plan.bevameter;
   s.shear_loads = {*std::max_element(s.shear_loads.begin(), s.shear_loads.end())};
-  auto base_shear = [&](const BevameterCurves& c) {  // torque against angle
+  auto torque_curve = [&](const BevameterCurves& c) {  // torque against angle
     rigs::Curve t;
     for (const auto& r : c.shear)
       if (r.normal_load == s.shear_loads[0]) t.x.push_back(r.angle), t.y.push_back(r.torque);
     return t;
   };
-  const auto shear_big = run_bevameter(crm, big, s, false, true);
-  out.push_back({"annulus", fmt::format("{:.4g} N: bin 1.5x larger and deeper", s.shear_loads[0]), rigs::curve_change(base_shear(base_bev), base_shear(shear_big))});
+  const auto big = run_bevameter(crm, larger_bin(plan.terrain), s, false, true);
+  out.push_back({"annulus", fmt::format("{:.4g} N: bin 1.5x larger and deeper", s.shear_loads[0]),
+                 rigs::curve_change(torque_curve(base), torque_curve(big))});
   BevameterPlan longer = s;
   longer.shear_angle *= 1.5;
-  const auto shear_long = run_bevameter(crm, plan.terrain, longer, false, true);
+  const auto turned = run_bevameter(crm, plan.terrain, longer, false, true);
   // The longer run's first 2/3 covers the base run's angles at the same samples only approximately;
   // compare the fully developed torque (mean of the last fifth of each run).
   auto tail_mean = [](const rigs::Curve& c) {
@@ -80,29 +89,57 @@ std::vector<Check> run_checks(const PipelinePlan& plan, const SoilChoice& crm, c
     for (std::size_t i = from; i < t.size(); ++i) sum += t[i];
     return t.size() > from ? sum / double(t.size() - from) : 0.0;
   };
-  const double t0 = tail_mean(base_shear(base_bev)), t1 = tail_mean(base_shear(shear_long));
+  const double t0 = tail_mean(torque_curve(base)), t1 = tail_mean(torque_curve(turned));
   out.push_back({"annulus", "turned 1.5x further (developed torque)", std::abs(t1 - t0) / std::max(std::abs(t0), 1e-12)});
-  // Wheel: slip 0.3 (or the middle slip) in a 1.5x bin, and run 1.5x longer.
+}
+
+// Wheel: the middle slip of the sweep in a 1.5x bin, and run 1.5x longer.
+void check_wheel(const PipelinePlan& plan, const SoilChoice& crm, const std::vector<rigs::WheelResult>& base_sweep, std::vector<Check>& out) {
   const double slip = plan.slips[plan.slips.size() / 2];
   const rigs::WheelResult* base = nullptr;
-  for (const auto& r : base_wheel)
+  for (const auto& r : base_sweep)
     if (r.slip == slip) base = &r;
-  const auto wheel_big = run_wheel_sweep("crm", crm, big, plan.wheel, {slip}, plan.crm_wheel_run);
+  if (!base) return;
+  const auto big = run_wheel_sweep("crm", crm, larger_bin(plan.terrain), plan.wheel, {slip}, plan.crm_wheel_run);
   rigs::WheelRun long_run = plan.crm_wheel_run;
   long_run.duration *= 1.5;
-  const auto wheel_long = run_wheel_sweep("crm", crm, plan.terrain, plan.wheel, {slip}, long_run);
-  if (base) {
-    auto change = [&](const rigs::WheelResult& r) {
-      return std::max({std::abs(r.dbp - base->dbp) / std::max(std::abs(base->torque / plan.wheel.radius), 1e-12),
-                       std::abs(r.torque - base->torque) / std::max(std::abs(base->torque), 1e-12),
-                       std::abs(r.sinkage - base->sinkage) / std::max(std::abs(base->sinkage), 1e-12)});
-    };
-    out.push_back({"wheel", fmt::format("slip {}: bin 1.5x larger (largest of DBP/thrust, torque, sinkage)", slip), change(wheel_big[0])});
-    out.push_back({"wheel", fmt::format("slip {}: run 1.5x longer (largest of DBP/thrust, torque, sinkage)", slip), change(wheel_long[0])});
+  const auto longer = run_wheel_sweep("crm", crm, plan.terrain, plan.wheel, {slip}, long_run);
+  auto change = [&](const rigs::WheelResult& r) {
+    return std::max({std::abs(r.dbp - base->dbp) / std::max(std::abs(base->torque / plan.wheel.radius), 1e-12),
+                     std::abs(r.torque - base->torque) / std::max(std::abs(base->torque), 1e-12),
+                     std::abs(r.sinkage - base->sinkage) / std::max(std::abs(base->sinkage), 1e-12)});
+  };
+  out.push_back({"wheel", fmt::format("slip {}: bin 1.5x larger (largest of DBP/thrust, torque, sinkage)", slip), change(big[0])});
+  out.push_back({"wheel", fmt::format("slip {}: run 1.5x longer (largest of DBP/thrust, torque, sinkage)", slip), change(longer[0])});
+}
+
+std::vector<Check> run_checks(const PipelinePlan& plan, const SoilChoice& crm, const BevameterCurves& base_bev,
+                              const std::vector<rigs::WheelResult>& base_wheel) {
+  std::vector<Check> out;
+  for (const std::string& rig : plan.checks) {
+    if (rig == "plate") check_plate(plan, crm, base_bev, out);
+    if (rig == "annulus") check_annulus(plan, crm, base_bev, out);
+    if (rig == "wheel") check_wheel(plan, crm, base_wheel, out);
   }
   return out;
 }
 }  // namespace
+
+std::vector<std::string> parse_check_rigs(const std::string& text) {
+  if (text.empty()) return {};
+  if (text == "all") return {"plate", "annulus", "wheel"};
+  std::vector<std::string> rigs;
+  std::size_t from = 0;
+  while (from <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', from), text.size());
+    const std::string rig = text.substr(from, comma - from);
+    if (rig != "plate" && rig != "annulus" && rig != "wheel")
+      throw InputError(fmt::format("--checks '{}': '{}' is not a rig (expected all, or a comma list of plate, annulus, wheel)", text, rig));
+    rigs.push_back(rig);
+    from = comma + 1;
+  }
+  return rigs;
+}
 
 int run_pipeline(const PipelinePlan& plan) {
   const auto start = Clock::now();
@@ -184,7 +221,7 @@ int run_pipeline(const PipelinePlan& plan) {
   plot_wheel_models(out, {{"CRM", wheel_crm}, {"SCM (calibrated)", wheel_scm}, {"Wong-Reece (calibrated)", wheel_wr}});
 
   std::vector<Check> checks;
-  if (plan.checks) {
+  if (!plan.checks.empty()) {
     spdlog::info("pipeline: bin-size and run-length checks");
     checks = run_checks(plan, crm, bev, wheel_crm);
   }
@@ -206,13 +243,18 @@ int run_pipeline(const PipelinePlan& plan) {
   }
   md += fmt::format("\nCalibration: {} (calibration/summary.txt).\n\n", cal_status == 0 ? "converged" : "NOT converged");
   if (!scm_note.empty()) md += "**Note.** " + scm_note + "\n\n";
-  // The checked plate bin (results/plate_bin_check): walls 9 radii away, depth scale 2.
+  // The checked plate bin (results/plate_bin_check) and the effect it was checked with.
+  const BevameterPlan checked;
   const double walls = plan.bevameter.plate_wall_radii * plan.bevameter.bin_scale * plan.terrain.bin_scale;
   const double depth = plan.bevameter.plate_depth_scale * plan.bevameter.bin_scale * plan.terrain.depth_scale();
-  if (walls < 9 - 1e-9 || depth < 2 - 1e-9)
+  if (walls < checked.plate_wall_radii - 1e-9 || depth < checked.plate_depth_scale - 1e-9)
     md += fmt::format("**Note.** The CRM plate bin (walls {:.3g} plate radii away, soil {:.3g} x (max sinkage + 2.5 radii)) is smaller than "
-                      "the checked bin (9 radii, 2x): the plate curves read high (20-40 % at 3 radii and 1x, results/plate_bin_check).\n\n",
-                      walls, depth);
+                      "the checked bin ({:.3g} radii, {:.3g}x): the plate curves read high (4-8 % at 9 radii and 2x, 20-40 % at 3 radii and "
+                      "1x; results/plate_bin_check).\n\n",
+                      walls, depth, checked.plate_wall_radii, checked.plate_depth_scale);
+  if (plan.terrain.hourglass_damping <= 0)
+    md += "**Note.** The CRM effect hourglass_damping is off: the lattice's checkerboard mode softens the bed, so the CRM curves read "
+          "lower at finer spacing and in larger bins (results/plate_bin_check).\n\n";
   md += fmt::format("## Single wheel (radius {} m, width {} m, mass {} kg, omega {} rad/s)\n\n![wheel](wheel.png)\n\n", plan.wheel.radius,
                     plan.wheel.width, plan.wheel.mass, plan.wheel.angular_velocity);
   md += "| slip | DBP CRM [N] | DBP SCM | DBP W-R | torque CRM [N m] | torque SCM | torque W-R | sinkage CRM [m] | sinkage SCM | sinkage W-R |\n";

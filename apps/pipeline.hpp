@@ -19,9 +19,15 @@ struct PipelinePlan {
   rigs::WheelRun crm_wheel_run, scm_wheel_run;
   double scm_grid = 0.01;
   std::uint64_t seed = 1;
-  bool checks = false;                 // rerun each rig in a 1.5x bin and for a 1.5x longer run
+  // Rigs rerun in a 1.5x bin and for a 1.5x longer run (the bin-size and run-length checks), of
+  // "plate", "annulus", "wheel"; empty = no checks.
+  std::vector<std::string> checks;
   std::string out;
 };
+
+// "" -> no checks, "all" -> every rig, else a comma list of plate, annulus, wheel (InputError
+// naming --checks otherwise).
+std::vector<std::string> parse_check_rigs(const std::string& text);
 
 // Returns 0, or 1 when the calibration did not converge (everything is still written).
 int run_pipeline(const PipelinePlan& plan);

@@ -6,6 +6,7 @@
 
 #include "apps/commands.hpp"
 #include "apps/pipeline.hpp"
+#include "apps/plate_options.hpp"
 #include "core/errors.hpp"
 
 namespace terracal::app {
@@ -16,8 +17,10 @@ struct PipelineArgs {
   std::string loads_kg = "25,50,75,100,125,150,175,200";
   double max_sinkage = 0.2, wheel_duration = 3.0, shear_step = 0, shear_angle = 1.0, shear_settle = 1.0;
   std::uint64_t seed = 1;
-  bool checks = false, replot = false;
+  std::string checks;  // "" = none, "all", or a comma list of plate, annulus, wheel
+  bool replot = false;
   TerrainOptions terrain;
+  BevameterPlan plate;  // plate speed and CRM bin (apps/plate_options.hpp)
 };
 }  // namespace
 
@@ -36,7 +39,8 @@ Command add_pipeline(CLI::App& app) {
   sub->add_option("--shear-loads-kg", a->loads_kg, "annulus dead loads [kg]")->capture_default_str();
   sub->add_option("--wheel-duration", a->wheel_duration, "simulated seconds per slip")->capture_default_str();
   sub->add_option("--seed", a->seed, "calibration seed")->capture_default_str();
-  sub->add_flag("--checks", a->checks, "rerun each rig in a 1.5x bin and 1.5x longer (bin-size and run-length checks)");
+  sub->add_flag("--checks{all}", a->checks,
+                "rerun each rig in a 1.5x bin and 1.5x longer (bin-size and run-length checks); --checks=annulus,wheel for some rigs only");
   sub->add_option("--spacing", a->terrain.spacing, "CRM particle spacing [m]")->capture_default_str();
   sub->add_option("--device", a->terrain.device, "CRM device: cpu, cuda or auto")->capture_default_str();
   sub->add_option("--cache", a->terrain.cache, "folder of settled CRM beds")->capture_default_str();
@@ -45,6 +49,8 @@ Command add_pipeline(CLI::App& app) {
   sub->add_option("--shear-angle", a->shear_angle, "angle the annulus turns [rad]")->capture_default_str();
   sub->add_option("--shear-settle", a->shear_settle, "annulus settling under its load before turning [s]")->capture_default_str();
   sub->add_option("--shear-step", a->shear_step, "CRM time step of the annulus runs [s] (0: as --step)")->capture_default_str();
+  add_crm_settling_options(sub, a->terrain);
+  add_plate_options(sub, a->plate);
   return [a] {
     if (a->replot) {
       replot_pipeline(a->out);
@@ -52,12 +58,13 @@ Command add_pipeline(CLI::App& app) {
     }
     if (a->terrain.soil_json.empty()) throw InputError("--soil: required (the CRM soil material, JSON)");
     PipelinePlan p;
+    p.bevameter = a->plate;
     p.soil = load_crm_soil(a->terrain.soil_json);
     p.soil_name = a->terrain.soil_json;
     p.terrain = a->terrain;
     p.out = a->out;
     p.seed = a->seed;
-    p.checks = a->checks;
+    p.checks = parse_check_rigs(a->checks);
     p.scm_grid = a->terrain.grid;
     p.slips = parse_list(a->slips, "--slips");
     p.bevameter.plates = parse_list(a->plates, "--plates");

@@ -59,17 +59,20 @@ BevameterCurves run_bevameter(const SoilChoice& soil, const TerrainOptions& o, c
     rigs::check_range("--max-sinkage", plan.max_sinkage, 1e-3, 2, "m");
     rigs::check_range("--plate-wall-radii", plan.plate_wall_radii, 1.5, 50, "");
     rigs::check_range("--plate-depth-scale", plan.plate_depth_scale, 0.5, 10, "");
+    rigs::check_range("--plate-spacing", plan.plate_spacing, 0, 1, "m");
+    TerrainOptions po = o;
+    if (plan.plate_spacing > 0) po.spacing = plan.plate_spacing;
     const auto t0 = Clock::now();
     for (double r : plan.plates) {
       // Each plate in a bin sized by its own radius (see BevameterPlan::plate_wall_radii).
-      const double half = k * plan.plate_wall_radii * r + o.spacing;
-      auto site = site_for(soil, o, half, half, k * plan.plate_depth_scale * (plan.max_sinkage + 2.5 * r));
+      const double half = k * plan.plate_wall_radii * r + po.spacing;
+      auto site = site_for(soil, po, half, half, k * plan.plate_depth_scale * (plan.max_sinkage + 2.5 * r));
       if (c.site.find(site->description()) == std::string::npos) c.site += (c.site.empty() ? "" : "; ") + site->description();
       rigs::PlateTest t;
       t.radius = r;
       t.max_sinkage = plan.max_sinkage;
       t.speed = plan.plate_speed;
-      t.thickness = std::max(0.02, 2 * o.spacing);
+      t.thickness = std::max(0.02, 2 * po.spacing);
       const auto rows = rigs::run_plate(*site, t, progress);
       c.plate.insert(c.plate.end(), rows.begin(), rows.end());
       spdlog::info("plate r = {} m: {} rows, force {:.4g} N at {:.3g} m", r, rows.size(), rows.back().force, rows.back().sinkage);

@@ -13,20 +13,25 @@
 
 namespace terracal::app {
 
+void add_crm_settling_options(CLI::App* sub, TerrainOptions& o) {
+  sub->add_option("--settle-time", o.settle_time, "CRM settling before the test [s]")->capture_default_str();
+  sub->add_option("--settle-jitter", o.settle_jitter,
+                  "CRM settling starts up to this fraction of the spacing off the lattice, seeded (0: the exact lattice; results/crm_settling)")
+      ->capture_default_str();
+  sub->add_option("--hourglass-damping", o.hourglass_damping,
+                  "CRM effect hourglass_damping with this alpha: a Laplacian viscosity nu = alpha h c/10 that damps the lattice's "
+                  "checkerboard mode; on for the rigs by default, because without it the bed softens with finer spacing and "
+                  "larger bins (0: off; results/plate_bin_check)")
+      ->capture_default_str();
+}
+
 void add_terrain_options(CLI::App* sub, TerrainOptions& o, bool crm, bool scm) {
   if (crm) {
     sub->add_option("--soil", o.soil_json, "CRM soil material (JSON, DESIGN.md 'Soil')");
     sub->add_option("--spacing", o.spacing, "CRM particle spacing [m]")->capture_default_str();
     sub->add_option("--device", o.device, "CRM device: cpu, cuda or auto")->capture_default_str();
     sub->add_option("--cache", o.cache, "folder of settled CRM beds ('' = no cache)")->capture_default_str();
-    sub->add_option("--settle-time", o.settle_time, "CRM settling before the test [s]")->capture_default_str();
-    sub->add_option("--settle-jitter", o.settle_jitter,
-                    "CRM settling starts up to this fraction of the spacing off the lattice, seeded (0: the exact lattice; results/crm_settling)")
-        ->capture_default_str();
-    sub->add_option("--hourglass-damping", o.hourglass_damping,
-                    "CRM effect hourglass_damping with this alpha: a Laplacian viscosity nu = alpha h c/10 that damps the "
-                    "lattice's checkerboard mode (0: off; results/crm_settling)")
-        ->capture_default_str();
+    add_crm_settling_options(sub, o);
     sub->add_option("--bin-scale", o.bin_scale, "CRM bin (and bed depth) scaled by this factor: the bin-size check")->capture_default_str();
     sub->add_option("--bin-depth-scale", o.bin_depth_scale, "CRM bed depth scaled by this factor instead (0: as --bin-scale)")->capture_default_str();
   }

@@ -88,6 +88,9 @@ TEST_CASE("rig commands: bad input exits 2 naming the option or key, and writes 
       {"pipeline --soil " + d + "/soil_bad.json" + out, {"density", "-5"}},
       {"pipeline --soil " + d + "/soil.json --shear-loads-kg 50,-3" + out, {"--shear-loads-kg", "-3"}},
       {"pipeline --soil " + d + "/soil.json --annulus 0.15" + out, {"--annulus"}},
+      {"pipeline --soil " + d + "/soil.json --checks=annulus,plates" + out, {"--checks", "plates"}},
+      {"pipeline --soil " + d + "/soil.json --device cpu --hourglass-damping -1" + out, {"--hourglass-damping", "-1"}},
+      {"pipeline --soil " + d + "/soil.json --device cpu --plate-depth-scale 0.1" + out, {"--plate-depth-scale", "0.1"}},
   };
   for (const auto& c : cases) {
     const CliResult r = run_cli(c.args, d);
