@@ -39,8 +39,14 @@ struct Check {
   double change;
 };
 
-// Each check reruns one rig: in a bin 1.5x larger (and deeper), and where the rig has a run length,
-// for a 1.5x longer run; each Check is the largest relative change of the measured curve.
+// Each check reruns one rig: in a bin 1.5x larger (and deeper), and for a 1.5x longer run; each
+// Check is the largest relative change of the measured curve. The rerun curves go to OUT/checks/.
+std::string checks_dir(const PipelinePlan& plan) {
+  const std::string dir = plan.out + "/checks";
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
 TerrainOptions larger_bin(const TerrainOptions& o) {
   TerrainOptions big = o;
   big.bin_scale = 1.5 * o.bin_scale;
@@ -62,11 +68,13 @@ void check_plate(const PipelinePlan& plan, const SoilChoice& crm, const Bevamete
     return c;
   };
   const auto big = run_bevameter(crm, larger_bin(plan.terrain), p, true, false);
+  rigs::write_plate_csv(checks_dir(plan) + "/plate_bin_1.5x.csv", big.plate);
   out.push_back({"plate", fmt::format("r = {} m, loading leg: bin 1.5x larger and deeper", p.plates[0]),
                  rigs::curve_change(loading_leg(base.plate), loading_leg(big.plate))});
   BevameterPlan slower = p;
   slower.plate_speed /= 1.5;
   const auto longer = run_bevameter(crm, plan.terrain, slower, true, false);
+  rigs::write_plate_csv(checks_dir(plan) + "/plate_slower.csv", longer.plate);
   out.push_back({"plate", fmt::format("r = {} m, loading leg: run 1.5x longer (plate at {:.3g} m/s)", p.plates[0], slower.plate_speed),
                  rigs::curve_change(loading_leg(base.plate), loading_leg(longer.plate))});
 }
@@ -82,11 +90,13 @@ void check_annulus(const PipelinePlan& plan, const SoilChoice& crm, const Bevame
     return t;
   };
   const auto big = run_bevameter(crm, larger_bin(plan.terrain), s, false, true);
+  rigs::write_shear_csv(checks_dir(plan) + "/shear_bin_1.5x.csv", big.shear);
   out.push_back({"annulus", fmt::format("{:.4g} N: bin 1.5x larger and deeper", s.shear_loads[0]),
                  rigs::curve_change(torque_curve(base), torque_curve(big))});
   BevameterPlan longer = s;
   longer.shear_angle *= 1.5;
   const auto turned = run_bevameter(crm, plan.terrain, longer, false, true);
+  rigs::write_shear_csv(checks_dir(plan) + "/shear_further.csv", turned.shear);
   // The longer run's first 2/3 covers the base run's angles at the same samples only approximately;
   // compare the fully developed torque (mean of the last fifth of each run).
   auto tail_mean = [](const rigs::Curve& c) {
@@ -111,6 +121,8 @@ void check_wheel(const PipelinePlan& plan, const SoilChoice& crm, const std::vec
   rigs::WheelRun long_run = plan.crm_wheel_run;
   long_run.duration *= 1.5;
   const auto longer = run_wheel_sweep("crm", crm, plan.terrain, plan.wheel, {slip}, long_run);
+  rigs::write_wheel_series_csv(checks_dir(plan) + "/wheel_bin_1.5x_series.csv", big);
+  rigs::write_wheel_series_csv(checks_dir(plan) + "/wheel_longer_series.csv", longer);
   auto change = [&](const rigs::WheelResult& r) {
     return std::max({std::abs(r.dbp - base->dbp) / std::max(std::abs(base->torque / plan.wheel.radius), 1e-12),
                      std::abs(r.torque - base->torque) / std::max(std::abs(base->torque), 1e-12),
