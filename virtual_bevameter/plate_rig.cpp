@@ -57,9 +57,10 @@ std::vector<PlateRow> run_plate(const TerrainSite& site, const PlateTest& test, 
   const long steps = long(std::ceil(duration / dt - 1e-9));
   const long every = std::max(1L, steps / test.samples);
   std::vector<PlateRow> rows;
-  // The phase follows the plate's actual vertical velocity over the last step (the terrain decides
-  // at which step a leg of the schedule begins): down before any lift is load, up is unload, down
-  // after a lift is reload.
+  // The phase follows the plate's actual displacement over the last step (the terrain decides at
+  // which step a leg of the schedule begins, and may report the new leg's velocity for a step that
+  // still moved the plate with the old one): down before any lift is load, up is unload, down after
+  // a lift is reload.
   // Each leg's turning point is recorded too (the row before the phase changes), so the deepest
   // sinkage of the load leg is in the file and no unload row lies below it.
   bool lifted = false;
@@ -67,10 +68,12 @@ std::vector<PlateRow> run_plate(const TerrainSite& site, const PlateTest& test, 
   PlateRow previous;
   bool previous_recorded = true;
   for (long s = 1; s <= steps; ++s) {
+    const double z_before = terrain->bodies()[0].position.z;
     terrain->step();
     const BodyState& b = terrain->bodies()[0];
-    if (b.velocity.z > 0) lifted = true;
-    const char* phase = b.velocity.z > 0 ? "unload" : lifted ? "reload" : "load";
+    const double dz = b.position.z - z_before;
+    if (dz > 0) lifted = true;
+    const char* phase = dz > 0 ? "unload" : dz < 0 ? (lifted ? "reload" : "load") : last_phase;
     const PlateRow row{test.radius, site.surface_height() - (b.position.z - 0.5 * test.thickness), terrain->wrenches()[0].force.z, phase};
     if (std::string(phase) != last_phase && !previous_recorded) rows.push_back(previous);
     last_phase = phase;
