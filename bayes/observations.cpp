@@ -29,6 +29,16 @@ void reject_millimetres(const CsvTable& t, std::size_t row, const std::string& c
                                  t.where(row, col), col, v, what, limit));
 }
 
+// A curve starts at about zero and, simulated or measured, can dip a hair below it: that is noise,
+// not a sign error. A value below -kZeroNoise x the largest magnitude of its column is refused.
+constexpr double kZeroNoise = 0.02;
+
+double largest_magnitude(const CsvTable& t, const std::string& col) {
+  double m = 0;
+  for (std::size_t i = 0; i < t.rows(); ++i) m = std::max(m, std::abs(t.number(i, col)));
+  return m;
+}
+
 PlatePhase parse_phase(const CsvTable& t, std::size_t row) {
   const std::string s = t.text(row, "phase");
   if (s.empty() || s == "load") return PlatePhase::kLoad;
@@ -51,6 +61,7 @@ PlateData load_plate_csv(const std::string& path) {
   std::map<double, double> max_sinkage;  // per plate radius: the deepest sinkage so far
   std::map<double, double> max_force;    // per plate radius: the largest force so far
   std::map<double, bool> rejoined;       // per plate radius: this reload is back on the virgin curve
+  const double force_noise = kZeroNoise * largest_magnitude(t, "force_N");
   for (std::size_t i = 0; i < t.rows(); ++i) {
     PlatePoint p;
     p.line = t.line_of(i);
@@ -60,9 +71,10 @@ PlateData load_plate_csv(const std::string& path) {
     p.phase = t.has_column("phase") ? parse_phase(t, i) : PlatePhase::kLoad;
     require_positive(t, i, "plate_radius_m", p.radius);
     if (p.sinkage < 0) throw InputError(fmt::format("{}: sinkage {} m is negative; expected >= 0", t.where(i, "sinkage_m"), p.sinkage));
-    if (p.force < 0)
-      throw InputError(fmt::format("{}: force {} N is negative; a plate pushed into soil meets a force >= 0 "
-                                   "(remove the sensor offset, or check the sign convention)", t.where(i, "force_N"), p.force));
+    if (p.force < -force_noise)
+      throw InputError(fmt::format("{}: force {} N is negative; a plate pushed into soil meets a force >= 0 (values down to "
+                                   "-{} % of the largest force, {} N, pass as noise; remove the sensor offset, or check the "
+                                   "sign convention)", t.where(i, "force_N"), p.force, 100 * kZeroNoise, force_noise));
     reject_millimetres(t, i, "plate_radius_m", p.radius, kMaxPlausibleRadius, "plate radius");
     reject_millimetres(t, i, "sinkage_m", p.sinkage, kMaxPlausibleSinkage, "plate sinkage");
     // The Bekker law describes loading beyond the deepest sinkage so far (virgin loading).
@@ -108,6 +120,7 @@ ShearData load_shear_csv(const std::string& path) {
   t.require_columns({"inner_radius_m", "outer_radius_m", "normal_load_N", "angle_rad", "torque_Nm"});
   ShearData d;
   d.path = path;
+  const double torque_noise = kZeroNoise * largest_magnitude(t, "torque_Nm");
   for (std::size_t i = 0; i < t.rows(); ++i) {
     ShearPoint p;
     p.line = t.line_of(i);
@@ -126,8 +139,10 @@ ShearData load_shear_csv(const std::string& path) {
                                    p.outer_radius, p.inner_radius));
     reject_millimetres(t, i, "outer_radius_m", p.outer_radius, kMaxPlausibleRadius, "annulus radius");
     require_positive(t, i, "normal_load_N", p.normal_load);
-    if (p.torque < 0)
-      throw InputError(fmt::format("{}: torque {} N m is negative; expected >= 0 (check the sign convention)", t.where(i, "torque_Nm"), p.torque));
+    if (p.torque < -torque_noise)
+      throw InputError(fmt::format("{}: torque {} N m is negative; expected >= 0 (values down to -{} % of the largest torque, "
+                                   "{} N m, pass as noise; check the sign convention)", t.where(i, "torque_Nm"), p.torque,
+                                   100 * kZeroNoise, torque_noise));
     if (p.angle < 0)
       throw InputError(fmt::format("{}: shear angle {} rad is negative; expected >= 0 (or empty for the developed torque)",
                                    t.where(i, "angle_rad"), p.angle));

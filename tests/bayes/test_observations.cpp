@@ -51,3 +51,21 @@ TEST_CASE("a noisy reload that has rejoined the virgin curve stays on it until t
   // The last reload row (900 N < 1100 N) follows a new unload: elastic again, not fitted.
   CHECK(fitted == std::vector<double>{0.01, 0.02, 0.03, 0.031, 0.032, 0.033});
 }
+
+TEST_CASE("values a hair below zero are noise, clearly negative ones a sign error", "[bayes][observations]") {
+  std::vector<double> fitted;
+  // A CRM plate starting at the surface: -3 N against 1000 N is noise around zero.
+  const PlateData d = load_rows("zero_noise", "0.1,0.001,-3,load\n0.1,0.01,300,load\n0.1,0.03,1000,load\n", fitted);
+  CHECK(d.points.size() == 3);
+  std::vector<double> unused;
+  CHECK_THROWS_WITH(load_rows("sign", "0.1,0.001,-30,load\n0.1,0.01,300,load\n0.1,0.03,1000,load\n", unused),
+                    Catch::Contains("force_N") && Catch::Contains("-30") && Catch::Contains("negative"));
+  // The annulus: round-off below zero at the first angle passes, a torque of the wrong sign does not.
+  const test::ScratchDir dir("shear_zero_noise");
+  const std::string path = dir.str() + "/shear.csv";
+  const std::string head = "inner_radius_m,outer_radius_m,normal_load_N,angle_rad,torque_Nm\n";
+  std::ofstream(path) << head << "0.1,0.2,98,0.001,-2.97e-16\n0.1,0.2,98,0.05,10\n0.1,0.2,98,0.1,12\n";
+  CHECK(load_shear_csv(path).points.size() == 3);
+  std::ofstream(path) << head << "0.1,0.2,98,0.001,-2\n0.1,0.2,98,0.05,10\n0.1,0.2,98,0.1,12\n";
+  CHECK_THROWS_WITH(load_shear_csv(path), Catch::Contains("torque_Nm") && Catch::Contains("negative"));
+}
