@@ -25,6 +25,9 @@ struct TerrainOptions {
   // lattice's checkerboard mode softens the bed, more at finer spacing and in deeper bins, and the
   // plate curves neither converge with spacing nor settle with the bin (results/plate_bin_check).
   double hourglass_damping = 0.4;
+  // CRM smoothing length h/d0: 1.4 keeps the particle lattice stable under the bed's own weight
+  // (Wendland C2; at 1.2 a column mode grows from round-off and softens the bed: results/crm_settling).
+  double h_over_d0 = CrmNumerics{}.h_over_d0;
   double grid = 0.01;                    // SCM grid [m]
   double step = 0;                       // time step [s]; 0 = CRM's CFL step, SCM 1e-3
   std::vector<std::string> scm_effects = {"damping"};
@@ -34,7 +37,7 @@ struct TerrainOptions {
   double depth_scale() const { return bin_depth_scale > 0 ? bin_depth_scale : bin_scale; }
 };
 void add_terrain_options(CLI::App* sub, TerrainOptions& o, bool crm, bool scm);
-// --settle-time, --settle-jitter and --hourglass-damping alone (part of the CRM options above), for
+// --settle-time, --settle-jitter, --hourglass-damping and --h-over-d0 alone (part of the CRM options above), for
 // commands that name the rest of their terrain options themselves (`pipeline`).
 void add_crm_settling_options(CLI::App* sub, TerrainOptions& o);
 

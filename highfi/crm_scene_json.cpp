@@ -5,11 +5,13 @@
 #include <sstream>
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include "core/errors.hpp"
 #include "core/json_file.hpp"
 #include "core/json_object.hpp"
 #include "highfi/crm_scene.hpp"
+#include "highfi/lattice_stability.hpp"
 
 namespace terracal {
 
@@ -190,7 +192,22 @@ void validate_crm_scene(CrmScene& sc) {
   const double d0 = n.spacing;
   if (!(d0 > 0)) fail("resolution.spacing", fmt::format("value {} must be > 0", d0));
   if (!(n.h_over_d0 >= 1.0 && n.h_over_d0 <= 1.6))
-    fail("resolution.h_over_d0", fmt::format("value {} is outside [1.0, 1.6] (DESIGN.md: about 1.2-1.3)", n.h_over_d0));
+    fail("resolution.h_over_d0", fmt::format("value {} is outside [1.0, 1.6] (default 1.4: the lattice is stable there)", n.h_over_d0));
+  {
+    // The lattice the bed starts from must be stable under its own weight, or a mode the velocity
+    // gradient does not see grows from round-off and softens the bed (highfi/lattice_stability.hpp).
+    const double szz = -soil.density * std::sqrt(dot(soil.gravity, soil.gravity)) * sc.bin.fill_height;
+    const double k0 = soil.poisson_ratio / (1 - soil.poisson_ratio);
+    const double lambda = soil.bulk_modulus() - 2 * soil.shear_modulus() / 3;
+    const LatticeStability ls = lattice_stability(n.kernel, n.h_over_d0, d0, soil.density, lambda, soil.shear_modulus(),
+                                                  {k0 * szz, k0 * szz, szz});
+    if (ls.growth_rate > 1)
+      spdlog::warn("{}: resolution.h_over_d0 {} with the {} kernel: the particle lattice is unstable under the bed's weight "
+                   "(a mode at k d0/pi = ({:.2g}, {:.2g}, {:.2g}) grows at {:.3g} 1/s at its floor, unseen by the velocity "
+                   "gradient; results/crm_settling). h/d0 = 1.4 with wendland_c2 keeps it stable.",
+                   w, n.h_over_d0, n.kernel == KernelType::kWendlandC2 ? "wendland_c2" : "cubic_spline", ls.wave[0], ls.wave[1],
+                   ls.wave[2], ls.growth_rate);
+  }
   // The bin's walls sit on the particle lattice: its length and width are whole numbers of spacings.
   for (int q = 0; q < 2; ++q) sc.bin.size[q] = std::max(1.0, double(std::lround(sc.bin.size[q] / d0))) * d0;
   const CrmBin& bin = sc.bin;
@@ -271,7 +288,7 @@ CrmScene parse_crm_scene(const nlohmann::json& j, const std::string& where) {
   {
     JsonObject r = o.object("resolution");
     sc.numerics.spacing = r.number("spacing", 0, 10, true);
-    sc.numerics.h_over_d0 = r.number_or("h_over_d0", 1.2, 0, 10, true);
+    sc.numerics.h_over_d0 = r.number_or("h_over_d0", CrmNumerics{}.h_over_d0, 0, 10, true);
     sc.numerics.kernel = r.string_or("kernel", "wendland_c2", {"wendland_c2", "cubic_spline"}) == "cubic_spline"
                              ? KernelType::kCubicSpline : KernelType::kWendlandC2;
     sc.numerics.cfl = r.number_or("cfl", 0.3, 0, 0.3, true);

@@ -4,7 +4,8 @@
 // are zeroed at t_zero (as settled_bed does at the end of --settle-time) and the run goes on, to
 // show what a rig placed on that bed would meet. The surface is measured as a CrmSite measures it.
 // Usage: crm_settle_probe DEPTH SPACING WIDTH T_END [T_ZERO=0] [cpu|cuda] [JITTER=0 (settle_jitter)] [EFFECTS]
-// EFFECTS: a comma-separated list of effects besides artificial_viscosity: shifting, hourglass_damping[:ALPHA].
+// EFFECTS: a comma-separated list of effects besides artificial_viscosity: shifting, hourglass_damping[:ALPHA];
+// h:H_OVER_D0 in the list sets the smoothing length instead (default 1.2).
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -22,7 +23,7 @@ using namespace terracal;
 
 int main(int argc, char** argv) {
   if (argc < 5) {
-    std::fprintf(stderr, "usage: %s DEPTH SPACING WIDTH T_END [T_ZERO=0] [cpu|cuda] [JITTER=0] [shifting,hourglass_damping[:ALPHA]]\n",
+    std::fprintf(stderr, "usage: %s DEPTH SPACING WIDTH T_END [T_ZERO=0] [cpu|cuda] [JITTER=0] [shifting,hourglass_damping[:ALPHA],h:H_OVER_D0]\n",
                  argv[0]);
     return 2;
   }
@@ -46,8 +47,10 @@ int main(int argc, char** argv) {
     } else if (item.rfind("hourglass_damping", 0) == 0) {
       sc.effects.hourglass_damping = true;
       if (item.size() > 18 && item[17] == ':') sc.numerics.hourglass_alpha = std::atof(item.c_str() + 18);
+    } else if (item.rfind("h:", 0) == 0) {
+      sc.numerics.h_over_d0 = std::atof(item.c_str() + 2);  // the smoothing length h/d0 (not an effect)
     } else {
-      std::fprintf(stderr, "unknown effect '%s' (expected shifting or hourglass_damping[:ALPHA])\n", item.c_str());
+      std::fprintf(stderr, "unknown effect '%s' (expected shifting, hourglass_damping[:ALPHA] or h:H_OVER_D0)\n", item.c_str());
       return 2;
     }
   }
@@ -57,9 +60,9 @@ int main(int argc, char** argv) {
   auto solver = std::make_unique<CrmSolver>(sc, device, &bed0);
   const double dt = solver->time_step();
   const double mass = sc.soil.density * width * width * depth;
-  std::printf("# bed %.3g m deep, %.3g x %.3g m, spacing %.3g m, jitter %.3g, %zu particles, step %.3g s; 4H/c = %.3g s; effects: "
+  std::printf("# bed %.3g m deep, %.3g x %.3g m, spacing %.3g m, h/d0 %.3g, jitter %.3g, %zu particles, step %.3g s; 4H/c = %.3g s; effects: "
               "artificial_viscosity%s%s\n",
-              depth, width, width, d0, jitter, solver->soil().size(), dt, 4 * depth / sc.soil.sound_speed(),
+              depth, width, width, d0, sc.numerics.h_over_d0, jitter, solver->soil().size(), dt, 4 * depth / sc.soil.sound_speed(),
               sc.effects.shifting ? ", shifting" : "",
               sc.effects.hourglass_damping ? (", hourglass_damping " + std::to_string(sc.numerics.hourglass_alpha)).c_str() : "");
   std::printf("t_s,kinetic_energy_J,rms_speed_m_s,max_speed_m_s,surface_m\n");

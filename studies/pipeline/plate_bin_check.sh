@@ -20,20 +20,7 @@ for s in $scales; do
   "$bin" bevameter --solver crm --soil "$here/bevameter_soil_2022.json" --test plate --plates "${PLATE:-0.3}" --max-sinkage 0.2 \
     --spacing "${SPACING:-0.02}" --bin-scale "$w" --bin-depth-scale "$d" --no-plots --out "$out/$(tag "$s")" "$@" > "$out/$(tag "$s").log" 2>&1
 done
-change() {  # two plate.csv files -> change of the loading leg, as rigs::curve_change measures it
-  awk -F, 'FNR == 1 { f++; next } $4 == "load" { n[f]++; z[f, n[f]] = $2; v[f, n[f]] = $3 }
-    END { m = 0  # curve 2 read at the sinkages of curve 1, where both reach
-          for (i = 1; i <= n[1]; i++) { x = z[1, i]; if (x < z[2, 1] || x > z[2, n[2]]) continue
-            for (k = 1; k < n[2] && z[2, k] < x; k++);
-            w = k > 1 && z[2, k] > z[2, k - 1] ? (x - z[2, k - 1]) / (z[2, k] - z[2, k - 1]) : 1
-            m++; A[m] = v[1, i]; B[m] = k > 1 ? v[2, k - 1] + w * (v[2, k] - v[2, k - 1]) : v[2, 1] }
-          d = 0; s = 0
-          for (p = 0; p < 5 && m >= 5; p++) { lo = int(p * m / 5) + 1; hi = int((p + 1) * m / 5); a = 0; b = 0
-            for (i = lo; i <= hi; i++) { a += A[i]; b += B[i] }
-            a /= (hi - lo + 1); b /= (hi - lo + 1); x = a > b ? a - b : b - a
-            if (x > d) d = x; if (a > s) s = a; if (b > s) s = b }
-          printf "%.1f %%", (s > 0 ? 100 * d / s : 0) }' "$1" "$2"
-}
+change() { awk -F, -f "$here/curve_change.awk" "$1" "$2"; }  # as rigs::curve_change measures it
 force_at() { awk -F, -v z="$2" 'NR > 1 && ($4 == "load" || $4 == "reload") && $2 >= z - 1e-4 { print $3; exit }' "$1"; }
 {
   echo "| bin scale | bin | F(0.1 m) [N] | F(0.2 m) [N] | change of the loading leg from the previous scale |"
