@@ -79,6 +79,8 @@ TEST_CASE("rig commands: bad input exits 2 naming the option or key, and writes 
       {"bevameter --solver crm --soil " + d + "/soil.json --test plate --device cpu --plate-wall-radii 1" + out, {"--plate-wall-radii", "1"}},
       {"bevameter --solver crm --soil " + d + "/soil.json --test plate --device cpu --settle-jitter 0.5" + out, {"--settle-jitter", "0.5"}},
       {"bevameter --solver crm --soil " + d + "/soil.json --test plate --device cpu --hourglass-damping 3" + out, {"--hourglass-damping", "3"}},
+      {"bevameter --solver crm --soil " + d + "/soil.json --test plate --device cpu --h-over-d0 2" + out, {"--h-over-d0", "2"}},
+      {"wheel --terrain crm --soil " + d + "/soil.json --wheel " + d + "/wheel.json --device cpu --h-over-d0 0.9" + out, {"--h-over-d0", "0.9"}},
       {"wheel --terrain scm --scm " + d + "/sand.json --wheel " + d + "/wheel_typo.json" + out, {"width", "missing"}},
       {"wheel --terrain scm --scm " + d + "/sand.json --wheel " + d + "/wheel_neg.json" + out, {"radius", "-0.47"}},
       {"wheel --terrain scm --scm " + d + "/sand.json --wheel " + d + "/wheel.json --slips 0.2,1.5" + out, {"slip", "1.5"}},
@@ -90,6 +92,7 @@ TEST_CASE("rig commands: bad input exits 2 naming the option or key, and writes 
       {"pipeline --soil " + d + "/soil.json --annulus 0.15" + out, {"--annulus"}},
       {"pipeline --soil " + d + "/soil.json --checks=annulus,plates" + out, {"--checks", "plates"}},
       {"pipeline --soil " + d + "/soil.json --device cpu --hourglass-damping -1" + out, {"--hourglass-damping", "-1"}},
+      {"pipeline --soil " + d + "/soil.json --device cpu --h-over-d0 1.7" + out, {"--h-over-d0", "1.7"}},
       {"pipeline --soil " + d + "/soil.json --device cpu --plate-depth-scale 0.1" + out, {"--plate-depth-scale", "0.1"}},
   };
   for (const auto& c : cases) {
