@@ -15,5 +15,5 @@ for exe in "$@"; do
     esac
   done
 done
-strip "${@/#*//$dest/}" 2>/dev/null || true  # symbols stay here: the transfer is limited
+for exe in "$@"; do strip "$dest/$(basename "$exe")"; done  # symbols stay here: the transfer is limited
 du -sh "$dest"
