@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <map>
 
 #include "highfi/crm_solver.hpp"
 #include "highfi/lattice_stability.hpp"
@@ -72,12 +73,17 @@ ModeRun column_mode(double h_over_d0, int steps) {
   const HostSoil end = solver.soil();
   ModeRun r;
   long n = 0;
+  std::map<long, double> omega2_of_layer;
   for (std::size_t i = 0; i < end.size(); ++i) {
     const Vec4<double>& p = end.pos[i];
     if (p.x < margin || p.x > kCells * kD0 - margin || p.y < margin || p.y > kCells * kD0 - margin || p.z < margin ||
         p.z > top - margin)
       continue;
-    const double w2 = column_omega2(h_over_d0, top - p.z);
+    // One analysis per lattice layer (particles have moved by micrometres from their sites).
+    const long layer = std::lround((top - p.z) / kD0 - 0.5);
+    auto it = omega2_of_layer.find(layer);
+    if (it == omega2_of_layer.end()) it = omega2_of_layer.emplace(layer, column_omega2(h_over_d0, (layer + 0.5) * kD0)).first;
+    const double w2 = it->second;
     r.measured += parity(p) * end.vel[i].z / kAmplitude;
     r.predicted += w2 < 0 ? std::cosh(std::sqrt(-w2) * t) : std::cos(std::sqrt(w2) * t);
     ++n;
