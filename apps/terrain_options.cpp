@@ -27,6 +27,11 @@ void add_crm_settling_options(CLI::App* sub, TerrainOptions& o) {
                   "CRM smoothing length h over the particle spacing; 1.4 keeps the particle lattice stable under compression "
                   "(at 1.2 a column mode grows and softens the bed; results/crm_settling)")
       ->capture_default_str();
+  sub->add_option("--marker-velocity", o.marker_velocity,
+                  "CRM boundary markers' velocity: mirror (Adami's 2 v_wall - v~) or wall (the wall's own: a quieter contact "
+                  "layer and plate curves nearly independent of the plate's speed, but plate forces that no longer converge "
+                  "with the spacing; results/plate_bin_check, eighth study)")
+      ->capture_default_str();
 }
 
 void add_terrain_options(CLI::App* sub, TerrainOptions& o, bool crm, bool scm) {
@@ -74,6 +79,8 @@ std::unique_ptr<TerrainSite> crm_site(const CrmSoil& soil, const TerrainOptions&
     throw InputError(fmt::format("--hourglass-damping {}: expected in [0, 2] (0: off)", o.hourglass_damping));
   if (!(o.h_over_d0 >= 1.0 && o.h_over_d0 <= 1.6))
     throw InputError(fmt::format("--h-over-d0 {}: expected in [1.0, 1.6]", o.h_over_d0));
+  if (o.marker_velocity != "mirror" && o.marker_velocity != "wall")
+    throw InputError(fmt::format("--marker-velocity {}: expected mirror or wall", o.marker_velocity));
   if (!(o.bin_scale >= 1 && o.bin_scale <= 10)) throw InputError(fmt::format("--bin-scale {}: expected in [1, 10]", o.bin_scale));
   if (!(o.bin_depth_scale == 0 || (o.bin_depth_scale >= 1 && o.bin_depth_scale <= 10)))
     throw InputError(fmt::format("--bin-depth-scale {}: expected 0 (as --bin-scale) or in [1, 10]", o.bin_depth_scale));
@@ -86,6 +93,7 @@ std::unique_ptr<TerrainSite> crm_site(const CrmSoil& soil, const TerrainOptions&
   if (o.hourglass_damping > 0) sc.numerics.hourglass_alpha = o.hourglass_damping;
   sc.numerics.spacing = o.spacing;
   sc.numerics.h_over_d0 = o.h_over_d0;
+  sc.numerics.wall_marker_velocity = o.marker_velocity == "wall";
   sc.numerics.time_step = o.step;
   // Whole spacings, and a bin at least a few spacings around the rig.
   const double d0 = o.spacing;

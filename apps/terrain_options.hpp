@@ -28,6 +28,8 @@ struct TerrainOptions {
   // CRM smoothing length h/d0: 1.4 keeps the particle lattice stable under the bed's own weight
   // (Wendland C2; at 1.2 a column mode grows from round-off and softens the bed: results/crm_settling).
   double h_over_d0 = CrmNumerics{}.h_over_d0;
+  // CRM boundary markers' velocity: "mirror" (Adami, DESIGN.md §4) or "wall" (CrmNumerics::wall_marker_velocity).
+  std::string marker_velocity = "mirror";
   double grid = 0.01;                    // SCM grid [m]
   double step = 0;                       // time step [s]; 0 = CRM's CFL step, SCM 1e-3
   std::vector<std::string> scm_effects = {"damping"};
@@ -37,7 +39,7 @@ struct TerrainOptions {
   double depth_scale() const { return bin_depth_scale > 0 ? bin_depth_scale : bin_scale; }
 };
 void add_terrain_options(CLI::App* sub, TerrainOptions& o, bool crm, bool scm);
-// --settle-time, --settle-jitter, --hourglass-damping and --h-over-d0 alone (part of the CRM options above), for
+// --settle-time, --settle-jitter, --hourglass-damping, --h-over-d0 and --marker-velocity alone (part of the CRM options above), for
 // commands that name the rest of their terrain options themselves (`pipeline`).
 void add_crm_settling_options(CLI::App* sub, TerrainOptions& o);
 

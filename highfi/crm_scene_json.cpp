@@ -296,6 +296,7 @@ CrmScene parse_crm_scene(const nlohmann::json& j, const std::string& where) {
     sc.numerics.cpu_precision = r.string_or("cpu_precision", "double", {"double", "float"}) == "float" ? CrmPrecision::kFloat
                                                                                                       : CrmPrecision::kDouble;
     sc.numerics.free_surface_support = r.number_or("free_surface_support", 0.8, 0, 1);
+    sc.numerics.wall_marker_velocity = r.string_or("marker_velocity", "mirror", {"mirror", "wall"}) == "wall";
     sc.numerics.grid_reach = int(r.integer_or("grid_reach", 2, 1, 2));
     r.finish();
   }

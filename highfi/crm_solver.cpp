@@ -32,6 +32,7 @@ SphConstants<double> crm_constants(const CrmScene& sc) {
   // nu = alpha h c / 10: the shear viscosity that Monaghan's term with the same alpha carries in 3D.
   k.hourglass_nu = sc.effects.hourglass_damping ? n.hourglass_alpha * n.smoothing_length() * s.sound_speed() / 10 : 0.0;
   k.free_surface_support = n.free_surface_support;
+  k.wall_marker_velocity = n.wall_marker_velocity;
   return k;
 }
 

@@ -34,6 +34,7 @@ SphConstants<T> constants_in(const SphConstants<double>& c) {
   k.xsph = T(c.xsph);
   k.hourglass_nu = T(c.hourglass_nu);
   k.free_surface_support = T(c.free_surface_support);
+  k.wall_marker_velocity = c.wall_marker_velocity;
   return k;
 }
 template <typename T>

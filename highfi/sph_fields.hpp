@@ -106,6 +106,7 @@ struct SphConstants {
   T xsph = 0;                 // XSPH epsilon; zero unless the scene names shifting
   T hourglass_nu = 0;         // kinematic viscosity of the hourglass damping; zero unless the scene names it
   T free_surface_support = 0; // kernel support (Shepard sum) below which a particle is on the free surface
+  bool wall_marker_velocity = false; // markers carry the wall's velocity, not Adami's mirror (CrmNumerics)
 };
 
 // A body's pose and rigid motion, as the marker update reads it.

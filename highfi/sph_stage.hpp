@@ -157,7 +157,7 @@ __device__ inline void for_each_hit(const Vec4<T>* pos, int first, int last, int
 }
 #endif
 
-// Boundary markers (Adami et al. 2012): stress and velocity extrapolated from the soil around each
+// Boundary markers (Adami et al. 2012): stress (and, optionally, velocity) extrapolated from the soil around each
 // marker, then the force of the soil on the marker, which the host sums into body wrenches.
 template <typename T, bool kViscosity>
 struct MarkerStage {
@@ -229,7 +229,9 @@ struct MarkerStage {
       sm.xx -= head;
       sm.yy -= head;
       sm.zz -= head;
-      vm = T(2) * wv.xyz() - inv * sum_v;
+      // Adami's mirror velocity, or the wall's own: the soil's stress power against a wall that
+      // stands still is then zero, as it is for a real wall (CrmNumerics::wall_marker_velocity).
+      if (!k.wall_marker_velocity) vm = T(2) * wv.xyz() - inv * sum_v;
     }
     const T rho_m = pm.w, inv_rho2_m = T(1) / (rho_m * rho_m);
     mk.vel[m] = make_vec4(vm, T(0));

@@ -81,6 +81,7 @@ TEST_CASE("rig commands: bad input exits 2 naming the option or key, and writes 
       {"bevameter --solver crm --soil " + d + "/soil.json --test plate --device cpu --hourglass-damping 3" + out, {"--hourglass-damping", "3"}},
       {"bevameter --solver crm --soil " + d + "/soil.json --test plate --device cpu --h-over-d0 2" + out, {"--h-over-d0", "2"}},
       {"wheel --terrain crm --soil " + d + "/soil.json --wheel " + d + "/wheel.json --device cpu --h-over-d0 0.9" + out, {"--h-over-d0", "0.9"}},
+      {"wheel --terrain crm --soil " + d + "/soil.json --wheel " + d + "/wheel.json --device cpu --marker-velocity slip" + out, {"--marker-velocity", "slip"}},
       {"wheel --terrain scm --scm " + d + "/sand.json --wheel " + d + "/wheel_typo.json" + out, {"width", "missing"}},
       {"wheel --terrain scm --scm " + d + "/sand.json --wheel " + d + "/wheel_neg.json" + out, {"radius", "-0.47"}},
       {"wheel --terrain scm --scm " + d + "/sand.json --wheel " + d + "/wheel.json --slips 0.2,1.5" + out, {"slip", "1.5"}},
@@ -93,6 +94,7 @@ TEST_CASE("rig commands: bad input exits 2 naming the option or key, and writes 
       {"pipeline --soil " + d + "/soil.json --checks=annulus,plates" + out, {"--checks", "plates"}},
       {"pipeline --soil " + d + "/soil.json --device cpu --hourglass-damping -1" + out, {"--hourglass-damping", "-1"}},
       {"pipeline --soil " + d + "/soil.json --device cpu --h-over-d0 1.7" + out, {"--h-over-d0", "1.7"}},
+      {"pipeline --soil " + d + "/soil.json --device cpu --marker-velocity adami" + out, {"--marker-velocity", "adami"}},
       {"pipeline --soil " + d + "/soil.json --device cpu --plate-depth-scale 0.1" + out, {"--plate-depth-scale", "0.1"}},
   };
   for (const auto& c : cases) {
