@@ -229,8 +229,9 @@ struct MarkerStage {
       sm.xx -= head;
       sm.yy -= head;
       sm.zz -= head;
-      // Adami's mirror velocity, or the wall's own: the soil's stress power against a wall that
-      // stands still is then zero, as it is for a real wall (CrmNumerics::wall_marker_velocity).
+      // Adami's mirror velocity (a linear extrapolation), or the wall's own, with which a still
+      // wall takes no power through the soil particle's own stress term; not consistent near the
+      // wall, see CrmNumerics::wall_marker_velocity.
       if (!k.wall_marker_velocity) vm = T(2) * wv.xyz() - inv * sum_v;
     }
     const T rho_m = pm.w, inv_rho2_m = T(1) / (rho_m * rho_m);

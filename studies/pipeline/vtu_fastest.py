@@ -17,7 +17,8 @@ def summary(path, cx, cy, surface):
     a = arrays(path); P = a['Points']; V = a['velocity']
     sp = [math.sqrt(v[0]**2 + v[1]**2 + v[2]**2) for v in V]
     idx = sorted(range(len(sp)), key=lambda i: -sp[i])[:15]
-    # ke share by region: radial distance r from axis, height below the surface 0.4
+    # kinetic-energy share by region: radial distance r from the axis (bands sized for the 0.1 m plate
+    # of results/plate_bin_check/h1.4/hold_cpu), depth below SURFACE_Z
     reg = {}
     ke = 0
     for p, s in zip(P, sp):
