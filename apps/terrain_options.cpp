@@ -28,9 +28,12 @@ void add_crm_settling_options(CLI::App* sub, TerrainOptions& o) {
                   "(at 1.2 a column mode grows and softens the bed; results/crm_settling)")
       ->capture_default_str();
   sub->add_option("--marker-velocity", o.marker_velocity,
-                  "CRM boundary markers' velocity: mirror (Adami's 2 v_wall - v~) or wall (the wall's own: a quieter contact "
-                  "layer and plate curves nearly independent of the plate's speed, but plate forces that no longer converge "
-                  "with the spacing; results/plate_bin_check, eighth study)")
+                  "CRM boundary markers' velocity: mirror (Adami's 2 v_wall - v~, v~ averaged around the marker), "
+                  "mirror_image (2 v_wall - v at the marker's mirror image across the wall: a consistent mirror of a linear "
+                  "flow), mirror_contact (Adami's mirror only where soil touches the wall: a held plate keeps more of its force, "
+                  "but plate forces no longer converge with the spacing; "
+                  "results/plate_bin_check, ninth study) or wall (the wall's own: plate curves nearly independent of the "
+                  "plate's speed, but plate forces that no longer converge with the spacing; eighth study)")
       ->capture_default_str();
 }
 
@@ -79,8 +82,8 @@ std::unique_ptr<TerrainSite> crm_site(const CrmSoil& soil, const TerrainOptions&
     throw InputError(fmt::format("--hourglass-damping {}: expected in [0, 2] (0: off)", o.hourglass_damping));
   if (!(o.h_over_d0 >= 1.0 && o.h_over_d0 <= 1.6))
     throw InputError(fmt::format("--h-over-d0 {}: expected in [1.0, 1.6]", o.h_over_d0));
-  if (o.marker_velocity != "mirror" && o.marker_velocity != "wall")
-    throw InputError(fmt::format("--marker-velocity {}: expected mirror or wall", o.marker_velocity));
+  if (o.marker_velocity != "mirror" && o.marker_velocity != "mirror_image" && o.marker_velocity != "mirror_contact" && o.marker_velocity != "wall")
+    throw InputError(fmt::format("--marker-velocity {}: expected mirror, mirror_image, mirror_contact or wall", o.marker_velocity));
   if (!(o.bin_scale >= 1 && o.bin_scale <= 10)) throw InputError(fmt::format("--bin-scale {}: expected in [1, 10]", o.bin_scale));
   if (!(o.bin_depth_scale == 0 || (o.bin_depth_scale >= 1 && o.bin_depth_scale <= 10)))
     throw InputError(fmt::format("--bin-depth-scale {}: expected 0 (as --bin-scale) or in [1, 10]", o.bin_depth_scale));
@@ -93,7 +96,7 @@ std::unique_ptr<TerrainSite> crm_site(const CrmSoil& soil, const TerrainOptions&
   if (o.hourglass_damping > 0) sc.numerics.hourglass_alpha = o.hourglass_damping;
   sc.numerics.spacing = o.spacing;
   sc.numerics.h_over_d0 = o.h_over_d0;
-  sc.numerics.wall_marker_velocity = o.marker_velocity == "wall";
+  sc.numerics.marker_velocity = marker_velocity_from_name(o.marker_velocity);
   sc.numerics.time_step = o.step;
   // Whole spacings, and a bin at least a few spacings around the rig.
   const double d0 = o.spacing;

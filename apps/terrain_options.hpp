@@ -28,7 +28,7 @@ struct TerrainOptions {
   // CRM smoothing length h/d0: 1.4 keeps the particle lattice stable under the bed's own weight
   // (Wendland C2; at 1.2 a column mode grows from round-off and softens the bed: results/crm_settling).
   double h_over_d0 = CrmNumerics{}.h_over_d0;
-  // CRM boundary markers' velocity: "mirror" (Adami, DESIGN.md §4) or "wall" (CrmNumerics::wall_marker_velocity).
+  // CRM boundary markers' velocity: "mirror" (Adami, DESIGN.md §4), "mirror_image" or "wall" (MarkerVelocity).
   std::string marker_velocity = "mirror";
   double grid = 0.01;                    // SCM grid [m]
   double step = 0;                       // time step [s]; 0 = CRM's CFL step, SCM 1e-3

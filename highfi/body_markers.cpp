@@ -148,6 +148,33 @@ std::vector<Vec3<double>> body_marker_positions(const BodyShape& s, double d0, i
   return out;
 }
 
+Vec4<double> body_marker_normal(const BodyShape& s, const Vec3<double>& p, double d0) {
+  const double depth = -shape_signed_distance(s, p);
+  if (!(depth > 0)) return {0, 0, 0, 0};
+  // Central differences of the distance field; the step is far below the spacing and far above
+  // the rounding of the distance.
+  const double e = 1e-4 * d0;
+  Vec3<double> g{};
+  for (int c = 0; c < 3; ++c) {
+    Vec3<double> hi = p, lo = p;
+    hi[c] += e;
+    lo[c] -= e;
+    g[c] = (shape_signed_distance(s, hi) - shape_signed_distance(s, lo)) / (2 * e);
+  }
+  const double len = norm(g);
+  // Equally deep below two faces (the middle layer of a thin plate): a depth but no normal.
+  if (!(len > 0.5)) return {0, 0, 0, depth};
+  return {g.x / len, g.y / len, g.z / len, depth};
+}
+
+Vec4<double> bin_marker_normal(const CrmBin& bin, const Vec3<double>& p) {
+  const Vec3<double> q{p.x < 0 ? -p.x : (p.x > bin.size.x ? bin.size.x - p.x : 0.0),
+                       p.y < 0 ? -p.y : (p.y > bin.size.y ? bin.size.y - p.y : 0.0), p.z < 0 ? -p.z : 0.0};
+  const double depth = norm(q);
+  if (!(depth > 0)) return {0, 0, 0, 0};
+  return {q.x / depth, q.y / depth, q.z / depth, depth};
+}
+
 std::vector<Vec3<double>> bin_marker_positions(const CrmBin& bin, double d0) {
   std::vector<Vec3<double>> out;
   const int L = bin.boundary_layers;

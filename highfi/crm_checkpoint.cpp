@@ -106,7 +106,8 @@ std::string crm_fingerprint(const CrmScene& sc, CrmDevice device, bool include_b
       sc.effects.artificial_viscosity, sc.effects.shifting, sc.effects.active_domain, int(device), sc.settle_time, sc.settle_jitter);
   // Appended only when on, so that the keys of runs without it (caches, checkpoints) stay as they were.
   if (sc.effects.hourglass_damping) d += fmt::format(" | hourglass {}", sc.numerics.hourglass_alpha);
-  if (sc.numerics.wall_marker_velocity) d += " | marker velocity wall";
+  if (sc.numerics.marker_velocity != MarkerVelocity::kMirror)
+    d += fmt::format(" | marker velocity {}", marker_velocity_name(sc.numerics.marker_velocity));
   if (include_bodies)
     for (const auto& b : sc.bodies) {
       d += fmt::format("|{} {} {} {} {} {} {}", b.name, int(b.shape.type), b.position.x, b.position.y, b.position.z,

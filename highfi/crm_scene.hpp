@@ -57,13 +57,9 @@ struct CrmNumerics {
   double hourglass_alpha = 0.4;   // hourglass damping: nu = alpha h c_s / 10 (Monaghan's alpha on the same scale; 0.4: results/plate_bin_check)
   double active_margin = 0.1;
   double free_surface_support = 0.8;
-  // The velocity boundary markers carry into the soil's velocity gradient and viscosity: Adami's
-  // mirror 2 v_wall - v~ (false, DESIGN.md §4) or the wall's own (true, scene key
-  // resolution.marker_velocity "wall", rigs' --marker-velocity wall). The wall's own velocity quiets
-  // the soil layer on a pushed plate and makes the plate curve nearly independent of the plate's
-  // speed, but it is not a consistent extrapolation: the plate force no longer converges with the
-  // spacing, and the walls damp the bed's elastic waves less (results/plate_bin_check, eighth study).
-  bool wall_marker_velocity = false;
+  // The velocity boundary markers carry into the soil's velocity gradient and viscosity (scene key
+  // resolution.marker_velocity, rigs' --marker-velocity), see MarkerVelocity.
+  MarkerVelocity marker_velocity = MarkerVelocity::kMirror;
   int grid_reach = 2;          // neighbour cells of size 2h / reach (1: the 2h grid of DESIGN.md)
   CrmPrecision cpu_precision = CrmPrecision::kDouble;
   double smoothing_length() const { return h_over_d0 * spacing; }
@@ -97,5 +93,8 @@ CrmScene load_crm_scene(const std::filesystem::path& file);
 CrmSoil parse_crm_soil(const nlohmann::json& j, const std::string& where);
 // Re-checks the invariants of a scene built in code (tests, rigs); throws InputError like the parser.
 void validate_crm_scene(CrmScene& scene);
+// The names of MarkerVelocity in scenes and on the command line: mirror, mirror_image, wall.
+MarkerVelocity marker_velocity_from_name(const std::string& name);  // throws InputError on others
+const char* marker_velocity_name(MarkerVelocity v);
 
 }  // namespace terracal

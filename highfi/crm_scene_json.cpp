@@ -296,7 +296,7 @@ CrmScene parse_crm_scene(const nlohmann::json& j, const std::string& where) {
     sc.numerics.cpu_precision = r.string_or("cpu_precision", "double", {"double", "float"}) == "float" ? CrmPrecision::kFloat
                                                                                                       : CrmPrecision::kDouble;
     sc.numerics.free_surface_support = r.number_or("free_surface_support", 0.8, 0, 1);
-    sc.numerics.wall_marker_velocity = r.string_or("marker_velocity", "mirror", {"mirror", "wall"}) == "wall";
+    sc.numerics.marker_velocity = marker_velocity_from_name(r.string_or("marker_velocity", "mirror", {"mirror", "mirror_image", "mirror_contact", "wall"}));
     sc.numerics.grid_reach = int(r.integer_or("grid_reach", 2, 1, 2));
     r.finish();
   }
@@ -353,6 +353,24 @@ CrmScene parse_crm_scene(const nlohmann::json& j, const std::string& where) {
   o.finish();
   validate_crm_scene(sc);
   return sc;
+}
+
+MarkerVelocity marker_velocity_from_name(const std::string& name) {
+  if (name == "mirror") return MarkerVelocity::kMirror;
+  if (name == "mirror_image") return MarkerVelocity::kMirrorImage;
+  if (name == "mirror_contact") return MarkerVelocity::kMirrorContact;
+  if (name == "wall") return MarkerVelocity::kWall;
+  throw InputError(fmt::format("marker velocity {}: expected mirror, mirror_image, mirror_contact or wall", name));
+}
+
+const char* marker_velocity_name(MarkerVelocity v) {
+  switch (v) {
+    case MarkerVelocity::kMirrorImage: return "mirror_image";
+    case MarkerVelocity::kMirrorContact: return "mirror_contact";
+    case MarkerVelocity::kWall: return "wall";
+    case MarkerVelocity::kMirror: break;
+  }
+  return "mirror";
 }
 
 CrmScene load_crm_scene(const std::filesystem::path& file) {

@@ -25,6 +25,7 @@ struct HostMarkers {
   std::vector<Vec4<double>> pos;       // world position, w = density the soil sees
   std::vector<Vec4<double>> local;     // body frame, w = body index
   std::vector<Vec4<double>> wall_vel;  // w = 1 for markers of moving bodies
+  std::vector<Vec4<double>> normal;    // body frame: unit normal towards the soil, w = depth (empty or w = 0: none)
   std::size_t size() const { return pos.size(); }
 };
 

@@ -34,7 +34,8 @@ SphConstants<T> constants_in(const SphConstants<double>& c) {
   k.xsph = T(c.xsph);
   k.hourglass_nu = T(c.hourglass_nu);
   k.free_surface_support = T(c.free_surface_support);
-  k.wall_marker_velocity = c.wall_marker_velocity;
+  k.spacing = T(c.spacing);
+  k.marker_velocity = c.marker_velocity;
   return k;
 }
 template <typename T>
@@ -85,9 +86,13 @@ class SphEngineImpl final : public SphEngine {
     mk_.local = B::template alloc<Vec4<T>>(mm);
     mk_.wall_vel = B::template alloc<Vec4<T>>(mm);
     mk_.force = B::template alloc<Vec4<T>>(mm);
+    // Normals only where the mirror image needs them: the other rules neither store nor sort them.
+    const std::size_t mn = needs_wall_normals(k_.marker_velocity) ? mm : 1;
+    mk_.normal = B::template alloc<Vec4<T>>(mn);
     canon_.pos = B::template alloc<Vec4<T>>(mm);
     canon_.local = B::template alloc<Vec4<T>>(mm);
     canon_.wall_vel = B::template alloc<Vec4<T>>(mm);
+    canon_.normal = B::template alloc<Vec4<T>>(mn);
     poses_ = B::template alloc<BodyPose<T>>(std::size_t(bodies_));
     boxes_ = B::template alloc<ActiveBox<T>>(16);
     wrench_ = B::template alloc<double>(6 * std::size_t(bodies_));
@@ -100,8 +105,9 @@ class SphEngineImpl final : public SphEngine {
     A_.release();
     B_.release();
     for (int* p : {ids_, keys_, vals_, keys_alt_, vals_alt_, soil_begin_, marker_begin_}) B::release(p);
-    Vec4<T>* const marker_fields[] = {mk_.pos, mk_.vel, mk_.s0, mk_.s1, mk_.local, mk_.wall_vel, mk_.force,
-                                        canon_.pos, canon_.local, canon_.wall_vel};
+    Vec4<T>* const marker_fields[] = {mk_.pos,    mk_.vel,       mk_.s0,          mk_.s1,        mk_.local, mk_.wall_vel,
+                                        mk_.force,  mk_.normal,    canon_.pos,      canon_.local,  canon_.wall_vel,
+                                        canon_.normal};
     for (Vec4<T>* p : marker_fields) B::release(p);
     B::release(poses_);
     B::release(boxes_);
@@ -113,7 +119,7 @@ class SphEngineImpl final : public SphEngine {
   std::size_t marker_count() const override { return nm_; }
   std::size_t device_bytes() const override {
     const std::size_t per_soil = 2 * 4 * sizeof(Vec4<T>) + 5 * sizeof(int);
-    const std::size_t per_marker = 10 * sizeof(Vec4<T>);
+    const std::size_t per_marker = (needs_wall_normals(k_.marker_velocity) ? 12 : 10) * sizeof(Vec4<T>);
     return n_ * per_soil + nm_ * per_marker + 2 * (std::size_t(grid_.cells()) + 2) * sizeof(int) + B::scratch_bytes();
   }
 
@@ -208,7 +214,7 @@ class SphEngineImpl final : public SphEngine {
   // The effects are template arguments, so that an effect a scene does not name costs nothing.
   template <bool kVisc>
   void run_stage(const SoilArrays<T>& eval, const SoilArrays<T>& out, T dt) {
-    if (nm_ > 0) B::parallel_for_heavy(long(nm_), MarkerStage<T, kVisc>{k_, grid_, soil_begin_, eval, mk_});
+    if (nm_ > 0) B::parallel_for_heavy(long(nm_), MarkerStage<T, kVisc>{k_, grid_, soil_begin_, eval, mk_, poses_});
     if (n_ == 0) return;
     if (shifting_) run_soil_stage<kVisc, true>(eval, out, dt);
     else run_soil_stage<kVisc, false>(eval, out, dt);
@@ -235,6 +241,8 @@ class SphEngineImpl final : public SphEngine {
     B::parallel_for(long(nm_), Gather<Vec4<T>>{canon_.pos, mk_.pos, perm});
     B::parallel_for(long(nm_), Gather<Vec4<T>>{canon_.local, mk_.local, perm});
     B::parallel_for(long(nm_), Gather<Vec4<T>>{canon_.wall_vel, mk_.wall_vel, perm});
+    if (needs_wall_normals(k_.marker_velocity))
+      B::parallel_for(long(nm_), Gather<Vec4<T>>{canon_.normal, mk_.normal, perm});
     markers_sorted_ = true;
   }
 
@@ -242,6 +250,11 @@ class SphEngineImpl final : public SphEngine {
     upload_vec4(canon_.pos, m.pos);
     upload_vec4(canon_.local, m.local);
     upload_vec4(canon_.wall_vel, m.wall_vel);
+    if (needs_wall_normals(k_.marker_velocity)) {
+      std::vector<Vec4<double>> normal = m.normal;
+      normal.resize(m.pos.size(), Vec4<double>{0, 0, 0, 0});
+      upload_vec4(canon_.normal, normal);
+    }
     markers_sorted_ = false;
   }
   void upload_vec4(Vec4<T>* dst, const std::vector<Vec4<double>>& src) {
@@ -264,7 +277,7 @@ class SphEngineImpl final : public SphEngine {
   bool markers_sorted_ = false;
   SoilBuffers<T, B> A_, B_;
   MarkerArrays<T> mk_;
-  MarkerArrays<T> canon_;  // construction order: pos, local, wall_vel
+  MarkerArrays<T> canon_;  // construction order: pos, local, wall_vel, normal
   int *ids_ = nullptr, *keys_ = nullptr, *vals_ = nullptr, *keys_alt_ = nullptr, *vals_alt_ = nullptr;
   int *soil_begin_ = nullptr, *marker_begin_ = nullptr;
   BodyPose<T>* poses_ = nullptr;

@@ -4,6 +4,7 @@
 // backend and host pointers on the CPU one; the physics never knows which.
 #include "core/host_device.hpp"
 #include "core/vec.hpp"
+#include "highfi/marker_velocity.hpp"
 #include "highfi/sph_kernel.hpp"
 #include "highfi/soil_model.hpp"
 
@@ -29,6 +30,7 @@ struct MarkerArrays {
   Vec4<T>* local = nullptr;     // position in the body frame; w = body index
   Vec4<T>* wall_vel = nullptr;  // rigid-body velocity at the marker; w = 1 when the body moves
   Vec4<T>* force = nullptr;     // force of the soil on the marker (x, y, z)
+  Vec4<T>* normal = nullptr;    // body frame: unit normal from the marker towards the soil; w = depth (0: none)
 };
 
 // A neighbour's record, through the GPU's read-only data cache (valid: a stage never writes the
@@ -106,7 +108,8 @@ struct SphConstants {
   T xsph = 0;                 // XSPH epsilon; zero unless the scene names shifting
   T hourglass_nu = 0;         // kinematic viscosity of the hourglass damping; zero unless the scene names it
   T free_surface_support = 0; // kernel support (Shepard sum) below which a particle is on the free surface
-  bool wall_marker_velocity = false; // markers carry the wall's velocity, not Adami's mirror (CrmNumerics)
+  T spacing = 0;              // d0
+  MarkerVelocity marker_velocity = MarkerVelocity::kMirror;  // CrmNumerics::marker_velocity
 };
 
 // A body's pose and rigid motion, as the marker update reads it.

@@ -159,6 +159,10 @@ __device__ inline void for_each_hit(const Vec4<T>* pos, int first, int last, int
 
 // Boundary markers (Adami et al. 2012): stress (and, optionally, velocity) extrapolated from the soil around each
 // marker, then the force of the soil on the marker, which the host sums into body wrenches.
+// MarkerVelocity::kMirrorContact: a soil particle whose centre is further than this many spacings
+// from the wall's surface is not in contact (one in contact sits half a spacing from it).
+constexpr double kContactFade = 0.65;
+
 template <typename T, bool kViscosity>
 struct MarkerStage {
   SphConstants<T> k;
@@ -166,6 +170,7 @@ struct MarkerStage {
   const int* soil_begin;
   SoilArrays<T> soil;  // the state the stage is evaluated at
   MarkerArrays<T> mk;
+  const BodyPose<T>* poses;  // for the wall normals of MarkerVelocity::kMirrorImage
 
   TERRACAL_HD void operator()(long m) const {
     const Vec4<T> pm = mk.pos[m];
@@ -209,10 +214,20 @@ struct MarkerStage {
     T sum_w = 0;
     Sym3<T> sum_s{};
     Vec3<T> sum_v{}, sum_rho_r{};
+    // kMirrorContact: the marker's depth a below the wall's surface, and the least distance from that
+    // surface of a soil particle, taken as (distance from the marker) - a: exact for the particle in
+    // front of the marker, larger for one beside it. It needs no normal, which the middle layer of a
+    // thin plate does not have (equally deep below both faces).
+    const bool contact_rule = k.marker_velocity == MarkerVelocity::kMirrorContact;
+    const T depth = contact_rule ? mk.normal[m].w : T(0);
+    const T d0 = k.spacing;
+    T gap = T(1e30);
     visit([&](int j) {
       const Vec4<T> pj = soil.pos[j];
       const Vec3<T> r = xm - pj.xyz();
-      const T w = k.kernel.values(std::sqrt(dot(r, r))).w;
+      const T dist = std::sqrt(dot(r, r));
+      if (contact_rule && dist - depth < gap) gap = dist - depth;
+      const T w = k.kernel.values(dist).w;
       sum_w += w;
       sum_s = sum_s + w * stress_of(soil.s0[j], soil.s1[j]);
       sum_v += w * soil.vel[j].xyz();
@@ -229,11 +244,17 @@ struct MarkerStage {
       sm.xx -= head;
       sm.yy -= head;
       sm.zz -= head;
-      // Adami's mirror velocity (a linear extrapolation), or the wall's own, with which a still
-      // wall takes no power through the soil particle's own stress term; not consistent near the
-      // wall, see CrmNumerics::wall_marker_velocity.
-      if (!k.wall_marker_velocity) vm = T(2) * wv.xyz() - inv * sum_v;
+      // Adami's mirror velocity, or the wall's own (see MarkerVelocity).
+      if (k.marker_velocity != MarkerVelocity::kWall) vm = T(2) * wv.xyz() - inv * sum_v;
+      if (contact_rule && depth > T(0)) {
+        // A particle in contact has its centre half a spacing from the wall; the mirror fades out
+        // as the gap grows to 0.15 spacings more, and the marker then moves with the soil.
+        T phi = (T(kContactFade) * d0 - gap) / ((T(kContactFade) - T(0.5)) * d0);
+        phi = phi < T(0) ? T(0) : (phi > T(1) ? T(1) : phi);
+        vm = phi * vm + (T(1) - phi) * (inv * sum_v);
+      }
     }
+    if (k.marker_velocity == MarkerVelocity::kMirrorImage) vm = mirror_image_velocity(m, xm, wv.xyz(), vm);
     const T rho_m = pm.w, inv_rho2_m = T(1) / (rho_m * rho_m);
     mk.vel[m] = make_vec4(vm, T(0));
     mk.s0[m] = {sm.xx, sm.yy, sm.zz, sm.xy};
@@ -251,6 +272,85 @@ struct MarkerStage {
                                             soil.vel[j].xyz(), sm, inv_rho2_m, rho_m, vm, r, r2, grad);
     });
     mk.force[m] = make_vec4((k.mass * k.mass) * f, T(0));
+  }
+
+  // The mirror of the soil's velocity at the marker's image x* = x_m + 2 a n across the wall:
+  // v_m = v_wall(x_m) + v_rigid(x*) - v(x*), which for a wall at rest is -v(x*), and for a wall moving
+  // rigidly maps a soil that moves with it onto the wall's own motion. v(x*) is a linear moving-least-
+  // squares fit to the soil around x*: a Shepard average would be biased towards the deeper soil where
+  // x* lies near the wall and its kernel is cut (the first marker layer's image lies half a spacing
+  // into the soil), and so over-extrapolate there. Where x* has less than the kernel support of a half
+  // space around it (a rim, a corner, an image past the free surface), or the fit is ill-conditioned,
+  // the result blends into Adami's average `adami` between supports of 0.3 and 0.7, so that nothing
+  // jumps as a body moves.
+  // The marker's wall normal in the world frame, w = its depth (0: none).
+  TERRACAL_HD Vec4<T> world_normal(long m) const {
+    const Vec4<T> nl = mk.normal[m];
+    if (!(nl.w > T(0))) return Vec4<T>{};
+    const BodyPose<T>& b = poses[int(mk.local[m].w)];
+    return {b.R[0] * nl.x + b.R[1] * nl.y + b.R[2] * nl.z, b.R[3] * nl.x + b.R[4] * nl.y + b.R[5] * nl.z,
+            b.R[6] * nl.x + b.R[7] * nl.y + b.R[8] * nl.z, nl.w};
+  }
+
+  TERRACAL_HD Vec3<T> mirror_image_velocity(long m, const Vec3<T>& xm, const Vec3<T>& v_wall, const Vec3<T>& adami) const {
+    const Vec4<T> nw = world_normal(m);
+    if (!(nw.w > T(0)) || !(dot(nw.xyz(), nw.xyz()) > T(0.5))) return adami;  // no normal: no image
+    const BodyPose<T>& b = poses[int(mk.local[m].w)];
+    const Vec3<T> off = (T(2) * nw.w) * nw.xyz();
+    const Vec3<T> xs = xm + off;
+    const T support2 = k.kernel.support2();
+    // Moments of the fit in offsets scaled by 1/h: A = sum w [1 d][1 d]^T (4x4), rhs = sum w v [1 d].
+    T A[4][4] = {}, rhs[3][4] = {};
+    T support = 0;
+    grid.for_each_neighbour_range(xs, soil_begin, [&](int first, int last) {
+      for (int j = first; j < last; ++j) {
+        const Vec4<T> pj = soil.pos[j];
+        const Vec3<T> r = pj.xyz() - xs;
+        const T r2 = dot(r, r);
+        if (r2 < support2) {
+          const T w = k.kernel.values(std::sqrt(r2)).w;
+          support += k.mass / pj.w * w;
+          const T q[4] = {T(1), r.x * k.kernel.inv_h, r.y * k.kernel.inv_h, r.z * k.kernel.inv_h};
+          const Vec3<T> v = soil.vel[j].xyz();
+          for (int a = 0; a < 4; ++a) {
+            for (int c = a; c < 4; ++c) A[a][c] += w * q[a] * q[c];
+            rhs[0][a] += w * v.x * q[a];
+            rhs[1][a] += w * v.y * q[a];
+            rhs[2][a] += w * v.z * q[a];
+          }
+        }
+      }
+    });
+    T beta = (support - T(0.3)) / T(0.4);
+    beta = beta < T(0) ? T(0) : (beta > T(1) ? T(1) : beta);
+    if (!(beta > T(0))) return adami;
+    for (int a = 0; a < 4; ++a)
+      for (int c = 0; c < a; ++c) A[a][c] = A[c][a];
+    // v(x*) is the constant term of the fit: the first component of A^-1 rhs, by Gaussian elimination
+    // (A is symmetric positive definite when the neighbours are not all in one plane).
+    const T scale = A[0][0];
+    for (int col = 0; col < 4; ++col) {
+      const T piv = A[col][col];
+      if (!(piv > T(1e-6) * scale)) return adami;
+      for (int row = col + 1; row < 4; ++row) {
+        const T f = A[row][col] / piv;
+        for (int c = col; c < 4; ++c) A[row][c] -= f * A[col][c];
+        for (int comp = 0; comp < 3; ++comp) rhs[comp][row] -= f * rhs[comp][col];
+      }
+    }
+    T v_star[3];
+    for (int comp = 0; comp < 3; ++comp) {
+      T x[4];
+      for (int row = 3; row >= 0; --row) {
+        T acc = rhs[comp][row];
+        for (int c = row + 1; c < 4; ++c) acc -= A[row][c] * x[c];
+        x[row] = acc / A[row][row];
+      }
+      v_star[comp] = x[0];
+    }
+    const Vec3<T> v_rigid = v_wall + cross(b.omega, off);
+    const Vec3<T> image = v_wall + v_rigid - Vec3<T>{v_star[0], v_star[1], v_star[2]};
+    return beta * image + (T(1) - beta) * adami;
   }
 };
 
