@@ -115,12 +115,12 @@ CrmSolver::CrmSolver(const CrmScene& scene, CrmDevice device, const HostSoil* be
   setup.hourglass = scene_.effects.hourglass_damping;
   setup.bodies = int(scene_.bodies.size()) + 1;
   const double rho = scene_.soil.density;
-  const bool image = needs_wall_normals(scene_.numerics.marker_velocity);  // normals only then
+  const bool with_normals = needs_wall_normals(scene_.numerics.marker_velocity);
   for (const auto& p : bin_marker_positions(scene_.bin, d0)) {
     setup.markers.pos.push_back({p.x, p.y, p.z, rho});
     setup.markers.local.push_back({p.x, p.y, p.z, 0.0});
     setup.markers.wall_vel.push_back({0, 0, 0, 0});
-    if (image) setup.markers.normal.push_back(bin_marker_normal(scene_.bin, p));
+    if (with_normals) setup.markers.normal.push_back(bin_marker_normal(scene_.bin, p));
   }
   for (std::size_t b = 0; b < scene_.bodies.size(); ++b) {
     const CrmBody& body = scene_.bodies[b];
@@ -133,7 +133,7 @@ CrmSolver::CrmSolver(const CrmScene& scene, CrmDevice device, const HostSoil* be
       setup.markers.pos.push_back({x.x, x.y, x.z, rho});
       setup.markers.local.push_back({l.x, l.y, l.z, double(b + 1)});
       setup.markers.wall_vel.push_back({v.x, v.y, v.z, body.motion.moves() ? 1.0 : 0.0});
-      if (image) setup.markers.normal.push_back(body_marker_normal(body.shape, l, d0));
+      if (with_normals) setup.markers.normal.push_back(body_marker_normal(body.shape, l, d0));
     }
   }
   wrenches_.assign(scene_.bodies.size(), {});

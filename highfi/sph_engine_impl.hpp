@@ -86,7 +86,7 @@ class SphEngineImpl final : public SphEngine {
     mk_.local = B::template alloc<Vec4<T>>(mm);
     mk_.wall_vel = B::template alloc<Vec4<T>>(mm);
     mk_.force = B::template alloc<Vec4<T>>(mm);
-    // Normals only where the mirror image needs them: the other rules neither store nor sort them.
+    // Normals only for the marker rules that need them: the others neither store nor sort them.
     const std::size_t mn = needs_wall_normals(k_.marker_velocity) ? mm : 1;
     mk_.normal = B::template alloc<Vec4<T>>(mn);
     canon_.pos = B::template alloc<Vec4<T>>(mm);

@@ -157,12 +157,12 @@ __device__ inline void for_each_hit(const Vec4<T>* pos, int first, int last, int
 }
 #endif
 
-// Boundary markers (Adami et al. 2012): stress (and, optionally, velocity) extrapolated from the soil around each
-// marker, then the force of the soil on the marker, which the host sums into body wrenches.
 // MarkerVelocity::kMirrorContact: a soil particle whose centre is further than this many spacings
 // from the wall's surface is not in contact (one in contact sits half a spacing from it).
 constexpr double kContactFade = 0.65;
 
+// Boundary markers (Adami et al. 2012): stress (and, optionally, velocity) extrapolated from the soil around each
+// marker, then the force of the soil on the marker, which the host sums into body wrenches.
 template <typename T, bool kViscosity>
 struct MarkerStage {
   SphConstants<T> k;
@@ -170,7 +170,7 @@ struct MarkerStage {
   const int* soil_begin;
   SoilArrays<T> soil;  // the state the stage is evaluated at
   MarkerArrays<T> mk;
-  const BodyPose<T>* poses;  // for the wall normals of MarkerVelocity::kMirrorImage
+  const BodyPose<T>* poses;  // to turn the wall normals of MarkerVelocity::kMirrorImage into the world frame
 
   TERRACAL_HD void operator()(long m) const {
     const Vec4<T> pm = mk.pos[m];

@@ -83,7 +83,7 @@ CrmScene shear_scene(const char* rule) {
 // Mean shear stress sigma_xz after one step of the flow v = (gamma z, 0, 0) over the floor, in the
 // particle layer `layer` (0: the one touching the floor), over columns at least 4 spacings from the
 // side walls.
-double layer_shear_stress(const CrmScene& sc, const HostSoil& after, int layer) {
+double layer_shear_stress(const HostSoil& after, int layer) {
   double sum = 0;
   int n = 0;
   const double side = kCells * kD0, margin = 4 * kD0;
@@ -95,7 +95,6 @@ double layer_shear_stress(const CrmScene& sc, const HostSoil& after, int layer) 
     ++n;
   }
   REQUIRE(n > 0);
-  (void)sc;
   return sum / n;
 }
 
@@ -110,7 +109,7 @@ ShearProfile shear_profile(const char* rule) {
   CrmSolver s(sc, test::validation_device(), &bed);
   s.step();
   const HostSoil after = s.soil();
-  ShearProfile p{layer_shear_stress(sc, after, 0), layer_shear_stress(sc, after, 1), layer_shear_stress(sc, after, 5)};
+  ShearProfile p{layer_shear_stress(after, 0), layer_shear_stress(after, 1), layer_shear_stress(after, 5)};
   std::printf("marker velocity %-12s sigma_xz after one step: layer 0 %.4f, layer 1 %.4f, interior %.4f Pa "
               "(ratios %.3f, %.3f)\n",
               rule, p.first, p.second, p.interior, p.first / p.interior, p.second / p.interior);
