@@ -23,6 +23,12 @@ void add_crm_settling_options(CLI::App* sub, TerrainOptions& o) {
                   "checkerboard mode; on for the rigs by default, because without it the bed softens with finer spacing and "
                   "larger bins (0: off; results/plate_bin_check)")
       ->capture_default_str();
+  sub->add_option("--hourglass-stiffness", o.hourglass_stiffness,
+                  "CRM effect hourglass_stiffness with this beta: a frictional spring k = beta E/(rho h^2) on each particle's "
+                  "displacement that its neighbours' velocity gradient does not explain; on for the rigs by default, because the "
+                  "damping alone lets soil escape from under a plate through the checkerboard mode (0: off, at most 0.1; "
+                  "results/plate_bin_check)")
+      ->capture_default_str();
   sub->add_option("--h-over-d0", o.h_over_d0,
                   "CRM smoothing length h over the particle spacing; 1.4 keeps the particle lattice stable under compression "
                   "(at 1.2 a column mode grows and softens the bed; results/crm_settling)")
@@ -80,6 +86,8 @@ std::unique_ptr<TerrainSite> crm_site(const CrmSoil& soil, const TerrainOptions&
     throw InputError(fmt::format("--settle-jitter {}: expected in [0, 0.3] (a fraction of the spacing)", o.settle_jitter));
   if (!(o.hourglass_damping >= 0 && o.hourglass_damping <= 2))
     throw InputError(fmt::format("--hourglass-damping {}: expected in [0, 2] (0: off)", o.hourglass_damping));
+  if (!(o.hourglass_stiffness >= 0 && o.hourglass_stiffness <= 0.1))
+    throw InputError(fmt::format("--hourglass-stiffness {}: expected in [0, 0.1] (0: off)", o.hourglass_stiffness));
   if (!(o.h_over_d0 >= 1.0 && o.h_over_d0 <= 1.6))
     throw InputError(fmt::format("--h-over-d0 {}: expected in [1.0, 1.6]", o.h_over_d0));
   if (o.marker_velocity != "mirror" && o.marker_velocity != "mirror_image" && o.marker_velocity != "mirror_contact" && o.marker_velocity != "wall")
@@ -94,6 +102,8 @@ std::unique_ptr<TerrainSite> crm_site(const CrmSoil& soil, const TerrainOptions&
   sc.effects.cohesion = soil.cohesion > 0;
   sc.effects.hourglass_damping = o.hourglass_damping > 0;
   if (o.hourglass_damping > 0) sc.numerics.hourglass_alpha = o.hourglass_damping;
+  sc.effects.hourglass_stiffness = o.hourglass_stiffness > 0;
+  if (o.hourglass_stiffness > 0) sc.numerics.hourglass_beta = o.hourglass_stiffness;
   sc.numerics.spacing = o.spacing;
   sc.numerics.h_over_d0 = o.h_over_d0;
   sc.numerics.marker_velocity = marker_velocity_from_name(o.marker_velocity);

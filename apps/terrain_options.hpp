@@ -25,6 +25,10 @@ struct TerrainOptions {
   // lattice's checkerboard mode softens the bed, more at finer spacing and in deeper bins, and the
   // plate curves neither converge with spacing nor settle with the bin (results/plate_bin_check).
   double hourglass_damping = 0.4;
+  // CRM effect hourglass_stiffness with this beta (0 = off). On for the rigs: the damping alone only
+  // slows the checkerboard mode, and under a plate the soil keeps escaping through it, so that a
+  // held plate loses its force and a slower plate reads less (results/plate_bin_check, tenth study).
+  double hourglass_stiffness = 0.03;
   // CRM smoothing length h/d0: 1.4 keeps the particle lattice stable under the bed's own weight
   // (Wendland C2; at 1.2 a column mode grows from round-off and softens the bed: results/crm_settling).
   double h_over_d0 = CrmNumerics{}.h_over_d0;
@@ -39,7 +43,7 @@ struct TerrainOptions {
   double depth_scale() const { return bin_depth_scale > 0 ? bin_depth_scale : bin_scale; }
 };
 void add_terrain_options(CLI::App* sub, TerrainOptions& o, bool crm, bool scm);
-// --settle-time, --settle-jitter, --hourglass-damping, --h-over-d0 and --marker-velocity alone (part of the CRM options above), for
+// --settle-time, --settle-jitter, --hourglass-damping, --hourglass-stiffness, --h-over-d0 and --marker-velocity alone (part of the CRM options above), for
 // commands that name the rest of their terrain options themselves (`pipeline`).
 void add_crm_settling_options(CLI::App* sub, TerrainOptions& o);
 

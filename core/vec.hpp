@@ -62,6 +62,11 @@ template <typename T>
 struct Mat3 {
   T m[3][3]{};
 };
+// m v
+template <typename T> TERRACAL_HD inline Vec3<T> operator*(const Mat3<T>& a, Vec3<T> v) {
+  return {a.m[0][0] * v.x + a.m[0][1] * v.y + a.m[0][2] * v.z, a.m[1][0] * v.x + a.m[1][1] * v.y + a.m[1][2] * v.z,
+          a.m[2][0] * v.x + a.m[2][1] * v.y + a.m[2][2] * v.z};
+}
 // a (outer) b
 template <typename T> TERRACAL_HD inline Mat3<T> outer(Vec3<T> a, Vec3<T> b) {
   return {{{a.x * b.x, a.x * b.y, a.x * b.z}, {a.y * b.x, a.y * b.y, a.y * b.z}, {a.z * b.x, a.z * b.y, a.z * b.z}}};

@@ -42,6 +42,7 @@ void write_crm_checkpoint(const std::filesystem::path& file, const CrmCheckpoint
     put(f.id, "soil_vel", c.soil.vel, file);
     put(f.id, "soil_s0", c.soil.s0, file);
     put(f.id, "soil_s1", c.soil.s1, file);
+    if (!c.soil.hg.empty()) put(f.id, "soil_hg", c.soil.hg, file);  // hourglass_stiffness only
     const hsize_t n[1] = {hsize_t(c.soil.ids.size())};
     H5LTmake_dataset_int(f.id, "soil_ids", 1, n, c.soil.ids.data());
     std::vector<double> b;
@@ -79,6 +80,7 @@ CrmCheckpoint read_crm_checkpoint(const std::filesystem::path& file) {
   get(f.id, "soil_vel", c.soil.vel, n, file);
   get(f.id, "soil_s0", c.soil.s0, n, file);
   get(f.id, "soil_s1", c.soil.s1, n, file);
+  if (H5LTfind_dataset(f.id, "soil_hg") == 1) get(f.id, "soil_hg", c.soil.hg, n, file);
   c.soil.ids.resize(n);
   if (n) H5LTread_dataset_int(f.id, "soil_ids", c.soil.ids.data());
   hsize_t dims[2] = {0, 0};
@@ -106,6 +108,7 @@ std::string crm_fingerprint(const CrmScene& sc, CrmDevice device, bool include_b
       sc.effects.artificial_viscosity, sc.effects.shifting, sc.effects.active_domain, int(device), sc.settle_time, sc.settle_jitter);
   // Appended only when on, so that the keys of runs without it (caches, checkpoints) stay as they were.
   if (sc.effects.hourglass_damping) d += fmt::format(" | hourglass {}", sc.numerics.hourglass_alpha);
+  if (sc.effects.hourglass_stiffness) d += fmt::format(" | hourglass stiffness {}", sc.numerics.hourglass_beta);
   if (sc.numerics.marker_velocity != MarkerVelocity::kMirror)
     d += fmt::format(" | marker velocity {}", marker_velocity_name(sc.numerics.marker_velocity));
   if (include_bodies)

@@ -28,9 +28,10 @@ struct CrmSoil {
 // Effects a scene may name; anything not named costs nothing.
 struct CrmEffects {
   bool cohesion = false, artificial_viscosity = false, shifting = false, active_domain = false, hourglass_damping = false;
+  bool hourglass_stiffness = false;
 };
-inline const std::array<const char*, 5> kCrmEffectNames = {"cohesion", "artificial_viscosity", "shifting", "active_domain",
-                                                           "hourglass_damping"};
+inline const std::array<const char*, 6> kCrmEffectNames = {"cohesion", "artificial_viscosity", "shifting", "active_domain",
+                                                           "hourglass_damping", "hourglass_stiffness"};
 
 // A scene body is a rigid body of core/rigid_body.hpp (shape, motion program, mass properties).
 using CrmBody = RigidBody;
@@ -55,6 +56,10 @@ struct CrmNumerics {
   double viscosity_alpha = 0.1;
   double xsph = 0.5;
   double hourglass_alpha = 0.4;   // hourglass damping: nu = alpha h c_s / 10 (Monaghan's alpha on the same scale; 0.4: results/plate_bin_check)
+  // hourglass stiffness: a spring k = beta E / (rho0 h^2) on each particle's displacement that its
+  // neighbourhood's velocity gradient does not explain (highfi/sph_stage.hpp, HourglassShare;
+  // 0.03: results/plate_bin_check, tenth study)
+  double hourglass_beta = 0.03;
   double active_margin = 0.1;
   double free_surface_support = 0.8;
   // The velocity boundary markers carry into the soil's velocity gradient and viscosity (scene key

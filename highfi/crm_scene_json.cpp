@@ -189,6 +189,8 @@ void validate_crm_scene(CrmScene& sc) {
   const CrmNumerics& n = sc.numerics;
   if (sc.effects.hourglass_damping && !(n.hourglass_alpha > 0 && n.hourglass_alpha <= 2))
     fail("hourglass_damping.alpha", fmt::format("value {} is outside (0, 2]", n.hourglass_alpha));
+  if (sc.effects.hourglass_stiffness && !(n.hourglass_beta > 0 && n.hourglass_beta <= 0.1))
+    fail("hourglass_stiffness.beta", fmt::format("value {} is outside (0, 0.1]", n.hourglass_beta));
   const double d0 = n.spacing;
   if (!(d0 > 0)) fail("resolution.spacing", fmt::format("value {} must be > 0", d0));
   if (!(n.h_over_d0 >= 1.0 && n.h_over_d0 <= 1.6))
@@ -306,6 +308,7 @@ CrmScene parse_crm_scene(const nlohmann::json& j, const std::string& where) {
     if (e == "shifting") sc.effects.shifting = true;
     if (e == "active_domain") sc.effects.active_domain = true;
     if (e == "hourglass_damping") sc.effects.hourglass_damping = true;
+    if (e == "hourglass_stiffness") sc.effects.hourglass_stiffness = true;
   }
   auto settings = [&](const char* name, bool on) {
     if (o.has(name) && !on) o.fail(name, fmt::format("settings given, but \"{}\" is not named in 'effects'", name));
@@ -314,6 +317,7 @@ CrmScene parse_crm_scene(const nlohmann::json& j, const std::string& where) {
   settings("shifting", sc.effects.shifting);
   settings("active_domain", sc.effects.active_domain);
   settings("hourglass_damping", sc.effects.hourglass_damping);
+  settings("hourglass_stiffness", sc.effects.hourglass_stiffness);
   if (o.has("artificial_viscosity")) {
     JsonObject a = o.object("artificial_viscosity");
     sc.numerics.viscosity_alpha = a.number_or("alpha", 0.1, 0, 2);
@@ -327,6 +331,11 @@ CrmScene parse_crm_scene(const nlohmann::json& j, const std::string& where) {
   if (o.has("hourglass_damping")) {
     JsonObject a = o.object("hourglass_damping");
     sc.numerics.hourglass_alpha = a.number_or("alpha", 0.4, 0, 2, true);
+    a.finish();
+  }
+  if (o.has("hourglass_stiffness")) {
+    JsonObject a = o.object("hourglass_stiffness");
+    sc.numerics.hourglass_beta = a.number_or("beta", 0.03, 0, 0.1, true);
     a.finish();
   }
   if (o.has("active_domain")) {

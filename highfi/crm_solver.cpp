@@ -31,6 +31,11 @@ SphConstants<double> crm_constants(const CrmScene& sc) {
   k.xsph = sc.effects.shifting ? n.xsph : 0.0;
   // nu = alpha h c / 10: the shear viscosity that Monaghan's term with the same alpha carries in 3D.
   k.hourglass_nu = sc.effects.hourglass_damping ? n.hourglass_alpha * n.smoothing_length() * s.sound_speed() / 10 : 0.0;
+  // k = beta E / (rho0 h^2): a particle displaced by h from where its neighbours' motion puts it is
+  // pulled back as hard as a strain beta of the soil's Young modulus would push it.
+  k.hourglass_k = sc.effects.hourglass_stiffness
+                      ? n.hourglass_beta * s.young_modulus / (s.density * n.smoothing_length() * n.smoothing_length())
+                      : 0.0;
   k.free_surface_support = n.free_surface_support;
   k.spacing = n.spacing;
   k.marker_velocity = n.marker_velocity;
@@ -113,6 +118,7 @@ CrmSolver::CrmSolver(const CrmScene& scene, CrmDevice device, const HostSoil* be
   setup.viscosity = scene_.effects.artificial_viscosity;
   setup.shifting = scene_.effects.shifting;
   setup.hourglass = scene_.effects.hourglass_damping;
+  setup.hourglass_stiffness = scene_.effects.hourglass_stiffness;
   setup.bodies = int(scene_.bodies.size()) + 1;
   const double rho = scene_.soil.density;
   const bool with_normals = needs_wall_normals(scene_.numerics.marker_velocity);

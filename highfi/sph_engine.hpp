@@ -17,6 +17,7 @@ enum class CrmPrecision { kDouble, kFloat };
 
 struct HostSoil {
   std::vector<Vec4<double>> pos, vel, s0, s1;  // layout of SoilArrays
+  std::vector<Vec4<double>> hg;                // SoilArrays::hg; empty without hourglass_stiffness (then zero)
   std::vector<int> ids;                        // original particle numbers (the arrays are kept sorted by cell)
   std::size_t size() const { return pos.size(); }
 };
@@ -35,7 +36,7 @@ struct EngineSetup {
   HostSoil soil;
   HostMarkers markers;
   int bodies = 1;
-  bool viscosity = false, shifting = false, hourglass = false;
+  bool viscosity = false, shifting = false, hourglass = false, hourglass_stiffness = false;
   // The soil's room: a particle whose centre gets further than half a spacing into the bin's walls
   // has broken through the boundary (a violent impact can squeeze one in) and is marked lost.
   Vec3<double> room_lo{-1e30, -1e30, -1e30}, room_hi{1e30, 1e30, 1e30};

@@ -33,6 +33,7 @@ SphConstants<T> constants_in(const SphConstants<double>& c) {
   k.viscosity_alpha = T(c.viscosity_alpha);
   k.xsph = T(c.xsph);
   k.hourglass_nu = T(c.hourglass_nu);
+  k.hourglass_k = T(c.hourglass_k);
   k.free_surface_support = T(c.free_surface_support);
   k.spacing = T(c.spacing);
   k.marker_velocity = c.marker_velocity;
@@ -43,21 +44,23 @@ GridGeometry<T> grid_in(const GridGeometry<double>& g) {
   return {to_t<T>(g.origin), T(g.inv_cell), g.nx, g.ny, g.nz, g.reach};
 }
 
-// Device-side storage of one soil state (four Vec4 arrays).
+// Device-side storage of one soil state (four Vec4 arrays, five with hourglass_stiffness).
 template <typename T, typename B>
 struct SoilBuffers {
   SoilArrays<T> a;
-  void allocate(std::size_t n) {
+  void allocate(std::size_t n, bool hourglass_stiffness) {
     a.pos = B::template alloc<Vec4<T>>(n);
     a.vel = B::template alloc<Vec4<T>>(n);
     a.s0 = B::template alloc<Vec4<T>>(n);
     a.s1 = B::template alloc<Vec4<T>>(n);
+    if (hourglass_stiffness) a.hg = B::template alloc<Vec4<T>>(n);
   }
   void release() {
     B::release(a.pos);
     B::release(a.vel);
     B::release(a.s0);
     B::release(a.s1);
+    if (a.hg) B::release(a.hg);
   }
 };
 
@@ -66,11 +69,11 @@ class SphEngineImpl final : public SphEngine {
  public:
   explicit SphEngineImpl(const EngineSetup& s)
       : k_(constants_in<T>(s.constants)), grid_(grid_in<T>(s.grid)), n_(s.soil.size()), nm_(s.markers.size()),
-        bodies_(s.bodies), viscosity_(s.viscosity), shifting_(s.shifting), hourglass_(s.hourglass), room_lo_(to_t<T>(s.room_lo)),
+        bodies_(s.bodies), viscosity_(s.viscosity), shifting_(s.shifting), hourglass_(s.hourglass), stiff_(s.hourglass_stiffness), room_lo_(to_t<T>(s.room_lo)),
         room_hi_(to_t<T>(s.room_hi)) {
     const std::size_t nn = n_ > 0 ? n_ : 1, mm = nm_ > 0 ? nm_ : 1;
-    A_.allocate(nn);
-    B_.allocate(nn);
+    A_.allocate(nn, stiff_);
+    B_.allocate(nn, stiff_);
     ids_ = B::template alloc<int>(nn);
     keys_ = B::template alloc<int>(std::max(nn, mm));
     vals_ = B::template alloc<int>(std::max(nn, mm));
@@ -118,7 +121,7 @@ class SphEngineImpl final : public SphEngine {
   std::size_t soil_count() const override { return n_; }
   std::size_t marker_count() const override { return nm_; }
   std::size_t device_bytes() const override {
-    const std::size_t per_soil = 2 * 4 * sizeof(Vec4<T>) + 5 * sizeof(int);
+    const std::size_t per_soil = 2 * (stiff_ ? 5 : 4) * sizeof(Vec4<T>) + 5 * sizeof(int);
     const std::size_t per_marker = (needs_wall_normals(k_.marker_velocity) ? 12 : 10) * sizeof(Vec4<T>);
     return n_ * per_soil + nm_ * per_marker + 2 * (std::size_t(grid_.cells()) + 2) * sizeof(int) + B::scratch_bytes();
   }
@@ -168,6 +171,7 @@ class SphEngineImpl final : public SphEngine {
     B::parallel_for(long(n_), Gather<Vec4<T>>{A_.a.vel, B_.a.vel, perm});
     B::parallel_for(long(n_), Gather<Vec4<T>>{A_.a.s0, B_.a.s0, perm});
     B::parallel_for(long(n_), Gather<Vec4<T>>{A_.a.s1, B_.a.s1, perm});
+    if (stiff_) B::parallel_for(long(n_), Gather<Vec4<T>>{A_.a.hg, B_.a.hg, perm});
     // ids: gathered through the key buffer that the sort no longer needs.
     int* spare = perm == vals_ ? keys_alt_ : keys_;
     B::parallel_for(long(n_), Gather<int>{ids_, spare, perm});
@@ -198,6 +202,11 @@ class SphEngineImpl final : public SphEngine {
     download_vec4(A_.a.vel, s.vel);
     download_vec4(A_.a.s0, s.s0);
     download_vec4(A_.a.s1, s.s1);
+    s.hg.clear();
+    if (stiff_) {
+      s.hg.resize(n_);
+      download_vec4(A_.a.hg, s.hg);
+    }
     B::download(s.ids.data(), ids_, n_);
   }
 
@@ -207,6 +216,12 @@ class SphEngineImpl final : public SphEngine {
     upload_vec4(A_.a.vel, s.vel);
     upload_vec4(A_.a.s0, s.s0);
     upload_vec4(A_.a.s1, s.s1);
+    if (stiff_) {
+      // A bed settled without the effect starts with no hourglass displacement.
+      std::vector<Vec4<double>> hg = s.hg;
+      if (hg.size() != n_) hg.assign(n_, Vec4<double>{0, 0, 0, 0});
+      upload_vec4(A_.a.hg, hg);
+    }
     B::upload(ids_, s.ids.data(), n_);
   }
 
@@ -221,10 +236,12 @@ class SphEngineImpl final : public SphEngine {
   }
   template <bool kVisc, bool kShift>
   void run_soil_stage(const SoilArrays<T>& eval, const SoilArrays<T>& out, T dt) {
-    if (hourglass_)
-      B::parallel_for_heavy(long(n_), SoilStage<T, kVisc, kShift, true>{k_, grid_, soil_begin_, marker_begin_, eval, A_.a, out, mk_, dt});
+    if (stiff_)
+      B::parallel_for_heavy(long(n_), SoilStage<T, kVisc, kShift, 2>{k_, grid_, soil_begin_, marker_begin_, eval, A_.a, out, mk_, dt});
+    else if (hourglass_)
+      B::parallel_for_heavy(long(n_), SoilStage<T, kVisc, kShift, 1>{k_, grid_, soil_begin_, marker_begin_, eval, A_.a, out, mk_, dt});
     else
-      B::parallel_for_heavy(long(n_), SoilStage<T, kVisc, kShift, false>{k_, grid_, soil_begin_, marker_begin_, eval, A_.a, out, mk_, dt});
+      B::parallel_for_heavy(long(n_), SoilStage<T, kVisc, kShift, 0>{k_, grid_, soil_begin_, marker_begin_, eval, A_.a, out, mk_, dt});
   }
 
   // Markers are re-derived from their canonical (construction-order) arrays at every sort, so that
@@ -272,7 +289,7 @@ class SphEngineImpl final : public SphEngine {
   GridGeometry<T> grid_;
   std::size_t n_, nm_;
   int bodies_;
-  bool viscosity_, shifting_, hourglass_;
+  bool viscosity_, shifting_, hourglass_, stiff_;
   Vec3<T> room_lo_, room_hi_;
   bool markers_sorted_ = false;
   SoilBuffers<T, B> A_, B_;

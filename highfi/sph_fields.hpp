@@ -19,6 +19,10 @@ struct SoilArrays {
   Vec4<T>* vel = nullptr;  // vx, vy, vz, status (ParticleStatus)
   Vec4<T>* s0 = nullptr;   // sigma xx, yy, zz, xy (Cauchy stress, compression negative)
   Vec4<T>* s1 = nullptr;   // sigma xz, yz, accumulated plastic shear strain, kernel support (Shepard sum)
+  // Only with the hourglass_stiffness effect (else null): the particle's displacement that its
+  // neighbourhood's velocity gradient does not explain (x, y, z), and divided by w = its neighbours'
+  // share of the kernel support S (without itself), so that a neighbour reads u/S in one load.
+  Vec4<T>* hg = nullptr;
 };
 
 template <typename T>
@@ -107,6 +111,7 @@ struct SphConstants {
   T viscosity_alpha = 0;      // Monaghan's alpha; zero unless the scene names artificial_viscosity
   T xsph = 0;                 // XSPH epsilon; zero unless the scene names shifting
   T hourglass_nu = 0;         // kinematic viscosity of the hourglass damping; zero unless the scene names it
+  T hourglass_k = 0;          // hourglass stiffness [1/s^2]; zero unless the scene names it
   T free_surface_support = 0; // kernel support (Shepard sum) below which a particle is on the free surface
   T spacing = 0;              // d0
   MarkerVelocity marker_velocity = MarkerVelocity::kMirror;  // CrmNumerics::marker_velocity

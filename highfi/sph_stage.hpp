@@ -94,6 +94,47 @@ TERRACAL_HD inline SoilSums<T> neighbour_share(const SphConstants<T>& k, const S
   return c;
 }
 
+// Sums for the hourglass_stiffness effect (SoilStage with kHg = 2). The SPH velocity gradient does not
+// see a checkerboard: neighbouring layers of particles that slide past each other in opposite
+// directions strain nothing, so no stress resists them, and under a plate the soil escapes that
+// way (results/plate_bin_check, tenth study). Each particle therefore keeps the displacement u that
+// its neighbourhood's motion does not explain,
+//   du_i/dt = v_i - vbar_i,   vbar_i = sum_n V_n W_in (v_n + L_i (x_i - x_n)) / S_i,   S_i = sum_n V_n W_in,
+// over its neighbours n (soil and markers, not itself). Where the kernel is full (sum_n V_n W_in
+// (x_i - x_n) = 0) vbar_i = v_i for any linear velocity field, so u stays zero under uniform strain
+// and rigid motion; at a free surface, where the SPH gradient L_i falls short, it does not, but
+// there the spring's frictional hold (below) is small. A spring of energy
+// (m k / 2) |u_i|^2 pulls it back: the force -m k u_i on i, and its reaction m k (V_n W_in / S_i) u_i
+// on each neighbour n, which sum to zero (momentum is conserved, and bodies feel their share
+// through their markers).
+template <typename T>
+struct HourglassSums {
+  Vec3<T> wv{}, wr{}, react{};  // sum V W v_n, sum V W (x_i - x_n), sum W u_j / S_j (soil neighbours)
+  T ws = 0;                     // S_i
+  TERRACAL_HD HourglassSums& operator+=(const HourglassSums& o) {
+    wv += o.wv;
+    wr += o.wr;
+    react += o.react;
+    ws += o.ws;
+    return *this;
+  }
+};
+
+// Neighbour n's share; hg_n is its SoilArrays::hg record (u / S in xyz is read as u * w), or zero for a marker.
+template <typename T>
+TERRACAL_HD inline HourglassSums<T> hourglass_share(const SphConstants<T>& k, const Vec3<T>& xi, Vec4<T> pn, Vec4<T> vn,
+                                                     Vec4<T> hg_n) {
+  const Vec3<T> r = xi - pn.xyz();
+  const T w = k.kernel.values(std::sqrt(dot(r, r))).w;
+  const T vw = k.mass / pn.w * w;
+  HourglassSums<T> c;
+  c.ws = vw;
+  c.wv = vw * vn.xyz();
+  c.wr = vw * r;
+  c.react = (w * hg_n.w) * hg_n.xyz();
+  return c;
+}
+
 #if !defined(__CUDA_ARCH__)
 // The CPU's inner loop. The neighbours listed in `list` (at most kSimdChunk, all within the support;
 // room for 8 more) are first copied into structure-of-arrays form, then summed with SIMD across neighbours: x86
@@ -271,6 +312,17 @@ struct MarkerStage {
       f -= pair_acceleration<T, kViscosity>(k, stress_of(soil.s0[j], soil.s1[j]), T(1) / (rho_j * rho_j), rho_j,
                                             soil.vel[j].xyz(), sm, inv_rho2_m, rho_m, vm, r, r2, grad);
     });
+    if (k.hourglass_k > T(0)) {
+      // hourglass_stiffness: the reaction of the soil particles' springs on the marker,
+      // m k V_m sum_j W u_j / S_j (see HourglassSums).
+      Vec3<T> react{};
+      visit([&](int j) {
+        const Vec3<T> r = soil.pos[j].xyz() - xm;
+        const Vec4<T> g = soil.hg[j];
+        react += (k.kernel.values(std::sqrt(dot(r, r))).w * g.w) * g.xyz();
+      });
+      f += (k.hourglass_k / rho_m) * react;
+    }
     mk.force[m] = make_vec4((k.mass * k.mass) * f, T(0));
   }
 
@@ -356,8 +408,12 @@ struct MarkerStage {
 
 // One stage for one soil particle: accumulate the momentum balance, the velocity gradient and
 // the kernel support over soil and marker neighbours, then integrate and return-map the stress.
-template <typename T, bool kViscosity, bool kShifting, bool kHourglass>
+// kHg: 0 no hourglass effect, 1 hourglass_damping, 2 hourglass_stiffness (with the damping term,
+// whose viscosity is zero unless hourglass_damping is named too).
+template <typename T, bool kViscosity, bool kShifting, int kHg>
 struct SoilStage {
+  static constexpr bool kHourglass = kHg >= 1;
+  static constexpr bool kStiff = kHg == 2;
   SphConstants<T> k;
   GridGeometry<T> grid;
   const int* soil_begin;
@@ -374,6 +430,7 @@ struct SoilStage {
         out.vel[i] = vb;
         out.s0[i] = base.s0[i];
         out.s1[i] = base.s1[i];
+        if (kStiff) out.hg[i] = base.hg[i];
       }
       return;
     }
@@ -389,18 +446,21 @@ struct SoilStage {
 
     SoilSums<T> sum;
     sum.support = k.mass / me.rho * k.kernel.values(T(0)).w;
+    HourglassSums<T> hs;
 #if defined(__CUDA_ARCH__)
     // GPU: one thread per particle walks its neighbour rows, testing a row before summing its hits.
     grid.for_each_neighbour_range(me.x, soil_begin, [&](int first, int last) {
       for_each_hit(eval.pos, first, last, int(i), me.x, support2, [&](int j) {
-        sum += neighbour_share<T, kViscosity, kShifting, kHourglass>(k, me, load(eval.pos + j), load(eval.vel + j),
-                                                         load(eval.s0 + j), load(eval.s1 + j));
+        const Vec4<T> pj = load(eval.pos + j), vj = load(eval.vel + j);
+        sum += neighbour_share<T, kViscosity, kShifting, kHourglass>(k, me, pj, vj, load(eval.s0 + j), load(eval.s1 + j));
+        if constexpr (kStiff) hs += hourglass_share(k, me.x, pj, vj, load(eval.hg + j));
       });
     });
     grid.for_each_neighbour_range(me.x, marker_begin, [&](int first, int last) {
       for_each_hit(mk.pos, first, last, -1, me.x, support2, [&](int j) {
-        sum += neighbour_share<T, kViscosity, kShifting, false>(k, me, load(mk.pos + j), load(mk.vel + j), load(mk.s0 + j),
-                                                         load(mk.s1 + j));
+        const Vec4<T> pj = load(mk.pos + j), vj = load(mk.vel + j);
+        sum += neighbour_share<T, kViscosity, kShifting, false>(k, me, pj, vj, load(mk.s0 + j), load(mk.s1 + j));
+        if constexpr (kStiff) hs += hourglass_share(k, me.x, pj, vj, Vec4<T>{});
       });
     });
 #else
@@ -423,16 +483,43 @@ struct SoilStage {
     };
     auto flush_soil = [&] {
       add_neighbours_simd<T, kViscosity, kShifting, kHourglass>(sum, k, me, eval.pos, eval.vel, eval.s0, eval.s1, list, n);
+      if constexpr (kStiff)
+        for (int q = 0; q < n; ++q) hs += hourglass_share(k, me.x, eval.pos[list[q]], eval.vel[list[q]], eval.hg[list[q]]);
     };
     grid.for_each_neighbour_range(me.x, soil_begin, [&](int first, int last) { collect(eval.pos, first, last, i, flush_soil); });
     flush_soil();
     n = 0;
-    auto flush_markers = [&] { add_neighbours_simd<T, kViscosity, kShifting, false>(sum, k, me, mk.pos, mk.vel, mk.s0, mk.s1, list, n); };
+    auto flush_markers = [&] {
+      add_neighbours_simd<T, kViscosity, kShifting, false>(sum, k, me, mk.pos, mk.vel, mk.s0, mk.s1, list, n);
+      if constexpr (kStiff)
+        for (int q = 0; q < n; ++q) hs += hourglass_share(k, me.x, mk.pos[list[q]], mk.vel[list[q]], Vec4<T>{});
+    };
     grid.for_each_neighbour_range(me.x, marker_begin, [&](int first, int last) { collect(mk.pos, first, last, -1, flush_markers); });
     flush_markers();
 #endif
     const Mat3<T>& L = sum.L;
-    const Vec3<T> acc = k.mass * sum.acc + k.gravity;
+    Vec3<T> acc = k.mass * sum.acc + k.gravity;
+    Vec4<T> hg_new{};
+    if constexpr (kStiff) {
+      const Vec4<T> hg_e = eval.hg[i];
+      acc += k.hourglass_k * ((k.mass / me.rho) * hs.react - hg_e.xyz());
+      if (sum.support >= k.free_surface_support && hs.ws > T(0)) {
+        // A free-surface particle (as below for the stress) keeps no hourglass displacement.
+        const T inv_s = T(1) / hs.ws;
+        const Vec3<T> vbar = inv_s * (hs.wv + L * hs.wr);
+        Vec3<T> u = base.hg[i].xyz() + dt * (me.v - vbar);
+        // The spring is frictional, like the soil: it holds at most the force that the particle's
+        // confinement gives a grain, (mu_s p + c) / (rho d0) per unit mass. Loose grains at the
+        // surface are not held in place, and an error of the velocity extrapolation that keeps
+        // feeding u (at a wall's corner) cannot build up a force that throws a particle out.
+        T p = -me.s.trace() / T(3);
+        p = p > T(0) ? p : T(0);
+        const T u_max = (k.model.mu_s * p + k.model.cohesion) / (me.rho * k.spacing * k.hourglass_k);
+        const T u2 = dot(u, u);
+        if (u2 > u_max * u_max) u = (u_max / std::sqrt(u2)) * u;
+        hg_new = make_vec4(u, inv_s);
+      }
+    }
     const T div_v = L.m[0][0] + L.m[1][1] + L.m[2][2];
     const Sym3<T> rate = jaumann_rate(me.s, L, k.model);
 
@@ -457,6 +544,7 @@ struct SoilStage {
     out.vel[i] = make_vec4(v_new, T(kParticleActive));
     out.s0[i] = {s_new.xx, s_new.yy, s_new.zz, s_new.xy};
     out.s1[i] = {s_new.xz, s_new.yz, plastic, sum.support};
+    if constexpr (kStiff) out.hg[i] = hg_new;
   }
 };
 
