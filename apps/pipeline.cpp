@@ -274,6 +274,9 @@ int run_pipeline(const PipelinePlan& plan) {
   if (plan.terrain.hourglass_damping <= 0)
     md += "**Note.** The CRM effect hourglass_damping is off: the lattice's checkerboard mode softens the bed, so the CRM curves read "
           "lower at finer spacing and in larger bins (results/plate_bin_check).\n\n";
+  if (plan.terrain.hourglass_stiffness <= 0)
+    md += "**Note.** The CRM effect hourglass_stiffness is off: soil escapes from under the plates through the checkerboard mode, so "
+          "the plate curves read low and fall with a slower or longer test (results/plate_bin_check, tenth study).\n\n";
   md += fmt::format("## Single wheel (radius {} m, width {} m, mass {} kg, omega {} rad/s)\n\n![wheel](wheel.png)\n\n", plan.wheel.radius,
                     plan.wheel.width, plan.wheel.mass, plan.wheel.angular_velocity);
   md += "| slip | DBP CRM [N] | DBP SCM | DBP W-R | torque CRM [N m] | torque SCM | torque W-R | sinkage CRM [m] | sinkage SCM | sinkage W-R |\n";

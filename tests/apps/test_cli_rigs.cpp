@@ -93,6 +93,8 @@ TEST_CASE("rig commands: bad input exits 2 naming the option or key, and writes 
       {"pipeline --soil " + d + "/soil.json --annulus 0.15" + out, {"--annulus"}},
       {"pipeline --soil " + d + "/soil.json --checks=annulus,plates" + out, {"--checks", "plates"}},
       {"pipeline --soil " + d + "/soil.json --device cpu --hourglass-damping -1" + out, {"--hourglass-damping", "-1"}},
+      {"bevameter --solver crm --soil " + d + "/soil.json --test plate --device cpu --hourglass-stiffness 0.5" + out,
+       {"--hourglass-stiffness", "0.5"}},
       {"pipeline --soil " + d + "/soil.json --device cpu --h-over-d0 1.7" + out, {"--h-over-d0", "1.7"}},
       {"pipeline --soil " + d + "/soil.json --device cpu --marker-velocity adami" + out, {"--marker-velocity", "adami"}},
       {"pipeline --soil " + d + "/soil.json --device cpu --plate-depth-scale 0.1" + out, {"--plate-depth-scale", "0.1"}},

@@ -15,7 +15,6 @@ namespace terracal::test {
 struct PlateBin {
   double side = 0.4, depth = 0.15;  // bin side (x = y) and soil depth [m]
   double radius = 0.1, speed = 0.1; // plate radius [m] and push speed [m/s]
-  bool rig_numerics = false;        // as the rigs run: h/d0 1.4, hourglass_damping 0.4, hourglass_stiffness 0.03
 };
 
 // The scene at spacing d0; the plate's bottom face starts on the soil surface.
@@ -23,10 +22,6 @@ inline nlohmann::json plate_bin_scene(double d0, const PlateBin& b) {
   const int cells = int(b.side / d0 + 0.5), layers = int(b.depth / d0 + 0.5);
   nlohmann::json j = bed_scene_json(d0, cells, layers, 0.05);
   j["resolution"]["cpu_precision"] = "float";
-  if (b.rig_numerics) {
-    j["resolution"]["h_over_d0"] = 1.4;
-    j["effects"] = {"artificial_viscosity", "hourglass_damping", "hourglass_stiffness"};
-  }
   const double surface = layers * d0, thickness = 0.02;
   const double centre = 0.5 * cells * d0;
   j["bodies"] = {{{"name", "plate"},
