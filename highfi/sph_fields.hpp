@@ -19,9 +19,10 @@ struct SoilArrays {
   Vec4<T>* vel = nullptr;  // vx, vy, vz, status (ParticleStatus)
   Vec4<T>* s0 = nullptr;   // sigma xx, yy, zz, xy (Cauchy stress, compression negative)
   Vec4<T>* s1 = nullptr;   // sigma xz, yz, accumulated plastic shear strain, kernel support (Shepard sum)
-  // Only with the hourglass_stiffness effect (else null): the particle's displacement that its
-  // neighbourhood's velocity gradient does not explain (x, y, z), and divided by w = its neighbours'
-  // share of the kernel support S (without itself), so that a neighbour reads u/S in one load.
+  // Only with the hourglass_stiffness effect (else null): the particle's displacement u that its
+  // neighbourhood's velocity gradient does not explain (x, y, z), and w = 1/S, S its neighbours' share
+  // of the kernel support (without itself; w = 0 on the free surface), so that a neighbour reads u/S
+  // from one record.
   Vec4<T>* hg = nullptr;
 };
 
