@@ -120,19 +120,25 @@ struct HourglassSums {
   }
 };
 
-// Neighbour n's share; hg_n is its SoilArrays::hg record (u / S in xyz is read as u * w), or zero for a marker.
+// Neighbour n's share, from vw = V_n W_in (neighbour_share's kernel support term, so that the GPU,
+// which has it at hand, does not evaluate the kernel twice); hg_n is n's SoilArrays::hg record
+// (u / S read as u * w), or zero for a marker.
+template <typename T>
+TERRACAL_HD inline HourglassSums<T> hourglass_share(const SphConstants<T>& k, const Vec3<T>& xi, Vec4<T> pn, Vec4<T> vn, T vw,
+                                                     Vec4<T> hg_n) {
+  HourglassSums<T> c;
+  c.ws = vw;
+  c.wv = vw * vn.xyz();
+  c.wr = vw * (xi - pn.xyz());
+  c.react = (vw * pn.w / k.mass * hg_n.w) * hg_n.xyz();  // W_in u_n / S_n
+  return c;
+}
+// The same where the kernel value is not at hand (the CPU's SIMD sums do not return it per pair).
 template <typename T>
 TERRACAL_HD inline HourglassSums<T> hourglass_share(const SphConstants<T>& k, const Vec3<T>& xi, Vec4<T> pn, Vec4<T> vn,
                                                      Vec4<T> hg_n) {
   const Vec3<T> r = xi - pn.xyz();
-  const T w = k.kernel.values(std::sqrt(dot(r, r))).w;
-  const T vw = k.mass / pn.w * w;
-  HourglassSums<T> c;
-  c.ws = vw;
-  c.wv = vw * vn.xyz();
-  c.wr = vw * r;
-  c.react = (w * hg_n.w) * hg_n.xyz();
-  return c;
+  return hourglass_share(k, xi, pn, vn, k.mass / pn.w * k.kernel.values(std::sqrt(dot(r, r))).w, hg_n);
 }
 
 #if !defined(__CUDA_ARCH__)
@@ -452,15 +458,18 @@ struct SoilStage {
     grid.for_each_neighbour_range(me.x, soil_begin, [&](int first, int last) {
       for_each_hit(eval.pos, first, last, int(i), me.x, support2, [&](int j) {
         const Vec4<T> pj = load(eval.pos + j), vj = load(eval.vel + j);
-        sum += neighbour_share<T, kViscosity, kShifting, kHourglass>(k, me, pj, vj, load(eval.s0 + j), load(eval.s1 + j));
-        if constexpr (kStiff) hs += hourglass_share(k, me.x, pj, vj, load(eval.hg + j));
+        const SoilSums<T> c =
+            neighbour_share<T, kViscosity, kShifting, kHourglass>(k, me, pj, vj, load(eval.s0 + j), load(eval.s1 + j));
+        sum += c;
+        if constexpr (kStiff) hs += hourglass_share(k, me.x, pj, vj, c.support, load(eval.hg + j));
       });
     });
     grid.for_each_neighbour_range(me.x, marker_begin, [&](int first, int last) {
       for_each_hit(mk.pos, first, last, -1, me.x, support2, [&](int j) {
         const Vec4<T> pj = load(mk.pos + j), vj = load(mk.vel + j);
-        sum += neighbour_share<T, kViscosity, kShifting, false>(k, me, pj, vj, load(mk.s0 + j), load(mk.s1 + j));
-        if constexpr (kStiff) hs += hourglass_share(k, me.x, pj, vj, Vec4<T>{});
+        const SoilSums<T> c = neighbour_share<T, kViscosity, kShifting, false>(k, me, pj, vj, load(mk.s0 + j), load(mk.s1 + j));
+        sum += c;
+        if constexpr (kStiff) hs += hourglass_share(k, me.x, pj, vj, c.support, Vec4<T>{});
       });
     });
 #else
