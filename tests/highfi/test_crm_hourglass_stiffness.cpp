@@ -12,64 +12,31 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <functional>
 
 #include "core/errors.hpp"
 #include "highfi/crm_checkpoint.hpp"
 #include "highfi/crm_run.hpp"
 #include "highfi/crm_solver.hpp"
 #include "highfi/sph_kernel.hpp"
+#include "tests/highfi/crm_lattice_mode.hpp"
 #include "tests/highfi/crm_test_scenes.hpp"
 
 using namespace terracal;
 
+using namespace terracal::test::lattice_mode;
+
 namespace {
 
-constexpr double kD0 = 0.05;
-constexpr int kCells = 20;  // 1 x 1 x 1 m of soil, 8000 particles
-
-// No gravity and no stress, so that only the effect acts. Cohesion gives the frictional spring its
-// hold (mu_s p + c) without any pressure.
+// Cohesion gives the frictional spring its hold (mu_s p + c) without any pressure.
 nlohmann::json unloaded_bed(bool stiffness, double beta) {
-  nlohmann::json j = test::bed_scene_json(kD0, kCells, kCells, 0);
-  j["soil"]["gravity"] = {0, 0, 0};
+  nlohmann::json j = test::lattice_mode::unloaded_bed();
   j["soil"]["cohesion"] = 1e5;
-  j["effects"] = {"cohesion"};
+  j["effects"].push_back("cohesion");
   if (stiffness) {
     j["effects"].push_back("hourglass_stiffness");
     j["hourglass_stiffness"] = {{"beta", beta}};
   }
   return j;
-}
-
-int lattice_index(double x) { return int(std::lround(x / kD0 - 0.5)); }
-int parity(const Vec4<double>& p) { return (lattice_index(p.x) + lattice_index(p.y)) % 2 == 0 ? 1 : -1; }
-
-bool interior(const Vec4<double>& p, double margin) {
-  const double size = kCells * kD0;
-  return p.x > margin && p.x < size - margin && p.y > margin && p.y < size - margin && p.z > margin && p.z < size - margin;
-}
-
-HostSoil run(const CrmScene& sc, const std::function<Vec3<double>(const Vec4<double>&)>& v, int steps) {
-  HostSoil bed = initial_bed(sc);
-  for (std::size_t i = 0; i < bed.size(); ++i) {
-    const Vec3<double> u = v(bed.pos[i]);
-    bed.vel[i] = {u.x, u.y, u.z, bed.vel[i].w};
-  }
-  CrmSolver s(sc, test::validation_device(), &bed);
-  for (int k = 0; k < steps; ++k) s.step();
-  return s.soil();
-}
-
-double checkerboard_amplitude(const HostSoil& s, double margin) {
-  double sum = 0;
-  long n = 0;
-  for (std::size_t i = 0; i < s.size(); ++i)
-    if (interior(s.pos[i], margin)) {
-      sum += parity(s.pos[i]) * s.vel[i].z;
-      ++n;
-    }
-  return sum / double(n);
 }
 
 }  // namespace
