@@ -307,28 +307,25 @@ struct MarkerStage {
     mk.s0[m] = {sm.xx, sm.yy, sm.zz, sm.xy};
     mk.s1[m] = {sm.xz, sm.yz, T(0), sum_w};
 
-    // Force of the soil on the marker: minus what the marker does to each soil particle.
-    Vec3<T> f{};
+    // Force of the soil on the marker: minus what the marker does to each soil particle; with
+    // hourglass_stiffness also the reaction of the soil particles' springs on the marker,
+    // m k V_m sum_j W u_j / S_j (see HourglassSums), from the same kernel value.
+    const bool stiff = k.hourglass_k > T(0);
+    Vec3<T> f{}, react{};
     visit([&](int j) {
       const Vec4<T> pj = soil.pos[j];
       const Vec3<T> r = pj.xyz() - xm;  // from the soil particle's side: r_jm
       const T r2 = dot(r, r);
-      const Vec3<T> grad = k.kernel.values(std::sqrt(r2)).f * r;
+      const typename SphKernel<T>::Values kv = k.kernel.values(std::sqrt(r2));
       const T rho_j = pj.w;
       f -= pair_acceleration<T, kViscosity>(k, stress_of(soil.s0[j], soil.s1[j]), T(1) / (rho_j * rho_j), rho_j,
-                                            soil.vel[j].xyz(), sm, inv_rho2_m, rho_m, vm, r, r2, grad);
-    });
-    if (k.hourglass_k > T(0)) {
-      // hourglass_stiffness: the reaction of the soil particles' springs on the marker,
-      // m k V_m sum_j W u_j / S_j (see HourglassSums).
-      Vec3<T> react{};
-      visit([&](int j) {
-        const Vec3<T> r = soil.pos[j].xyz() - xm;
+                                            soil.vel[j].xyz(), sm, inv_rho2_m, rho_m, vm, r, r2, kv.f * r);
+      if (stiff) {
         const Vec4<T> g = soil.hg[j];
-        react += (k.kernel.values(std::sqrt(dot(r, r))).w * g.w) * g.xyz();
-      });
-      f += (k.hourglass_k / rho_m) * react;
-    }
+        react += (kv.w * g.w) * g.xyz();
+      }
+    });
+    if (stiff) f += (k.hourglass_k / rho_m) * react;
     mk.force[m] = make_vec4((k.mass * k.mass) * f, T(0));
   }
 
