@@ -39,7 +39,7 @@ finest=$(ls -d "$out"/crm_* 2>/dev/null | sort -t_ -k2 -g | head -1 || true)
 } > "$out/table.md"
 awk '$1 == "crm"' "$out/.points" > "$out/crm.dat"; awk '$1 == "scm"' "$out/.points" > "$out/scm.dat"; rm -f "$out/.points"
 if command -v gnuplot > /dev/null; then
-  (cd "$out" && gnuplot -e "set terminal pngcairo noenhanced size 800,520 font 'Sans,11'; set output 'cost.png'; set logscale xy; set grid;
+  (cd "$out" && gnuplot -e "set terminal pngcairo noenhanced size 800,520 font 'Sans,11'; set output 'cost.png'; set logscale xy; set grid; set key left top at graph 0.22, graph 0.98 Left reverse;
     set xlabel 'wall time [s]'; set ylabel 'largest relative error of the plate force'; set title 'Plate test (r = 0.2 m): accuracy against cost';
     plot 'crm.dat' using 3:(\$4 > 0 ? \$4 : 1e-4):2 with linespoints pt 7 lw 2 title 'CRM (vs finest spacing; labels = spacing)',
          '' using 3:(\$4 > 0 ? \$4 : 1e-4):2 with labels offset 1,1 notitle,
