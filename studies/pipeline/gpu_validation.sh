@@ -4,7 +4,8 @@
 # over slips 0..0.8, with the bin-size and run-length checks unless CHECKS=' '), then the bevameter cost
 # study unless COST=0. The annulus runs at a CRM step of 1e-4 s: at the CFL step (2.9e-4 s at 0.02 m)
 # the thin ring under 200 kg fell through the bed; it turns 0.6 rad (j = 0.1 m at its mid radius),
-# because after 0.8-1 rad the GPU runs of this ring turned non-finite (an open CRM problem).
+# because after 0.8-1 rad the GPU runs of this ring turned non-finite before hourglass_stiffness (since
+# session 13, 0.9 rad runs cleanly; results/plate_bin_check, eleventh study, keeps 0.6 for comparison).
 # The plates run in the checked plate bin (walls 13.5 radii away over 3 x (max sinkage + 2.5 radii);
 # results/plate_bin_check), at PLATE_SPACING when set: the 0.3 m plate's bin is 24.6 M particles at
 # 0.02 m, beyond one 10-minute GPU run, 7.3 M at 0.03 m. CHECKS='--checks=annulus,wheel' leaves the
