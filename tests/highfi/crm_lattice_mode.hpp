@@ -2,9 +2,14 @@
 // The unloaded 1 m cube of soil on which the hourglass effects' tests set the lattice's checkerboard
 // mode going (columns of particles moving up and down, alternating along x and y), and the helpers
 // that start it and read it back.
+#include <catch2/catch.hpp>
+
 #include <cmath>
 #include <functional>
+#include <initializer_list>
 
+#include "core/errors.hpp"
+#include "highfi/crm_checkpoint.hpp"
 #include "highfi/crm_solver.hpp"
 #include "tests/highfi/crm_test_scenes.hpp"
 
@@ -53,6 +58,34 @@ inline double checkerboard_amplitude(const HostSoil& s, double margin) {
       ++n;
     }
   return sum / double(n);
+}
+
+// An opt-in effect with one setting, as the hourglass effects' tests check it. bed(on, value) is the
+// scene with the effect named (on) and its setting at value. Named, the effect is on with that
+// setting; the setting is part of the cache key; each of `bad` is refused with an error that names
+// `error_key`; a setting for an effect that is not named is refused.
+inline void check_effect_setting(const std::function<nlohmann::json(bool, double)>& bed, const char* effect, bool CrmEffects::* flag,
+                                 double CrmNumerics::* setting, double good, double other, std::initializer_list<double> bad,
+                                 const char* error_key) {
+  const CrmScene off = scene_from(bed(false, good));
+  const CrmScene on = scene_from(bed(true, good));
+  CHECK(on.effects.*flag);
+  CHECK(on.numerics.*setting == good);
+  CHECK(crm_fingerprint(on, CrmDevice::kCpu, false) != crm_fingerprint(off, CrmDevice::kCpu, false));
+  CrmScene changed = on;
+  changed.numerics.*setting = other;
+  CHECK(crm_fingerprint(on, CrmDevice::kCpu, false) != crm_fingerprint(changed, CrmDevice::kCpu, false));
+  for (double value : bad) {
+    try {
+      scene_from(bed(true, value));
+      FAIL(effect << " setting " << value << " was accepted");
+    } catch (const InputError& e) {
+      CHECK_THAT(e.what(), Catch::Contains(error_key));
+    }
+  }
+  nlohmann::json j = bed(false, good);
+  j[effect] = bed(true, good)[effect];  // settings for an effect that is not named
+  CHECK_THROWS_AS(scene_from(j), InputError);
 }
 
 }  // namespace terracal::test::lattice_mode

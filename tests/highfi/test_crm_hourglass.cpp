@@ -106,23 +106,6 @@ TEST_CASE("CRM: hourglass_damping leaves a linear velocity field alone", "[highf
 }
 
 TEST_CASE("CRM: hourglass_damping is validated and keyed", "[highfi][crm]") {
-  const CrmScene off = test::scene_from(unloaded_bed(false, 0.2));
-  const CrmScene on = test::scene_from(unloaded_bed(true, 0.2));
-  CHECK(on.effects.hourglass_damping);
-  CHECK(on.numerics.hourglass_alpha == 0.2);
-  CHECK(crm_fingerprint(on, CrmDevice::kCpu, false) != crm_fingerprint(off, CrmDevice::kCpu, false));
-  CrmScene other = on;
-  other.numerics.hourglass_alpha = 0.3;
-  CHECK(crm_fingerprint(on, CrmDevice::kCpu, false) != crm_fingerprint(other, CrmDevice::kCpu, false));
-  for (double bad : {0.0, -1.0, 3.0}) {
-    try {
-      test::scene_from(unloaded_bed(true, bad));
-      FAIL("hourglass_damping alpha " << bad << " was accepted");
-    } catch (const InputError& e) {
-      CHECK_THAT(e.what(), Catch::Contains("alpha"));
-    }
-  }
-  nlohmann::json j = unloaded_bed(false, 0.2);
-  j["hourglass_damping"] = {{"alpha", 0.2}};  // settings for an effect that is not named
-  CHECK_THROWS_AS(test::scene_from(j), InputError);
+  test::lattice_mode::check_effect_setting([](bool on, double v) { return unloaded_bed(on, v); }, "hourglass_damping", &CrmEffects::hourglass_damping, &CrmNumerics::hourglass_alpha,
+                                           0.2, 0.3, {0.0, -1.0, 3.0}, "alpha");
 }

@@ -157,27 +157,11 @@ TEST_CASE("CRM: with hourglass_stiffness a held strip footing keeps its force", 
 }
 
 TEST_CASE("CRM: hourglass_stiffness is validated, keyed and checkpointed", "[highfi][crm]") {
-  const CrmScene off = test::scene_from(unloaded_bed(false, 0.03));
-  const CrmScene on = test::scene_from(unloaded_bed(true, 0.03));
-  CHECK(on.effects.hourglass_stiffness);
-  CHECK(on.numerics.hourglass_beta == 0.03);
-  CHECK(crm_fingerprint(on, CrmDevice::kCpu, false) != crm_fingerprint(off, CrmDevice::kCpu, false));
-  CrmScene other = on;
-  other.numerics.hourglass_beta = 0.05;
-  CHECK(crm_fingerprint(on, CrmDevice::kCpu, false) != crm_fingerprint(other, CrmDevice::kCpu, false));
-  for (double bad : {0.0, -1.0, 0.2}) {
-    try {
-      test::scene_from(unloaded_bed(true, bad));
-      FAIL("hourglass_stiffness beta " << bad << " was accepted");
-    } catch (const InputError& e) {
-      CHECK_THAT(e.what(), Catch::Contains("hourglass_stiffness.beta"));
-    }
-  }
-  nlohmann::json j = unloaded_bed(false, 0.03);
-  j["hourglass_stiffness"] = {{"beta", 0.03}};  // settings for an effect that is not named
-  CHECK_THROWS_AS(test::scene_from(j), InputError);
+  test::lattice_mode::check_effect_setting([](bool on, double v) { return unloaded_bed(on, v); }, "hourglass_stiffness", &CrmEffects::hourglass_stiffness,
+                                           &CrmNumerics::hourglass_beta, 0.03, 0.05, {0.0, -1.0, 0.2}, "hourglass_stiffness.beta");
 
   // The hourglass displacement is part of the state: a checkpoint carries it.
+  const CrmScene on = test::scene_from(unloaded_bed(true, 0.03));
   auto mode = [](const Vec4<double>& p) { return Vec3<double>{0, 0, 0.01 * parity(p)}; };
   const HostSoil s = run(on, mode, 3);
   const std::filesystem::path file = std::filesystem::temp_directory_path() / "terracal_test_hourglass_stiffness.h5";
