@@ -106,6 +106,6 @@ TEST_CASE("CRM: hourglass_damping leaves a linear velocity field alone", "[highf
 }
 
 TEST_CASE("CRM: hourglass_damping is validated and keyed", "[highfi][crm]") {
-  test::lattice_mode::check_effect_setting([](bool on, double v) { return unloaded_bed(on, v); }, "hourglass_damping", &CrmEffects::hourglass_damping, &CrmNumerics::hourglass_alpha,
-                                           0.2, 0.3, {0.0, -1.0, 3.0}, "alpha");
+  test::lattice_mode::check_effect_setting([](bool on, double v) { return unloaded_bed(on, v); }, "hourglass_damping",
+                                           &CrmEffects::hourglass_damping, &CrmNumerics::hourglass_alpha, 0.2, 0.3, {0.0, -1.0, 3.0}, "alpha");
 }
