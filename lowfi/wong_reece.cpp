@@ -41,6 +41,7 @@ struct Contact {
   double r, b, slip;
   double k_bekker;  // (Kc/b + Kphi) r^n: sigma = k_bekker (cos θ_eq − cos θ1)^n
   double n, cohesion, tan_phi, janosi_k;
+  ShearDisplacement displacement = ShearDisplacement::rim;
   double theta1 = 0, theta_m = 0;
 
   // Bekker stress at the equivalent front angle te; the difference of cosines can round slightly
@@ -52,8 +53,15 @@ struct Contact {
     // continuous at θm. Only reached when θm > 0 (the rear piece is empty otherwise).
     return bekker(theta1 - theta / theta_m * (theta1 - theta_m));
   }
+  // The shear displacement (WongReeceOptions::shear_displacement); slip < 1 is validated.
+  double displacement_at(double theta) const {
+    const double chord = std::sin(theta1) - std::sin(theta);
+    if (displacement == ShearDisplacement::rim) return r * ((theta1 - theta) - (1.0 - slip) * chord);
+    const double cos2_integral = 0.5 * (theta1 - theta) + 0.25 * (std::sin(2 * theta1) - std::sin(2 * theta));
+    return r / (1.0 - slip) * (chord - (1.0 - slip) * cos2_integral);
+  }
   double tau(double theta) const {
-    const double j = r * ((theta1 - theta) - (1.0 - slip) * (std::sin(theta1) - std::sin(theta)));
+    const double j = displacement_at(theta);
     // Janosi-Hanamoto with the sign of j: in skid (s < 0) the soil shears the rim backward.
     const double developed = -std::expm1(-std::abs(j) / janosi_k);
     return std::copysign((cohesion + sigma(theta) * tan_phi) * developed, j);
@@ -231,7 +239,7 @@ WongReeceResult wong_reece(const ScmSoil& soil, const WongReeceWheel& wheel, dou
 
   const double r = wheel.radius, b = wheel.width;
   Contact c{r, b, slip, (soil.Kc / b + soil.Kphi) * std::pow(r, soil.n), soil.n, soil.cohesion,
-            std::tan(soil.friction_deg * M_PI / 180.0), soil.janosi_k};
+            std::tan(soil.friction_deg * M_PI / 180.0), soil.janosi_k, options.shear_displacement};
   Equilibrium eq{&c, &options, w.get(), load, nullptr};
   const double theta1 = solve_entry_angle(eq, options.rel_tol);
 

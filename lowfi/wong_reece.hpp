@@ -8,6 +8,10 @@
 // the wheel at theta2 = 0. The normal stress follows the Bekker law on the front part
 // (theta_m <= theta <= theta1) and is mirrored onto the rear part (0 <= theta <= theta_m); the shear
 // stress follows Janosi-Hanamoto with the shear displacement of a slipping rim.
+//
+// Two options put the model's stresses where SCM puts them, so that the two can be compared term by
+// term (results/scm_vs_wong_reece): c1 = c2 = 0 is Bekker's classic wheel (peak stress at the
+// bottom, no rear part), and ShearDisplacement::ground counts the shear as SCM does.
 #include "lowfi/scm_soil.hpp"
 
 namespace terracal::lowfi {
@@ -17,9 +21,22 @@ struct WongReeceWheel {
   double width = 0.25;   // [m]; the Bekker width b
 };
 
+// Whose shear displacement j(theta) the Janosi law sees.
+enum class ShearDisplacement {
+  // Wong-Reece: the slip of a point of the rim since it entered the soil, over the time (theta1 -
+  // theta)/omega: j = r [(theta1 - theta) - (1 - s)(sin theta1 - sin theta)].
+  rim,
+  // SCM (and Chrono's): the slip accumulated by a point fixed in the ground while the contact passes
+  // over it, over the time the carriage takes, r (sin theta1 - sin theta)/v:
+  // j = r/(1 - s) [(sin theta1 - sin theta) - (1 - s)((theta1 - theta)/2 + (sin 2theta1 - sin 2theta)/4)].
+  // 1/(1 - s) times the rim's for a shallow contact: a slower carriage leaves the rim longer over a point.
+  ground,
+};
+
 struct WongReeceOptions {
   // theta_m = (c1 + c2 s) theta1, clamped to [0, theta1]. Wong-Reece's values for sand.
   double c1 = 0.43, c2 = 0.32;
+  ShearDisplacement shear_displacement = ShearDisplacement::rim;
   // Relative tolerance of the entry-angle root and of each quadrature, in [1e-14, 1e-3].
   double rel_tol = 1e-9;
 };
