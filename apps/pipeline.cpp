@@ -55,6 +55,19 @@ TerrainOptions larger_bin(const TerrainOptions& o) {
   return big;
 }
 
+// Realisation k of a CRM terrain for the bin checks (PipelinePlan::check_realisations): k = 0 is the
+// terrain as given; k >= 1 settles from a start jittered by 0.1 spacings (or the terrain's own
+// jitter), drawn with seed settle_seed + k. The same k in both bins: the bins differ in size only.
+TerrainOptions realisation(const TerrainOptions& o, int k) {
+  TerrainOptions r = o;
+  if (k == 0) return r;
+  if (r.settle_jitter == 0) r.settle_jitter = 0.1;
+  r.settle_seed = o.settle_seed + k;
+  return r;
+}
+std::string realisation_suffix(int k) { return k == 0 ? "" : fmt::format("_realisation{}", k); }
+std::string realisations_note(int n) { return n > 1 ? fmt::format(" (means of {} realisations per bin)", n) : ""; }
+
 // Plate: the largest plate in a 1.5x bin, 1.5x deeper, and pushed at 2/3 the speed (its stroke is
 // set by the sinkage, so a longer run is a slower one); its loading leg (Bekker's law), force
 // against sinkage. A rate-independent soil should not see the speed; the CRM bed does, because it
@@ -95,10 +108,23 @@ void check_annulus(const PipelinePlan& plan, const SoilChoice& crm, const Bevame
       if (r.normal_load == s.shear_loads[0]) t.x.push_back(r.angle), t.y.push_back(r.*f);
     return t;
   };
-  const auto big = run_bevameter(crm, larger_bin(plan.terrain), s, false, true);
-  rigs::write_shear_csv(checks_dir(plan) + "/shear_bin_1.5x.csv", big.shear);
-  out.push_back({"annulus", fmt::format("{:.4g} N: bin 1.5x larger and deeper", s.shear_loads[0]),
-                 rigs::curve_change(curve(base, &rigs::ShearRow::torque), curve(big, &rigs::ShearRow::torque))});
+  const int n = plan.check_realisations;
+  std::vector<rigs::Curve> rigs_bin{curve(base, &rigs::ShearRow::torque)}, big_bin;
+  for (int k = 0; k < n; ++k) {
+    if (k > 0) {
+      const auto again = run_bevameter(crm, realisation(plan.terrain, k), s, false, true);
+      rigs::write_shear_csv(checks_dir(plan) + "/shear" + realisation_suffix(k) + ".csv", again.shear);
+      rigs_bin.push_back(curve(again, &rigs::ShearRow::torque));
+    }
+    const auto big = run_bevameter(crm, realisation(larger_bin(plan.terrain), k), s, false, true);
+    rigs::write_shear_csv(checks_dir(plan) + "/shear_bin_1.5x" + realisation_suffix(k) + ".csv", big.shear);
+    big_bin.push_back(curve(big, &rigs::ShearRow::torque));
+  }
+  out.push_back({"annulus", fmt::format("{:.4g} N: bin 1.5x larger and deeper{}", s.shear_loads[0], realisations_note(n)),
+                 rigs::curve_change(rigs::mean_curve(rigs_bin), rigs::mean_curve(big_bin))});
+  if (n > 1)
+    out.push_back({"annulus", fmt::format("{:.4g} N: single realisations against each other (largest pair within either bin)", s.shear_loads[0]),
+                   std::max(rigs::realisation_scatter(rigs_bin), rigs::realisation_scatter(big_bin)), false});
   BevameterPlan slower = s;
   slower.shear_rate /= 1.5;
   const auto longer = run_bevameter(crm, plan.terrain, slower, false, true);
@@ -129,19 +155,49 @@ void check_wheel(const PipelinePlan& plan, const SoilChoice& crm, const std::vec
   for (const auto& r : base_sweep)
     if (r.slip == slip) base = &r;
   if (!base) return;
-  const auto big = run_wheel_sweep("crm", crm, larger_bin(plan.terrain), plan.wheel, {slip}, plan.crm_wheel_run);
+  const int n = plan.check_realisations;
+  std::vector<rigs::WheelResult> rigs_bin{*base}, big_bin;
+  for (int k = 0; k < n; ++k) {
+    if (k > 0) {
+      const auto again = run_wheel_sweep("crm", crm, realisation(plan.terrain, k), plan.wheel, {slip}, plan.crm_wheel_run);
+      rigs::write_wheel_series_csv(checks_dir(plan) + "/wheel" + realisation_suffix(k) + "_series.csv", again);
+      rigs_bin.push_back(again[0]);
+    }
+    const auto big = run_wheel_sweep("crm", crm, realisation(larger_bin(plan.terrain), k), plan.wheel, {slip}, plan.crm_wheel_run);
+    rigs::write_wheel_series_csv(checks_dir(plan) + "/wheel_bin_1.5x" + realisation_suffix(k) + "_series.csv", big);
+    big_bin.push_back(big[0]);
+  }
   rigs::WheelRun long_run = plan.crm_wheel_run;
   long_run.duration *= 1.5;
   const auto longer = run_wheel_sweep("crm", crm, plan.terrain, plan.wheel, {slip}, long_run);
-  rigs::write_wheel_series_csv(checks_dir(plan) + "/wheel_bin_1.5x_series.csv", big);
   rigs::write_wheel_series_csv(checks_dir(plan) + "/wheel_longer_series.csv", longer);
-  auto change = [&](const rigs::WheelResult& r) {
-    return std::max({std::abs(r.dbp - base->dbp) / std::max(std::abs(base->torque / plan.wheel.radius), 1e-12),
-                     std::abs(r.torque - base->torque) / std::max(std::abs(base->torque), 1e-12),
-                     std::abs(r.sinkage - base->sinkage) / std::max(std::abs(base->sinkage), 1e-12)});
+  // The largest of the changes of DBP (relative to the thrust torque / r), torque and sinkage.
+  auto change = [&](const rigs::WheelResult& from, const rigs::WheelResult& r) {
+    return std::max({std::abs(r.dbp - from.dbp) / std::max(std::abs(from.torque / plan.wheel.radius), 1e-12),
+                     std::abs(r.torque - from.torque) / std::max(std::abs(from.torque), 1e-12),
+                     std::abs(r.sinkage - from.sinkage) / std::max(std::abs(from.sinkage), 1e-12)});
   };
-  out.push_back({"wheel", fmt::format("slip {}: bin 1.5x larger (largest of DBP/thrust, torque, sinkage)", slip), change(big[0])});
-  out.push_back({"wheel", fmt::format("slip {}: run 1.5x longer (largest of DBP/thrust, torque, sinkage)", slip), change(longer[0])});
+  auto mean = [](const std::vector<rigs::WheelResult>& runs) {
+    rigs::WheelResult m;
+    for (const auto& r : runs) {
+      m.dbp += r.dbp / double(runs.size());
+      m.torque += r.torque / double(runs.size());
+      m.sinkage += r.sinkage / double(runs.size());
+    }
+    return m;
+  };
+  auto scatter = [&](const std::vector<rigs::WheelResult>& runs) {
+    double largest = 0;
+    for (std::size_t a = 0; a < runs.size(); ++a)
+      for (std::size_t b = a + 1; b < runs.size(); ++b) largest = std::max(largest, change(runs[a], runs[b]));
+    return largest;
+  };
+  out.push_back({"wheel", fmt::format("slip {}: bin 1.5x larger (largest of DBP/thrust, torque, sinkage){}", slip, realisations_note(n)),
+                 change(mean(rigs_bin), mean(big_bin))});
+  if (n > 1)
+    out.push_back({"wheel", fmt::format("slip {}: single realisations against each other (largest pair within either bin)", slip),
+                   std::max(scatter(rigs_bin), scatter(big_bin)), false});
+  out.push_back({"wheel", fmt::format("slip {}: run 1.5x longer (largest of DBP/thrust, torque, sinkage)", slip), change(*base, longer[0])});
 }
 
 std::vector<Check> run_checks(const PipelinePlan& plan, const SoilChoice& crm, const BevameterCurves& base_bev,

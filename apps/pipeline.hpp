@@ -22,6 +22,11 @@ struct PipelinePlan {
   // Rigs rerun in a 1.5x bin and for a 1.5x longer run (the bin-size and run-length checks), of
   // "plate", "annulus", "wheel"; empty = no checks.
   std::vector<std::string> checks;
+  // Realisations per bin in the annulus's and the wheel's bin checks (1 ... 16): the base run, and
+  // check_realisations - 1 more whose bed settled from another jittered start; the check compares
+  // the means. Single CRM runs of the thin annulus scatter by about as much as the bin moves them
+  // (results/plate_bin_check, eleventh study).
+  int check_realisations = 1;
   std::string out;
 };
 

@@ -18,6 +18,7 @@ struct PipelineArgs {
   double max_sinkage = 0.2, wheel_duration = 3.0, shear_step = 0, shear_angle = 1.0, shear_settle = 1.0;
   std::uint64_t seed = 1;
   std::string checks;  // "" = none, "all", or a comma list of plate, annulus, wheel
+  int check_realisations = 1;
   bool replot = false;
   TerrainOptions terrain;
   BevameterPlan plate;  // plate speed and CRM bin (apps/plate_options.hpp)
@@ -41,6 +42,10 @@ Command add_pipeline(CLI::App& app) {
   sub->add_option("--seed", a->seed, "calibration seed")->capture_default_str();
   sub->add_flag("--checks{all}", a->checks,
                 "rerun each rig in a 1.5x bin and 1.5x longer (bin-size and run-length checks); --checks=annulus,wheel for some rigs only");
+  sub->add_option("--check-realisations", a->check_realisations,
+                  "bin checks of the annulus and the wheel: compare the means of this many runs per bin (the base run, and runs whose "
+                  "bed settled from a start jittered by 0.1 spacings with seeds --settle-seed + 1, + 2, ...); 1 ... 16")
+      ->capture_default_str();
   sub->add_option("--spacing", a->terrain.spacing, "CRM particle spacing [m]")->capture_default_str();
   sub->add_option("--device", a->terrain.device, "CRM device: cpu, cuda or auto")->capture_default_str();
   sub->add_option("--cache", a->terrain.cache, "folder of settled CRM beds")->capture_default_str();
@@ -65,6 +70,9 @@ Command add_pipeline(CLI::App& app) {
     p.out = a->out;
     p.seed = a->seed;
     p.checks = parse_check_rigs(a->checks);
+    if (!(a->check_realisations >= 1 && a->check_realisations <= 16))
+      throw InputError(fmt::format("--check-realisations {}: expected an integer in [1, 16]", a->check_realisations));
+    p.check_realisations = a->check_realisations;
     p.scm_grid = a->terrain.grid;
     p.slips = parse_list(a->slips, "--slips");
     p.bevameter.plates = parse_list(a->plates, "--plates");

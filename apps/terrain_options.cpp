@@ -18,6 +18,8 @@ void add_crm_settling_options(CLI::App* sub, TerrainOptions& o) {
   sub->add_option("--settle-jitter", o.settle_jitter,
                   "CRM settling starts up to this fraction of the spacing off the lattice, seeded (0: the exact lattice; results/crm_settling)")
       ->capture_default_str();
+  sub->add_option("--settle-seed", o.settle_seed, "the seed of --settle-jitter: another seed is another realisation of the same bed")
+      ->capture_default_str();
   sub->add_option("--hourglass-damping", o.hourglass_damping,
                   "CRM effect hourglass_damping with this alpha: a Laplacian viscosity nu = alpha h c/10 that damps the lattice's "
                   "checkerboard mode; on for the rigs by default, because without it the bed softens with finer spacing and "
@@ -84,6 +86,8 @@ std::unique_ptr<TerrainSite> crm_site(const CrmSoil& soil, const TerrainOptions&
   if (!(o.step >= 0)) throw InputError(fmt::format("--step {}: expected >= 0 s", o.step));
   if (!(o.settle_jitter >= 0 && o.settle_jitter <= 0.3))
     throw InputError(fmt::format("--settle-jitter {}: expected in [0, 0.3] (a fraction of the spacing)", o.settle_jitter));
+  if (!(o.settle_seed >= 0 && o.settle_seed <= (1L << 62)))
+    throw InputError(fmt::format("--settle-seed {}: expected an integer in [0, 2^62]", o.settle_seed));
   if (!(o.hourglass_damping >= 0 && o.hourglass_damping <= 2))
     throw InputError(fmt::format("--hourglass-damping {}: expected in [0, 2] (0: off)", o.hourglass_damping));
   if (!(o.hourglass_stiffness >= 0 && o.hourglass_stiffness <= 0.1))
@@ -114,6 +118,7 @@ std::unique_ptr<TerrainSite> crm_site(const CrmSoil& soil, const TerrainOptions&
   sc.bin.fill_height = std::ceil(depth / d0) * d0;
   sc.settle_time = o.settle_time;
   sc.settle_jitter = o.settle_jitter;
+  sc.settle_seed = o.settle_seed;
   spdlog::info("CRM bin {:.3g} x {:.3g} m, soil {:.3g} m deep at spacing {} m: settling (or reading the cached bed)", sc.bin.size.x,
                sc.bin.size.y, sc.bin.fill_height, d0);
   return std::make_unique<CrmSite>(sc, resolve_device(o.device), o.cache);

@@ -21,6 +21,7 @@ struct TerrainOptions {
   std::string cache = "results/runs/bed_cache";
   double settle_time = 0.3;              // CRM settling [s]
   double settle_jitter = 0;              // CRM settling starts up to this fraction of the spacing off the lattice
+  long settle_seed = kDefaultSettleSeed;  // ... drawn with this seed
   // CRM effect hourglass_damping with this alpha (0 = off). On for the rigs: without it the
   // lattice's checkerboard mode softens the bed, more at finer spacing and in deeper bins, and the
   // plate curves neither converge with spacing nor settle with the bin (results/plate_bin_check).

@@ -79,6 +79,8 @@ struct CrmOutputSettings {
   double progress_seconds = 5; // wall seconds between progress lines
 };
 
+constexpr long kDefaultSettleSeed = 20221;
+
 struct CrmScene {
   CrmSoil soil;
   CrmBin bin;
@@ -89,6 +91,9 @@ struct CrmScene {
   double duration = 0;         // simulated seconds after settling
   double settle_time = 0;      // simulated seconds of settling (cached per soil, bin and spacing)
   double settle_jitter = 0;    // settling starts up to this fraction of the spacing off the lattice (seeded)
+  // The jitter's seed: another seed is another realisation of the same bed (the pipeline's bin
+  // checks average several). 20221 is the seed every bed used before the key existed.
+  long settle_seed = kDefaultSettleSeed;
   std::string source;          // where the scene came from, for messages
 };
 

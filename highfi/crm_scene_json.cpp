@@ -186,6 +186,7 @@ void validate_crm_scene(CrmScene& sc) {
     fail("soil.cohesion", fmt::format("value {} Pa needs the effect \"cohesion\" in 'effects'", soil.cohesion));
   if (!(sc.settle_jitter >= 0 && sc.settle_jitter <= 0.3))
     fail("settle_jitter", fmt::format("value {} is outside [0, 0.3] (a fraction of the particle spacing)", sc.settle_jitter));
+  if (sc.settle_seed < 0) fail("settle_seed", fmt::format("value {} is negative", sc.settle_seed));
   const CrmNumerics& n = sc.numerics;
   if (sc.effects.hourglass_damping && !(n.hourglass_alpha > 0 && n.hourglass_alpha <= 2))
     fail("hourglass_damping.alpha", fmt::format("value {} is outside (0, 2]", n.hourglass_alpha));
@@ -351,6 +352,7 @@ CrmScene parse_crm_scene(const nlohmann::json& j, const std::string& where) {
   }
   sc.settle_time = o.number_or("settle_time", 0, 0, 1e4);
   sc.settle_jitter = o.number_or("settle_jitter", 0, 0, 0.3);
+  sc.settle_seed = o.integer_or("settle_seed", kDefaultSettleSeed, 0, 1L << 62);
   sc.duration = o.number_or("duration", 0, 0, 1e6);
   if (o.has("output")) {
     JsonObject out = o.object("output");

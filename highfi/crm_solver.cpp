@@ -98,9 +98,8 @@ void jitter_positions(HostSoil& soil, double amplitude, std::uint64_t seed) {
 }
 
 HostSoil settling_start(const CrmScene& scene) {
-  constexpr std::uint64_t kSeed = 20221;
   HostSoil soil = initial_bed(scene);
-  jitter_positions(soil, scene.settle_jitter * scene.numerics.spacing, kSeed);
+  jitter_positions(soil, scene.settle_jitter * scene.numerics.spacing, std::uint64_t(scene.settle_seed));
   return soil;
 }
 

@@ -21,8 +21,8 @@ HostSoil initial_bed(const CrmScene& scene);
 // a burst that takes about a second to die out (results/crm_settling).
 void jitter_positions(HostSoil& soil, double amplitude, std::uint64_t seed);
 
-// Where settling starts: initial_bed moved by scene.settle_jitter spacings at most, from one fixed
-// seed (a settled bed is a function of its scene, and is cached as one).
+// Where settling starts: initial_bed moved by scene.settle_jitter spacings at most, drawn with
+// scene.settle_seed (a settled bed is a function of its scene, and is cached as one).
 HostSoil settling_start(const CrmScene& scene);
 
 class CrmSolver {

@@ -56,4 +56,34 @@ double curve_change(const Curve& base, const Curve& check) {
   return scale > 0 ? diff / scale : 0;
 }
 
+Curve mean_curve(const std::vector<Curve>& realisations) {
+  if (realisations.empty()) throw InputError("mean_curve: no curves");
+  for (const Curve& c : realisations) check_curve(c, "realisation");
+  Curve mean;
+  const Curve& first = realisations.front();
+  for (std::size_t i = 0; i < first.x.size(); ++i) {
+    const double x = first.x[i];
+    double sum = 0;
+    bool covered = true;
+    for (const Curve& c : realisations) {
+      if (c.x.empty() || x < c.x.front() || x > c.x.back()) {
+        covered = false;
+        break;
+      }
+      sum += interpolate(c, x);
+    }
+    if (!covered) continue;
+    mean.x.push_back(x);
+    mean.y.push_back(sum / double(realisations.size()));
+  }
+  return mean;
+}
+
+double realisation_scatter(const std::vector<Curve>& realisations) {
+  double largest = 0;
+  for (std::size_t a = 0; a < realisations.size(); ++a)
+    for (std::size_t b = a + 1; b < realisations.size(); ++b) largest = std::max(largest, curve_change(realisations[a], realisations[b]));
+  return largest;
+}
+
 }  // namespace terracal::rigs

@@ -18,4 +18,13 @@ struct Curve {
 // five base samples lie in the common range.
 double curve_change(const Curve& base, const Curve& check);
 
+// The mean of several realisations of one curve (runs that differ only in where their bed's settling
+// started): each is read at the first's x by linear interpolation, over the x all of them cover.
+// A check of a curve that scatters from run to run compares such means (the pipeline's
+// --check-realisations). Throws InputError for no curves or a curve curve_change would refuse.
+Curve mean_curve(const std::vector<Curve>& realisations);
+
+// The largest curve_change between any two realisations: how far single runs scatter.
+double realisation_scatter(const std::vector<Curve>& realisations);
+
 }  // namespace terracal::rigs

@@ -98,6 +98,8 @@ TEST_CASE("rig commands: bad input exits 2 naming the option or key, and writes 
       {"pipeline --soil " + d + "/soil.json --device cpu --h-over-d0 1.7" + out, {"--h-over-d0", "1.7"}},
       {"pipeline --soil " + d + "/soil.json --device cpu --marker-velocity adami" + out, {"--marker-velocity", "adami"}},
       {"pipeline --soil " + d + "/soil.json --device cpu --plate-depth-scale 0.1" + out, {"--plate-depth-scale", "0.1"}},
+      {"pipeline --soil " + d + "/soil.json --device cpu --checks --check-realisations 0" + out, {"--check-realisations", "0"}},
+      {"bevameter --solver crm --soil " + d + "/soil.json --test plate --device cpu --settle-seed -4" + out, {"--settle-seed", "-4"}},
   };
   for (const auto& c : cases) {
     const CliResult r = run_cli(c.args, d);

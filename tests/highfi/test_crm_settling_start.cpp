@@ -1,7 +1,8 @@
 // Where settling starts (settle_jitter): a bed released from the exact lattice stays still, then
 // rearranges in a burst (results/crm_settling); a jittered start sets that motion going at once.
 // - the jitter moves each particle by at most the amplitude per axis, the same seed gives the same
-//   bed, and the key is validated and part of the settled bed's cache key;
+//   bed, another seed (settle_seed) another, and both keys are validated and part of the settled
+//   bed's cache key;
 // - the motion a jittered start sets going dies out: the bed comes to rest without losing height.
 #include <catch2/catch.hpp>
 
@@ -40,6 +41,18 @@ TEST_CASE("CRM: the jittered start moves particles by at most the amplitude, rep
   const HostSoil l2 = settling_start(exact);
   for (std::size_t i = 0; i < l2.size(); ++i) CHECK(l2.pos[i].z == lattice.pos[i].z);
   CHECK(crm_fingerprint(sc, CrmDevice::kCpu, false) != crm_fingerprint(exact, CrmDevice::kCpu, false));
+  // Another seed is another bed, with its own cache key; the default seed leaves the key as it was.
+  nlohmann::json j2 = j;
+  j2["settle_seed"] = 7;
+  const CrmScene other = test::scene_from(j2);
+  const HostSoil c = settling_start(other);
+  std::size_t moved = 0;
+  for (std::size_t i = 0; i < c.size(); ++i) moved += c.pos[i].x != a.pos[i].x;
+  CHECK(moved > c.size() / 2);
+  CHECK(crm_fingerprint(sc, CrmDevice::kCpu, false) != crm_fingerprint(other, CrmDevice::kCpu, false));
+  CHECK(crm_fingerprint(sc, CrmDevice::kCpu, false).find("settle seed") == std::string::npos);
+  j2["settle_seed"] = -1;
+  CHECK_THROWS_WITH(test::scene_from(j2), Catch::Contains("settle_seed"));
   j["settle_jitter"] = 0.5;
   try {
     test::scene_from(j);
