@@ -19,7 +19,7 @@ namespace terracal::app {
 namespace {
 struct BevameterArgs {
   std::string solver, test = "all", out, plates = "0.2,0.3", loads, annulus = "0.15,0.20";
-  double max_sinkage = 0.2, shear_angle = 1.0, shear_rate = 1.0, shear_settle = 1.0, shear_step = 0;
+  double max_sinkage = 0.2, shear_angle = 1.0, shear_rate = 1.0, shear_settle = 1.0, shear_step = 0, shear_load_ramp = 0.5;
   BevameterPlan plate;  // speed and CRM bin (apps/plate_options.hpp)
   bool plots = true;
   TerrainOptions terrain;
@@ -40,6 +40,7 @@ Command add_bevameter(CLI::App& app) {
   sub->add_option("--shear-angle", a->shear_angle, "angle turned [rad]")->capture_default_str();
   sub->add_option("--shear-rate", a->shear_rate, "annulus angular velocity [rad/s]")->capture_default_str();
   sub->add_option("--shear-settle", a->shear_settle, "settling under the load before turning [s]")->capture_default_str();
+  sub->add_option("--shear-load-ramp", a->shear_load_ramp, "the annulus's load grows from zero over this fraction of --shear-settle, as a bevameter's ram puts it on (0: dropped at once, which leaves the ring moving, differently in each bin, when it starts to turn; results/plate_bin_check, twelfth study)")->capture_default_str();
   sub->add_option("--shear-step", a->shear_step, "CRM time step of the annulus runs [s] (0: as --step)")->capture_default_str();
   sub->add_flag("!--no-plots", a->plots, "skip the PNG plot");
   add_terrain_options(sub, a->terrain, true, true);
@@ -62,6 +63,7 @@ Command add_bevameter(CLI::App& app) {
     plan.shear_angle = a->shear_angle;
     plan.shear_rate = a->shear_rate;
     plan.shear_settle = a->shear_settle;
+    plan.shear_load_ramp = a->shear_load_ramp;
     plan.shear_step = a->shear_step;
     const SoilChoice soil = choose_soil(a->solver, a->terrain);
     std::filesystem::create_directories(a->out);

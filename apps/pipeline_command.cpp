@@ -15,7 +15,7 @@ namespace {
 struct PipelineArgs {
   std::string soil, out, wheel, slips = "0,0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8", plates = "0.2,0.3", annulus = "0.15,0.20";
   std::string loads_kg = "25,50,75,100,125,150,175,200";
-  double max_sinkage = 0.2, wheel_duration = 3.0, shear_step = 0, shear_angle = 1.0, shear_settle = 1.0;
+  double max_sinkage = 0.2, wheel_duration = 3.0, shear_step = 0, shear_angle = 1.0, shear_settle = 1.0, shear_load_ramp = 0.5;
   std::uint64_t seed = 1;
   std::string checks;  // "" = none, "all", or a comma list of plate, annulus, wheel
   int check_realisations = 1;
@@ -53,6 +53,7 @@ Command add_pipeline(CLI::App& app) {
   sub->add_option("--step", a->terrain.step, "CRM time step [s] (0: from the CFL limit)")->capture_default_str();
   sub->add_option("--shear-angle", a->shear_angle, "angle the annulus turns [rad]")->capture_default_str();
   sub->add_option("--shear-settle", a->shear_settle, "annulus settling under its load before turning [s]")->capture_default_str();
+  sub->add_option("--shear-load-ramp", a->shear_load_ramp, "the annulus's load grows from zero over this fraction of --shear-settle, as a bevameter's ram puts it on (0: dropped at once, which leaves the ring moving, differently in each bin, when it starts to turn; results/plate_bin_check, twelfth study)")->capture_default_str();
   sub->add_option("--shear-step", a->shear_step, "CRM time step of the annulus runs [s] (0: as --step)")->capture_default_str();
   add_crm_settling_options(sub, a->terrain);
   add_plate_options(sub, a->plate);
@@ -80,6 +81,7 @@ Command add_pipeline(CLI::App& app) {
     p.bevameter.shear_step = a->shear_step;
     p.bevameter.shear_angle = a->shear_angle;
     p.bevameter.shear_settle = a->shear_settle;
+    p.bevameter.shear_load_ramp = a->shear_load_ramp;
     const auto ann = parse_list(a->annulus, "--annulus");
     if (ann.size() != 2) throw InputError(fmt::format("--annulus '{}': expected INNER,OUTER", a->annulus));
     p.bevameter.inner_radius = ann[0];

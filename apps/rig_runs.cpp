@@ -97,6 +97,8 @@ BevameterCurves run_bevameter(const SoilChoice& soil, const TerrainOptions& o, c
     t.angular_velocity = plan.shear_rate;
     t.max_angle = plan.shear_angle;
     t.settle_time = plan.shear_settle;
+    rigs::check_range("--shear-load-ramp", plan.shear_load_ramp, 0, 1, "(a fraction of --shear-settle)");
+    t.load_ramp = plan.shear_load_ramp * plan.shear_settle;
     t.thickness = std::max(0.02, 2 * o.spacing);
     c.shear = rigs::run_shear(*site, t, progress);
     c.shear_wall = seconds_since(t0);

@@ -28,6 +28,10 @@ struct BevameterPlan {
   double inner_radius = 0.15, outer_radius = 0.20;
   std::vector<double> shear_loads;     // [N]
   double shear_rate = 1.0, shear_angle = 1.0, shear_settle = 1.0;
+  // The annulus's load grows from zero over this fraction of shear_settle, then holds; 0: dropped at
+  // once. A dropped ring is still moving when it starts to turn, and how it moves depends on the bin:
+  // the start of its torque curve moved 7 % with a 1.5x bin (results/plate_bin_check, twelfth study).
+  double shear_load_ramp = 0.5;
   double shear_step = 0;               // CRM time step of the annulus runs; 0 = the terrain's (--step)
   // CRM particle spacing of the plate runs; 0 = the terrain's (--spacing). The plate's checked bin is
   // 3.4x the particles of the annulus's and wheel's per spacing: a coarser plate spacing keeps a

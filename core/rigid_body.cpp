@@ -61,7 +61,8 @@ BodyState advance_body(const RigidBody& body, const BodyState& base, const BodyS
     }
   }
   if (f[0] || f[1] || f[2]) {
-    const Vec3<double> a = (1.0 / body.mass) * (w.force + body.applied_force) + gravity;
+    const double k = body.load_fraction(t_out);
+    const Vec3<double> a = (1.0 / body.mass) * (w.force + k * body.applied_force) + k * gravity;
     for (int q = 0; q < 3; ++q)
       if (f[q]) out.velocity[q] = base.velocity[q] + h * a[q];
   }

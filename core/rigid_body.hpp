@@ -2,6 +2,7 @@
 // A rigid body as the terrains see it: its shape, where it starts, its motion program (each degree
 // of freedom prescribed or free under the soil's wrench, gravity and applied loads) and its mass
 // properties. CRM scenes, the SCM terrain and the rigs all describe bodies this way.
+#include <algorithm>
 #include <array>
 #include <string>
 #include <vector>
@@ -44,6 +45,11 @@ struct RigidBody {
   double mass = 0;
   Vec3<double> inertia{};              // principal moments in the body frame
   Vec3<double> applied_force{}, applied_torque{};  // world frame, added to the soil's wrench and gravity
+  // [s] The body's weight and applied force grow linearly from zero over this time, as a bevameter's
+  // ram puts its load on gradually; 0: all at once. A dead load dropped at once drives a body past
+  // its static sinkage and leaves it moving when the test starts (results/plate_bin_check, twelfth study).
+  double load_ramp = 0;
+  double load_fraction(double t) const { return load_ramp > 0 ? std::min(1.0, std::max(0.0, t) / load_ramp) : 1.0; }
   double bounding_radius() const;      // of the shape about the body origin
 };
 

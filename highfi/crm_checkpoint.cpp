@@ -116,6 +116,7 @@ std::string crm_fingerprint(const CrmScene& sc, CrmDevice device, bool include_b
     for (const auto& b : sc.bodies) {
       d += fmt::format("|{} {} {} {} {} {} {}", b.name, int(b.shape.type), b.position.x, b.position.y, b.position.z,
                        b.motion.linear_velocity.z, b.mass);
+      if (b.load_ramp > 0) d += fmt::format(" ramp {}", b.load_ramp);
       for (const auto& g : b.motion.schedule)
         d += fmt::format(" {} {} {} {} {} {} {}", g.duration, g.linear_velocity.x, g.linear_velocity.y,
                          g.linear_velocity.z, g.angular_velocity.x, g.angular_velocity.y, g.angular_velocity.z);

@@ -166,6 +166,7 @@ CrmBody parse_body(JsonObject o, const std::filesystem::path& base, int index) {
   }
   b.applied_force = o.vec3_or("force", {});
   b.applied_torque = o.vec3_or("torque", {});
+  b.load_ramp = o.number_or("load_ramp", 0, 0, 1e4);
   o.finish();
   return b;
 }
@@ -234,6 +235,7 @@ void validate_crm_scene(CrmScene& sc) {
     const CrmBody& body = sc.bodies[b];
     const std::string key = fmt::format("bodies[{}] ({})", b, body.name);
     const BodyShape& s = body.shape;
+    if (!(body.load_ramp >= 0)) fail(key + ".load_ramp", fmt::format("value {} s is negative", body.load_ramp));
     auto too_coarse = [&](const char* dim, double value, double need) {
       if (value < need * d0)
         fail(key + ".shape." + dim, fmt::format("value {} m is less than {} particle spacings ({} m): spacing too coarse for the body",

@@ -18,6 +18,7 @@ void validate(const ShearTest& t) {
   check_range("shear angular_velocity", t.angular_velocity, 1e-3, 100, "rad/s");
   check_range("shear max_angle", t.max_angle, 1e-3, 100, "rad");
   check_range("shear settle_time", t.settle_time, 0, 100, "s");
+  check_range("shear load_ramp", t.load_ramp, 0, t.settle_time, "s (within the settling under the load)");
   check_range("shear thickness", t.thickness, 1e-4, 1, "m");
   check_range("shear samples", t.samples, 2, 1e6, "");
 }
@@ -41,6 +42,7 @@ std::vector<ShearRow> run_shear(const TerrainSite& site, const ShearTest& test, 
     a.mass = load / g;
     const double r2 = test.outer_radius * test.outer_radius + test.inner_radius * test.inner_radius;
     a.inertia = {a.mass * r2 / 4, a.mass * r2 / 4, a.mass * r2 / 2};
+    a.load_ramp = test.load_ramp;
     a.motion.free = {false, false, true, false, false, false};
     a.motion.schedule = {{test.settle_time, {}, {}}, {turn, {}, {0, 0, test.angular_velocity}}};
     check_fits(site, a, test.outer_radius, test.outer_radius);

@@ -100,6 +100,7 @@ TEST_CASE("rig commands: bad input exits 2 naming the option or key, and writes 
       {"pipeline --soil " + d + "/soil.json --device cpu --plate-depth-scale 0.1" + out, {"--plate-depth-scale", "0.1"}},
       {"pipeline --soil " + d + "/soil.json --device cpu --checks --check-realisations 0" + out, {"--check-realisations", "0"}},
       {"bevameter --solver crm --soil " + d + "/soil.json --test plate --device cpu --settle-seed -4" + out, {"--settle-seed", "-4"}},
+      {"bevameter --solver scm --scm " + d + "/sand.json --test shear --shear-loads 500 --shear-load-ramp 1.5" + out, {"--shear-load-ramp", "1.5"}},
   };
   for (const auto& c : cases) {
     const CliResult r = run_cli(c.args, d);

@@ -82,6 +82,37 @@ TEST_CASE("SCM annulus rig: torque against angle follows the analytic annulus wi
   CHECK(worst < 0.02);
 }
 
+// A dead load dropped at once drives the ring past its static sinkage (SCM remembers the plastic
+// part) and leaves it bouncing; put on gradually it comes to rest where Bekker's law carries it,
+// z = (W / (A (Kc/b + Kphi)))^(1/n). The CRM annulus shows the same (results/plate_bin_check,
+// twelfth study), which is why the rigs ramp the load by default.
+TEST_CASE("SCM annulus under a ramped load rests at Bekker's static sinkage; a dropped one overshoots", "[lowfi][scm]") {
+  const lowfi::ScmSoil soil = test::scm_dry_sand();
+  const auto site = test::scm_site(soil, 0.005, 1e-3, {"damping"});
+  rigs::ShearTest t;
+  t.settle_time = 1.0;
+  t.loads = {200, 800};
+  t.max_angle = 0.05;
+  auto first_sinkage = [&](double ramp) {
+    t.load_ramp = ramp;
+    const auto rows = rigs::run_shear(site, t);
+    return std::pair{rows.front().sinkage, rows.back().sinkage};  // 200 N, 800 N at the start of the turn
+  };
+  const auto [ramped200, ramped800] = first_sinkage(0.5);
+  const auto [dropped200, dropped800] = first_sinkage(0.0);
+  const double area = M_PI * (t.outer_radius * t.outer_radius - t.inner_radius * t.inner_radius);
+  const double k = soil.Kc / t.outer_radius + soil.Kphi;  // b: the ring's convex hull is the disc of the outer radius
+  auto bekker = [&](double load) { return std::pow(load / (area * k), 1.0 / soil.n); };
+  INFO("200 N: ramped " << ramped200 << ", dropped " << dropped200 << ", Bekker " << bekker(200) << "; 800 N: ramped " << ramped800
+                        << ", dropped " << dropped800 << ", Bekker " << bekker(800));
+  CHECK(rel(ramped200, bekker(200)) < 0.03);
+  CHECK(rel(ramped800, bekker(800)) < 0.03);
+  CHECK(dropped800 > 1.15 * bekker(800));
+  // A ramp longer than the settling is refused, naming the key.
+  t.load_ramp = 1.5;
+  CHECK_THROWS_WITH(rigs::run_shear(site, t), Catch::Contains("load_ramp") && Catch::Contains("1.5"));
+}
+
 TEST_CASE("calibrating on SCM-rig curves recovers the SCM soil within 5 %", "[lowfi][scm][recovery]") {
   test::ScratchDir dir("scm_recovery");
   lowfi::ScmSoil soil = test::scm_dry_sand();
