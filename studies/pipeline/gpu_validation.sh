@@ -9,15 +9,17 @@
 # The plates run in the checked plate bin (walls 13.5 radii away over 3 x (max sinkage + 2.5 radii);
 # results/plate_bin_check), at PLATE_SPACING when set: the 0.3 m plate's bin is 24.6 M particles at
 # 0.02 m, beyond one 10-minute GPU run, 7.3 M at 0.03 m. CHECKS='--checks=annulus,wheel' leaves the
-# plate's check to plate_bin_check.sh (its 1.5x bin is another 3.4x the particles).
-# Usage: [PLATE_SPACING=0.03] [CHECKS=...] [COST=0] studies/pipeline/gpu_validation.sh TERRACAL OUT [spacing=0.02]
+# plate's check to plate_bin_check.sh (its 1.5x bin is another 3.4x the particles). The checks compare
+# the means of REALISATIONS runs per bin (default 2) for the annulus and the wheel; the annulus's load
+# is ramped over half its 0.5 s settling (the rigs' default since session 15).
+# Usage: [PLATE_SPACING=0.03] [CHECKS=...] [REALISATIONS=2] [COST=0] studies/pipeline/gpu_validation.sh TERRACAL OUT [spacing=0.02]
 set -uo pipefail
 exe=${1:?terracal binary}; out=${2:?output folder}; spacing=${3:-0.02}
 here=$(cd "$(dirname "$0")" && pwd)
 mkdir -p "$out"
 nvidia-smi -L > "$out/gpu.txt" 2>&1 || true
 timeout "${PIPELINE_TIMEOUT:-420}" "$exe" pipeline --soil "$here/bevameter_soil_2022.json" --out "$out/pipeline" --device cuda \
-  --spacing "$spacing" --shear-step 1e-4 --shear-angle 0.6 --shear-settle 0.5 ${CHECKS:---checks} ${PLATE_SPACING:+--plate-spacing $PLATE_SPACING} --cache "$out/bed_cache" > "$out/pipeline.log" 2>&1
+  --spacing "$spacing" --shear-step 1e-4 --shear-angle 0.6 --shear-settle 0.5 ${CHECKS:---checks} --check-realisations "${REALISATIONS:-2}" ${PLATE_SPACING:+--plate-spacing $PLATE_SPACING} --cache "$out/bed_cache" > "$out/pipeline.log" 2>&1
 echo "pipeline exit $?" >> "$out/pipeline.log"
 [ "${COST:-1}" = 1 ] || exit 0
 timeout "${COST_TIMEOUT:-150}" bash "$here/../bevameter_cost/run.sh" "$exe" "$out/cost" cuda "${COST_SPACINGS:-0.04 0.03 0.02}" \
