@@ -40,7 +40,11 @@ Command add_bevameter(CLI::App& app) {
   sub->add_option("--shear-angle", a->shear_angle, "angle turned [rad]")->capture_default_str();
   sub->add_option("--shear-rate", a->shear_rate, "annulus angular velocity [rad/s]")->capture_default_str();
   sub->add_option("--shear-settle", a->shear_settle, "settling under the load before turning [s]")->capture_default_str();
-  sub->add_option("--shear-load-ramp", a->shear_load_ramp, "the annulus's load grows from zero over this fraction of --shear-settle, as a bevameter's ram puts it on (0: dropped at once, which leaves the ring moving, differently in each bin, when it starts to turn; results/plate_bin_check, twelfth study)")->capture_default_str();
+  sub->add_option("--shear-load-ramp", a->shear_load_ramp,
+                  "the annulus's load grows from zero over this fraction of --shear-settle, as a bevameter's ram puts it on "
+                  "(0: dropped at once, which leaves the ring moving, differently in each bin, when it starts to turn; "
+                  "results/plate_bin_check, twelfth study)")
+      ->capture_default_str();
   sub->add_option("--shear-step", a->shear_step, "CRM time step of the annulus runs [s] (0: as --step)")->capture_default_str();
   sub->add_flag("!--no-plots", a->plots, "skip the PNG plot");
   add_terrain_options(sub, a->terrain, true, true);

@@ -53,7 +53,11 @@ Command add_pipeline(CLI::App& app) {
   sub->add_option("--step", a->terrain.step, "CRM time step [s] (0: from the CFL limit)")->capture_default_str();
   sub->add_option("--shear-angle", a->shear_angle, "angle the annulus turns [rad]")->capture_default_str();
   sub->add_option("--shear-settle", a->shear_settle, "annulus settling under its load before turning [s]")->capture_default_str();
-  sub->add_option("--shear-load-ramp", a->shear_load_ramp, "the annulus's load grows from zero over this fraction of --shear-settle, as a bevameter's ram puts it on (0: dropped at once, which leaves the ring moving, differently in each bin, when it starts to turn; results/plate_bin_check, twelfth study)")->capture_default_str();
+  sub->add_option("--shear-load-ramp", a->shear_load_ramp,
+                  "the annulus's load grows from zero over this fraction of --shear-settle, as a bevameter's ram puts it on "
+                  "(0: dropped at once, which leaves the ring moving, differently in each bin, when it starts to turn; "
+                  "results/plate_bin_check, twelfth study)")
+      ->capture_default_str();
   sub->add_option("--shear-step", a->shear_step, "CRM time step of the annulus runs [s] (0: as --step)")->capture_default_str();
   add_crm_settling_options(sub, a->terrain);
   add_plate_options(sub, a->plate);
