@@ -43,7 +43,7 @@ Command add_bevameter(CLI::App& app) {
   sub->add_option("--shear-load-ramp", a->shear_load_ramp,
                   "the annulus's load grows from zero over this fraction of --shear-settle, as a bevameter's ram puts it on "
                   "(0: dropped at once, which leaves the ring moving, differently in each bin, when it starts to turn; "
-                  "results/plate_bin_check, twelfth study)")
+                  "results/plate_bin_check, twelfth study); 0 ... 1")
       ->capture_default_str();
   sub->add_option("--shear-step", a->shear_step, "CRM time step of the annulus runs [s] (0: as --step)")->capture_default_str();
   sub->add_flag("!--no-plots", a->plots, "skip the PNG plot");

@@ -56,8 +56,11 @@ TerrainOptions larger_bin(const TerrainOptions& o) {
 }
 
 // Realisation k of a CRM terrain for the bin checks (PipelinePlan::check_realisations): k = 0 is the
-// terrain as given; k >= 1 settles from a start jittered by 0.1 spacings (or the terrain's own
-// jitter), drawn with seed settle_seed + k. The same k in both bins: the bins differ in size only.
+// terrain as given (the run the pipeline calibrates on; by default settled from the exact lattice);
+// k >= 1 settles from a start jittered by 0.1 spacings (or the terrain's own jitter), drawn with seed
+// settle_seed + k. The lattice and the jittered starts are all ways the same bed can be prepared, so
+// the scatter between realisations includes the difference between them. The same k in both bins:
+// the bins differ in size only.
 TerrainOptions realisation(const TerrainOptions& o, int k) {
   TerrainOptions r = o;
   if (k == 0) return r;
@@ -189,7 +192,7 @@ void check_wheel(const PipelinePlan& plan, const SoilChoice& crm, const std::vec
   auto scatter = [&](const std::vector<rigs::WheelResult>& runs) {
     double largest = 0;
     for (std::size_t a = 0; a < runs.size(); ++a)
-      for (std::size_t b = a + 1; b < runs.size(); ++b) largest = std::max(largest, change(runs[a], runs[b]));
+      for (std::size_t b = a + 1; b < runs.size(); ++b) largest = std::max({largest, change(runs[a], runs[b]), change(runs[b], runs[a])});
     return largest;
   };
   out.push_back({"wheel", fmt::format("slip {}: bin 1.5x larger (largest of DBP/thrust, torque, sinkage){}", slip, realisations_note(n)),

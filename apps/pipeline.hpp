@@ -23,7 +23,8 @@ struct PipelinePlan {
   // "plate", "annulus", "wheel"; empty = no checks.
   std::vector<std::string> checks;
   // Realisations per bin in the annulus's and the wheel's bin checks (1 ... 16): the base run, and
-  // check_realisations - 1 more whose bed settled from another jittered start; the check compares
+  // check_realisations - 1 more whose bed settled from a start jittered off the lattice with another
+  // seed (pipeline.cpp, realisation()); the check compares
   // the means. Single CRM runs of the thin annulus scatter by about as much as the bin moves them
   // (results/plate_bin_check, eleventh study).
   int check_realisations = 1;

@@ -56,7 +56,7 @@ Command add_pipeline(CLI::App& app) {
   sub->add_option("--shear-load-ramp", a->shear_load_ramp,
                   "the annulus's load grows from zero over this fraction of --shear-settle, as a bevameter's ram puts it on "
                   "(0: dropped at once, which leaves the ring moving, differently in each bin, when it starts to turn; "
-                  "results/plate_bin_check, twelfth study)")
+                  "results/plate_bin_check, twelfth study); 0 ... 1")
       ->capture_default_str();
   sub->add_option("--shear-step", a->shear_step, "CRM time step of the annulus runs [s] (0: as --step)")->capture_default_str();
   add_crm_settling_options(sub, a->terrain);
@@ -78,6 +78,9 @@ Command add_pipeline(CLI::App& app) {
     if (!(a->check_realisations >= 1 && a->check_realisations <= 16))
       throw InputError(fmt::format("--check-realisations {}: expected an integer in [1, 16]", a->check_realisations));
     p.check_realisations = a->check_realisations;
+    if (a->terrain.settle_seed > (1L << 62) - (a->check_realisations - 1))
+      throw InputError(fmt::format("--settle-seed {}: the realisations use seeds up to {} more; expected at most 2^62 - {}", a->terrain.settle_seed,
+                                   a->check_realisations - 1, a->check_realisations - 1));
     p.scm_grid = a->terrain.grid;
     p.slips = parse_list(a->slips, "--slips");
     p.bevameter.plates = parse_list(a->plates, "--plates");

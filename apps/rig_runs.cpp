@@ -51,6 +51,8 @@ rigs::RigProgress progress_logger() {
 BevameterCurves run_bevameter(const SoilChoice& soil, const TerrainOptions& o, const BevameterPlan& plan, bool plate, bool shear) {
   BevameterCurves c;
   rigs::check_range("bevameter bin scale", plan.bin_scale, 0.5, 10, "");
+  // Before any run: a bad value must not wait for the plates to finish.
+  rigs::check_range("--shear-load-ramp", plan.shear_load_ramp, 0, 1, "(a fraction of --shear-settle)");
   const double k = plan.bin_scale;
   const auto progress = progress_logger();
   if (plate) {
@@ -97,7 +99,6 @@ BevameterCurves run_bevameter(const SoilChoice& soil, const TerrainOptions& o, c
     t.angular_velocity = plan.shear_rate;
     t.max_angle = plan.shear_angle;
     t.settle_time = plan.shear_settle;
-    rigs::check_range("--shear-load-ramp", plan.shear_load_ramp, 0, 1, "(a fraction of --shear-settle)");
     t.load_ramp = plan.shear_load_ramp * plan.shear_settle;
     t.thickness = std::max(0.02, 2 * o.spacing);
     c.shear = rigs::run_shear(*site, t, progress);

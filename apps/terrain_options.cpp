@@ -119,6 +119,8 @@ std::unique_ptr<TerrainSite> crm_site(const CrmSoil& soil, const TerrainOptions&
   sc.settle_time = o.settle_time;
   sc.settle_jitter = o.settle_jitter;
   sc.settle_seed = o.settle_seed;
+  if (o.settle_jitter == 0 && o.settle_seed != kDefaultSettleSeed)
+    spdlog::warn("--settle-seed {} has no effect without --settle-jitter: the bed settles from the exact lattice", o.settle_seed);
   spdlog::info("CRM bin {:.3g} x {:.3g} m, soil {:.3g} m deep at spacing {} m: settling (or reading the cached bed)", sc.bin.size.x,
                sc.bin.size.y, sc.bin.fill_height, d0);
   return std::make_unique<CrmSite>(sc, resolve_device(o.device), o.cache);

@@ -108,7 +108,7 @@ std::string crm_fingerprint(const CrmScene& sc, CrmDevice device, bool include_b
       sc.effects.artificial_viscosity, sc.effects.shifting, sc.effects.active_domain, int(device), sc.settle_time, sc.settle_jitter);
   // Appended only when on, so that the keys of runs without it (caches, checkpoints) stay as they were.
   if (sc.effects.hourglass_damping) d += fmt::format(" | hourglass {}", sc.numerics.hourglass_alpha);
-  if (sc.settle_seed != kDefaultSettleSeed) d += fmt::format(" | settle seed {}", sc.settle_seed);
+  if (sc.settle_jitter > 0 && sc.settle_seed != kDefaultSettleSeed) d += fmt::format(" | settle seed {}", sc.settle_seed);
   if (sc.effects.hourglass_stiffness) d += fmt::format(" | hourglass stiffness {}", sc.numerics.hourglass_beta);
   if (sc.numerics.marker_velocity != MarkerVelocity::kMirror)
     d += fmt::format(" | marker velocity {}", marker_velocity_name(sc.numerics.marker_velocity));

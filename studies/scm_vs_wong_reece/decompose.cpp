@@ -13,8 +13,6 @@
 // SCM at 0.01 m and 1e-3 s, 4 s per slip, means over the second half, as run.sh)
 #include <cstdio>
 #include <exception>
-#include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -22,6 +20,7 @@
 
 #include <fmt/format.h>
 
+#include "core/atomic_file.hpp"
 #include "lowfi/scm_soil.hpp"
 #include "lowfi/scm_terrain.hpp"
 #include "lowfi/wong_reece.hpp"
@@ -110,11 +109,7 @@ int main(int argc, char** argv) {
     rows.push_back(integral_row("Wong-Reece", "peak stress at (0.43 + 0.32 s) theta1, mirrored to the rear", soil, load, {}));
     const std::string md = table(rows);
     std::cout << md;
-    if (argc == 3) {
-      const std::string tmp = std::string(argv[2]) + ".tmp";
-      std::ofstream(tmp) << md;
-      std::filesystem::rename(tmp, argv[2]);
-    }
+    if (argc == 3) write_text_atomically(argv[2], md);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "scm_wr_decomposition: %s\n", e.what());
     return 1;
