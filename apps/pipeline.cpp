@@ -356,6 +356,7 @@ int run_pipeline(const PipelinePlan& plan) {
     md += fmt::format("| {} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} |\n", plan.slips[i], wheel_crm[i].dbp,
                       wheel_scm[i].dbp, wheel_wr[i].dbp, wheel_crm[i].torque, wheel_scm[i].torque, wheel_wr[i].torque, wheel_crm[i].sinkage,
                       wheel_scm[i].sinkage, wheel_wr[i].sinkage);
+  md += "\n" + rigs::steadiness_summary("CRM", wheel_crm) + " " + rigs::steadiness_summary("SCM", wheel_scm) + "\n";
   md += "\n## Error against CRM (RMSE over the slips; in brackets, relative to CRM's range over the slips)\n\n";
   md += "| model | DBP [N] | torque [N m] | sinkage [m] |\n|---|---|---|---|\n";
   for (const auto& [name, res] : std::vector<std::pair<std::string, const std::vector<rigs::WheelResult>*>>{{"SCM (calibrated)", &wheel_scm}, {"Wong-Reece (calibrated)", &wheel_wr}}) {

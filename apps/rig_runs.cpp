@@ -148,6 +148,8 @@ std::vector<rigs::WheelResult> run_wheel_sweep(const std::string& solver, const 
     const auto& r = out.back();
     spdlog::info("{} wheel at slip {}: DBP {:.4g} N, torque {:.4g} N m, sinkage {:.4g} m ({:.3g} s wall)", solver, slip, r.dbp, r.torque,
                  r.sinkage, r.wall_seconds);
+    if (const std::string why = rigs::unsteady_reason(r); !why.empty())
+      spdlog::warn("{} {} (wheel_series.csv has the time series)", solver, why);
   }
   return out;
 }

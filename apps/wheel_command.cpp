@@ -64,6 +64,7 @@ Command add_wheel(CLI::App& app) {
       for (std::size_t i = 0; i < wr.size(); ++i)
         md += fmt::format("| {} | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {:.4f} | {:.4f} | {:.2f} |\n", slips[i], results[i].dbp, wr[i].dbp,
                           results[i].torque, wr[i].torque, results[i].sinkage, wr[i].sinkage, results[i].sinkage / wr[i].sinkage);
+      md += "\n" + rigs::steadiness_summary("SCM", results) + "\n";
       write_text_atomically(a->out + "/comparison.md", md);
       models.push_back({"Wong-Reece", wr});
     }

@@ -323,7 +323,7 @@ void ScmTerrain::press(const Hit& hit, ScmNode& n, double b, double& displaced) 
   const double tau = j > 0 ? (soil_.cohesion + sigma * tan_phi_) * (1.0 - std::exp(-j / soil_.janosi_k)) : 0.0;
   n.sigma = sigma;
   n.tau = tau;
-  n.deepest = std::max(n.deepest, z);
+  n.last_sinkage = z;
   n.in_contact = true;
   n.contact_step = steps_;
   // Pressure on the body's surface element (projected area g^2, true area g^2 / n_z).
@@ -340,14 +340,14 @@ void ScmTerrain::press(const Hit& hit, ScmNode& n, double b, double& displaced) 
 }
 
 // Nodes the bodies left this step: the shear spring is released; without elastic unloading the
-// soil keeps the deepest sinkage it was pushed to. The nodes pressed this step are the next
-// step's contact nodes.
+// soil stays where the body last held it (header: why not the deepest sinkage). The nodes pressed
+// this step are the next step's contact nodes.
 void ScmTerrain::release_left_nodes() {
   for (ScmNode* node : contact_nodes_) {
     ScmNode& n = *node;
     if (n.contact_step == steps_) continue;  // still in contact
-    if (!settings_.effects.elastic_unloading) n.plastic_sinkage = std::max(n.plastic_sinkage, n.deepest);
-    n.deepest = 0;
+    if (!settings_.effects.elastic_unloading) n.plastic_sinkage = std::max(n.plastic_sinkage, n.last_sinkage);
+    n.last_sinkage = 0;
     n.shear = {};
     n.sigma = n.tau = 0;
     n.in_contact = false;

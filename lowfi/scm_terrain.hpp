@@ -6,8 +6,14 @@
 // Janosi shear from each node's accumulated shear displacement.
 //
 // Effects (named in the settings; a name not given costs nothing):
-//   elastic_unloading  when a body leaves a node, the soil springs back by its elastic part (sigma/Ke);
-//                      without it the rut keeps the deepest sinkage the body reached.
+//   elastic_unloading  when a body leaves a node, the soil springs back by the elastic part it still
+//                      holds (sigma/Ke), even if the body left at once. Without it the rut stays where
+//                      the body last held it, as in Chrono's SCM: a body rising slowly has had the
+//                      soil follow it up elastically (and been pushed by it), so that rut is already
+//                      sprung back; one that leaves at once leaves the soil compressed. Keeping the
+//                      deepest sinkage instead would let the soil push a rising body up and then not
+//                      be there to stop it coming down: energy from nowhere, which makes a slow
+//                      wheel on stiff soil hop (results/scm_vs_wong_reece/hop.md).
 //   damping            a normal pressure R v_n against the speed of sinking (Chrono's "Damping").
 //   bulldozing         soil displaced by plastic sinkage is pushed to the patch's rim, then the
 //                      surface is eroded down to the angle of repose.
@@ -49,7 +55,7 @@ void validate(const ScmSettings& s, const ScmSoil& soil);
 // One stored node: what a node remembers between steps.
 struct ScmNode {
   double plastic_sinkage = 0;  // z_p below the undisturbed surface
-  double deepest = 0;          // the deepest sinkage of the current contact
+  double last_sinkage = 0;     // the sinkage at the last step of the current contact
   double sigma = 0;            // normal pressure at the last step [Pa]
   double tau = 0;              // shear stress at the last step [Pa]
   Vec3<double> shear{};        // accumulated shear displacement of the current contact [m]

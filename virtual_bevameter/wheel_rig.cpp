@@ -1,5 +1,6 @@
 #include "virtual_bevameter/wheel_rig.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -122,8 +123,32 @@ WheelResult run_wheel(const TerrainSite& site, const WheelSpec& wheel, double sl
   mean_sd(steady, &WheelSample::dbp, r.dbp, r.dbp_sd);
   mean_sd(steady, &WheelSample::torque, r.torque, r.torque_sd);
   mean_sd(steady, &WheelSample::sinkage, r.sinkage, r.sinkage_sd);
+  double vertical_mean = 0;
+  mean_sd(steady, &WheelSample::vertical, vertical_mean, r.vertical_sd);
+  const auto airborne = std::count_if(steady.begin(), steady.end(), [&](const WheelSample& x) { return x.vertical < 0.05 * r.load; });
+  r.airborne_fraction = steady.empty() ? 0 : double(airborne) / double(steady.size());
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
+}
+
+std::string unsteady_reason(const WheelResult& r) {
+  if (r.load <= 0 || (r.airborne_fraction <= 0.01 && r.vertical_sd <= 0.25 * r.load)) return "";
+  return fmt::format("the wheel hops at slip {}: off the ground in {:.0f} % of the averaging window, vertical force scattering by {:.2f} "
+                     "times the load; its means are no steady values",
+                     r.slip, 100 * r.airborne_fraction, r.vertical_sd / r.load);
+}
+
+std::string steadiness_summary(const std::string& model, const std::vector<WheelResult>& results) {
+  std::string unsteady;
+  double worst = 0;
+  for (const auto& r : results) {
+    if (r.series.empty() || r.load <= 0) continue;  // an analytic model has no time series
+    worst = std::max(worst, r.vertical_sd / r.load);
+    if (const std::string why = unsteady_reason(r); !why.empty()) unsteady += (unsteady.empty() ? "" : "; ") + why;
+  }
+  if (!unsteady.empty()) return fmt::format("**{}: unsteady.** {}.", model, unsteady);
+  return fmt::format("{}: every run steady (on the ground throughout the averaging window; vertical force scatter at most {:.1f} % of the load).",
+                     model, 100 * worst);
 }
 
 std::vector<WheelResult> run_slip_sweep(const TerrainSite& site, const WheelSpec& wheel, const std::vector<double>& slips,

@@ -42,6 +42,9 @@ struct WheelResult {
   double slip = 0, load = 0;
   double dbp = 0, torque = 0, sinkage = 0;  // steady means
   double dbp_sd = 0, torque_sd = 0, sinkage_sd = 0;
+  // Over the same window: the scatter of the soil's vertical force, and the fraction of samples in
+  // which the soil carries less than 5 % of the load (the wheel is off the ground).
+  double vertical_sd = 0, airborne_fraction = 0;
   double wall_seconds = 0;
   std::vector<WheelSample> series;
 };
@@ -53,6 +56,14 @@ WheelResult run_wheel(const TerrainSite& site, const WheelSpec& wheel, double sl
                       const RigProgress& progress = {});
 std::vector<WheelResult> run_slip_sweep(const TerrainSite& site, const WheelSpec& wheel, const std::vector<double>& slips,
                                         const WheelRun& run, const RigProgress& progress = {});
+
+// Whether the steady means describe a rolling wheel. A wheel that hops (off the ground in more than
+// 1 % of the averaging window, or a vertical force scattering by more than a quarter of the load;
+// steady CRM and SCM runs scatter by 0.2-3 %) has means that are no steady values: "" when steady,
+// otherwise what was seen, for a warning and the reports.
+std::string unsteady_reason(const WheelResult& r);
+// One Markdown line on a sweep's steadiness: the unsteady runs, or the largest vertical scatter.
+std::string steadiness_summary(const std::string& model, const std::vector<WheelResult>& results);
 
 // DESIGN.md's wheel.csv (slip,load_N,dbp_N,torque_Nm,sinkage_m,dbp_sd_N,torque_sd_Nm), atomically;
 // and the time series of every slip in one long table.
