@@ -85,8 +85,8 @@ PlateData load_plate_csv(const std::string& path) {
       throw InputError(fmt::format("{}: unload row at sinkage {} m is deeper than the deepest sinkage so far of the plate "
                                    "r = {} m ({} m); expected at most {} m (is the phase column right?)",
                                    t.where(i, "sinkage_m"), p.sinkage, p.radius, deepest, deepest));
-    // A reload first climbs its elastic branch past the old deepest point (by the spring-back
-    // p / Ke); it is back on the virgin curve once its force passes the largest force so far.
+    // A reload first climbs its elastic branch (in SCM up the unload line to the old deepest
+    // point); it is back on the virgin curve once its force passes the largest force so far.
     // Once there it stays there until the next unload: a noisy force (a CRM curve) that dips below
     // the old largest force is still virgin loading, not a new elastic branch of one row.
     double& strongest = max_force[p.radius];

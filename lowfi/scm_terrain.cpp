@@ -340,7 +340,7 @@ void ScmTerrain::press(const Hit& hit, ScmNode& n, double b, double& displaced) 
 }
 
 // Nodes the bodies left this step: the shear spring is released; without elastic unloading the
-// soil stays where the body last held it (header: why not the deepest sinkage). The nodes pressed
+// soil stays where the body last held it (header: why, and why not the deepest sinkage). The nodes pressed
 // this step are the next step's contact nodes.
 void ScmTerrain::release_left_nodes() {
   for (ScmNode* node : contact_nodes_) {

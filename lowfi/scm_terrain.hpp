@@ -7,13 +7,15 @@
 //
 // Effects (named in the settings; a name not given costs nothing):
 //   elastic_unloading  when a body leaves a node, the soil springs back by the elastic part it still
-//                      holds (sigma/Ke), even if the body left at once. Without it the rut stays where
-//                      the body last held it, as in Chrono's SCM: a body rising slowly has had the
-//                      soil follow it up elastically (and been pushed by it), so that rut is already
-//                      sprung back; one that leaves at once leaves the soil compressed. Keeping the
-//                      deepest sinkage instead would let the soil push a rising body up and then not
-//                      be there to stop it coming down: energy from nowhere, which makes a slow
-//                      wheel on stiff soil hop (results/scm_vs_wong_reece/hop.md).
+//                      holds (sigma/Ke), even if the body left at once. In force terms this is
+//                      Chrono's SCM, whose stress counts from the plastic sinkage whatever level it
+//                      draws. Without the effect the rut stays where the body last held it (Chrono's
+//                      drawn level) and so does the soil's spring: a body rising slowly has had the
+//                      soil follow it up elastically, so its rut has sprung back; one that leaves at
+//                      once leaves the soil compressed, and that elastic part becomes permanent.
+//                      Keeping the deepest sinkage instead would let the soil push a rising body up
+//                      and then not be there to stop it coming down: energy from nowhere, which made
+//                      a slow wheel on stiff soil hop (results/scm_vs_wong_reece/hop.md).
 //   damping            a normal pressure R v_n against the speed of sinking (Chrono's "Damping").
 //   bulldozing         soil displaced by plastic sinkage is pushed to the patch's rim, then the
 //                      surface is eroded down to the angle of repose.

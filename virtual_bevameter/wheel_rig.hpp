@@ -42,8 +42,8 @@ struct WheelResult {
   double slip = 0, load = 0;
   double dbp = 0, torque = 0, sinkage = 0;  // steady means
   double dbp_sd = 0, torque_sd = 0, sinkage_sd = 0;
-  // Over the same window: the scatter of the soil's vertical force, and the fraction of samples in
-  // which the soil carries less than 5 % of the load (the wheel is off the ground).
+  // Over every step of the same window: the scatter of the soil's vertical force, and the fraction
+  // of steps in which the soil carries less than 5 % of the load (the wheel is off the ground).
   double vertical_sd = 0, airborne_fraction = 0;
   double wall_seconds = 0;
   std::vector<WheelSample> series;
@@ -57,10 +57,11 @@ WheelResult run_wheel(const TerrainSite& site, const WheelSpec& wheel, double sl
 std::vector<WheelResult> run_slip_sweep(const TerrainSite& site, const WheelSpec& wheel, const std::vector<double>& slips,
                                         const WheelRun& run, const RigProgress& progress = {});
 
-// Whether the steady means describe a rolling wheel. A wheel that hops (off the ground in more than
-// 1 % of the averaging window, or a vertical force scattering by more than a quarter of the load;
-// steady CRM and SCM runs scatter by 0.2-3 %) has means that are no steady values: "" when steady,
-// otherwise what was seen, for a warning and the reports.
+// Whether the steady means describe a rolling wheel. A wheel off the ground in more than 1 % of the
+// averaging window's steps, or whose vertical force scatters by more than a quarter of the load, has
+// means that are no steady values (steady runs: SCM 0.2-3.4 %, CRM 3 % at 0.02 m and 14 % in the
+// coarse demo at 0.04 m; a hopping SCM wheel 140-260 %): "" when steady, otherwise what was seen,
+// for a warning and the reports.
 std::string unsteady_reason(const WheelResult& r);
 // One Markdown line on a sweep's steadiness: the unsteady runs, or the largest vertical scatter.
 std::string steadiness_summary(const std::string& model, const std::vector<WheelResult>& results);
