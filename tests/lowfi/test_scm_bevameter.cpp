@@ -52,7 +52,9 @@ TEST_CASE("SCM plate rig: loading follows Bekker within 2 %, unloading has slope
     for (const auto& row : rows)
       if (row.phase == "unload" && row.force > 0) unload.push_back({row.sinkage, row.force});
     REQUIRE(unload.size() >= 3);
-    const double slope = (unload.front().second - unload.back().second) / (unload.front().first - unload.back().first);
+    // The slope between a branch's first and last rows (sinkage, force).
+    auto slope_of = [](const std::vector<std::pair<double, double>>& b) { return (b.back().second - b.front().second) / (b.back().first - b.front().first); };
+    const double slope = slope_of(unload);
     INFO("unload slope " << slope << " N/m against Ke pi r^2 = " << soil.elastic_stiffness * M_PI * r * r);
     CHECK(rel(slope, soil.elastic_stiffness * M_PI * r * r) < 0.02);
     // Reload: from where the plate left the soil, up the same line to the previous deepest point.
@@ -66,7 +68,7 @@ TEST_CASE("SCM plate rig: loading follows Bekker within 2 %, unloading has slope
       if (row.phase == "reload" && row.force > 0 && row.sinkage < cycle_top - 0.5 * t.max_sinkage / t.samples)
         reload.push_back({row.sinkage, row.force});
     REQUIRE(reload.size() >= 3);
-    const double reload_slope = (reload.back().second - reload.front().second) / (reload.back().first - reload.front().first);
+    const double reload_slope = slope_of(reload);
     INFO("reload slope " << reload_slope << " N/m from " << reload.front().first << " m (unload reached " << unload.back().first << " m)");
     CHECK(rel(reload_slope, soil.elastic_stiffness * M_PI * r * r) < 0.02);
     CHECK(std::abs(reload.front().first - unload.back().first) < 2 * t.max_sinkage / t.samples);  // touches where the unload left

@@ -171,26 +171,16 @@ TEST_CASE("SCM wheel on stiff sand at high slip without damping rolls steadily: 
 // (heavy and lean clay of WES, Michigan sandy loam at 23 %), which the wheel barely or never yields,
 // are unsteady (the clays in hops of about 1.5 mm): the rig warns (results/scm_vs_wong_reece/hop.md).
 TEST_CASE("SCM wheel with Chrono's damping rolls steadily on every reference soil, slips -0.5 to 0.9", "[lowfi][scm][wheel][hard]") {
-  // The Bekker and Mohr columns both tables share, under the same names.
-  auto bekker_mohr = [](const CsvTable& t, std::size_t i) {
-    lowfi::ScmSoil s;
-    s.n = t.number(i, "n");
-    s.Kc = t.number(i, "Kc");
-    s.Kphi = t.number(i, "Kphi");
-    s.cohesion = t.number(i, "cohesion_Pa");
-    s.friction_deg = t.number(i, "friction_deg");
-    return s;
-  };
   std::vector<std::pair<std::string, lowfi::ScmSoil>> soils;
-  const auto wong = CsvTable::read(std::string(TERRACAL_REFERENCE_DIR) + "/bekker_wong_soils.csv");
+  const auto wong = test::wong_soils();
   for (std::size_t i = 0; i < wong.rows(); ++i) {
-    lowfi::ScmSoil s = bekker_mohr(wong, i);
+    lowfi::ScmSoil s = test::scm_soil_of_row(wong, i);
     s.janosi_k = wong.optional_number(i, "janosi_k_m").value_or(0.025);
     soils.push_back({wong.text(i, "soil") + " " + wong.text(i, "moisture_percent"), s});
   }
   const auto chrono = CsvTable::read(std::string(TERRACAL_REFERENCE_DIR) + "/chrono_scm_presets.csv");
   for (std::size_t i = 0; i < chrono.rows(); ++i) {
-    lowfi::ScmSoil s = bekker_mohr(chrono, i);
+    lowfi::ScmSoil s = test::scm_soil_of_row(chrono, i);
     s.janosi_k = chrono.number(i, "janosi_k_m");
     s.elastic_stiffness = chrono.number(i, "elastic_stiffness");
     s.damping = chrono.number(i, "damping");
