@@ -19,6 +19,17 @@ using namespace terracal;
 
 namespace {
 double rel(double a, double b) { return std::abs(a - b) / std::abs(b); }
+
+// The annulus tests' site (0.005 m grid, damping, so the ring comes to rest) and rig: loads of 200
+// and 800 N, settled for `settle` s, turned to `max_angle` rad.
+lowfi::ScmSite annulus_site(const lowfi::ScmSoil& soil) { return test::scm_site(soil, 0.005, 1e-3, {"damping"}); }
+rigs::ShearTest annulus_test(double settle, double max_angle) {
+  rigs::ShearTest t;
+  t.settle_time = settle;
+  t.loads = {200, 800};
+  t.max_angle = max_angle;
+  return t;
+}
 }  // namespace
 
 TEST_CASE("SCM plate rig: loading follows Bekker within 2 %, unloading has slope Ke A", "[lowfi][scm]") {
@@ -80,11 +91,8 @@ TEST_CASE("SCM annulus rig: torque against angle follows the analytic annulus wi
   // Damping lets the annulus come to rest on its elastic bed before it turns; the damping is weak
   // (about 6 % of critical at 800 N), so the annulus settles for 2 s: after 0.3 s the left-over bounce
   // still moves the torque at small angles by 7 %.
-  const auto site = test::scm_site(soil, 0.005, 1e-3, {"damping"});
-  rigs::ShearTest t;
-  t.settle_time = 2.0;
-  t.loads = {200, 800};
-  t.max_angle = 0.8;
+  const auto site = annulus_site(soil);
+  rigs::ShearTest t = annulus_test(2.0, 0.8);
   const auto rows = rigs::run_shear(site, t);
   int checked = 0;
   double worst = 0;
@@ -107,11 +115,8 @@ TEST_CASE("SCM annulus rig: torque against angle follows the analytic annulus wi
 // (--shear-load-ramp 0.5; ShearTest itself drops it unless told otherwise).
 TEST_CASE("SCM annulus under a ramped load rests at Bekker's static sinkage; a dropped one overshoots", "[lowfi][scm]") {
   const lowfi::ScmSoil soil = test::scm_dry_sand();
-  const auto site = test::scm_site(soil, 0.005, 1e-3, {"damping"});
-  rigs::ShearTest t;
-  t.settle_time = 1.0;
-  t.loads = {200, 800};
-  t.max_angle = 0.05;
+  const auto site = annulus_site(soil);
+  rigs::ShearTest t = annulus_test(1.0, 0.05);
   auto first_sinkage = [&](double ramp) {
     t.load_ramp = ramp;
     const auto rows = rigs::run_shear(site, t);
