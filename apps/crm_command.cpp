@@ -6,14 +6,16 @@
 #include <spdlog/spdlog.h>
 
 #include "apps/commands.hpp"
+#include "apps/terrain_options.hpp"
 #include "core/errors.hpp"
-#include "highfi/crm_run.hpp"
+#include "highfi/crm/crm_run.hpp"
 
 namespace terracal::app {
 
 namespace {
 struct CrmArgs {
-  std::string scene, out, device = "cpu", cache = "results/runs/bed_cache";
+  std::string scene, out, cache = "results/runs/bed_cache";
+  DeviceChoice device = DeviceChoice::kCpu;
   bool resume = false;
   long record_every = 10;
 };
@@ -24,18 +26,17 @@ Command add_crm(CLI::App& app) {
   auto a = std::make_shared<CrmArgs>();
   sub->add_option("--scene", a->scene, "scene file (JSON, see docs/crm_scene.md)")->required();
   sub->add_option("--out", a->out, "output folder")->required();
-  sub->add_option("--device", a->device, "cpu or cuda")->capture_default_str();
+  add_device_option(sub, a->device);
   sub->add_option("--cache", a->cache, "folder of settled beds ('' = no cache)")->capture_default_str();
   sub->add_flag("--resume", a->resume, "continue from OUT/checkpoint.h5");
-  sub->add_option("--record-every", a->record_every, "steps between rows of bodies.csv")->capture_default_str();
+  sub->add_option("--record-every", a->record_every, "steps between rows of bodies.csv")
+      ->check(CLI::Range(1L, 1L << 40))
+      ->capture_default_str();
   return [a] {
-    if (a->device != "cpu" && a->device != "cuda")
-      throw InputError(fmt::format("--device {}: expected cpu or cuda", a->device));
-    if (a->record_every < 1) throw InputError(fmt::format("--record-every {}: expected at least 1", a->record_every));
     const CrmScene scene = load_crm_scene(a->scene);
     CrmRunOptions o;
     o.out = a->out;
-    o.device = a->device == "cuda" ? CrmDevice::kCuda : CrmDevice::kCpu;
+    o.device = resolve_device(a->device);
     o.cache_dir = a->cache;
     o.resume = a->resume;
     o.record_every = a->record_every;

@@ -17,7 +17,8 @@ namespace terracal::app {
 
 namespace {
 struct DemoArgs {
-  std::string out = "results/demo", device = "auto", cache = "results/runs/bed_cache";
+  std::string out = "results/demo", cache = "results/runs/bed_cache";
+  DeviceChoice device = DeviceChoice::kAuto;
   std::uint64_t seed = 2026;
   bool calibration_only = false;
 };
@@ -43,7 +44,7 @@ Command add_demo(CLI::App& app) {
   auto a = std::make_shared<DemoArgs>();
   sub->add_option("--out", a->out, "output folder")->capture_default_str();
   sub->add_option("--seed", a->seed, "random seed")->capture_default_str();
-  sub->add_option("--device", a->device, "CRM device: cpu, cuda or auto")->capture_default_str();
+  add_device_option(sub, a->device);
   sub->add_option("--cache", a->cache, "folder of settled CRM beds")->capture_default_str();
   sub->add_flag("--calibration-only", a->calibration_only, "only calibrate the embedded example curves (studies/demo)");
   return [a] {

@@ -47,7 +47,7 @@ Command add_pipeline(CLI::App& app) {
                   "bed settled from a start jittered by 0.1 spacings with seeds --settle-seed + 1, + 2, ...); 1 ... 16")
       ->capture_default_str();
   sub->add_option("--spacing", a->terrain.spacing, "CRM particle spacing [m]")->capture_default_str();
-  sub->add_option("--device", a->terrain.device, "CRM device: cpu, cuda or auto")->capture_default_str();
+  add_device_option(sub, a->terrain.device);
   sub->add_option("--cache", a->terrain.cache, "folder of settled CRM beds")->capture_default_str();
   sub->add_option("--grid", a->terrain.grid, "SCM grid [m]")->capture_default_str();
   sub->add_option("--step", a->terrain.step, "CRM time step [s] (0: from the CFL limit)")->capture_default_str();

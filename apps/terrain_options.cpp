@@ -6,123 +6,134 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "apps/cli_checks.hpp"
 #include "core/errors.hpp"
 #include "core/json_file.hpp"
-#include "highfi/crm_terrain.hpp"
-#include "highfi/sph_engine.hpp"
+#include "highfi/crm/crm_terrain.hpp"
+#include "highfi/crm/sph_engine.hpp"
 
 namespace terracal::app {
 
+namespace {
+std::map<std::string, MarkerVelocity> marker_velocity_map() {
+  std::map<std::string, MarkerVelocity> m;
+  for (const char* name : kMarkerVelocityNames) m[name] = marker_velocity_from_name(name);
+  return m;
+}
+}  // namespace
+
+void add_device_option(CLI::App* sub, DeviceChoice& device) {
+  const std::map<std::string, DeviceChoice> names{
+      {"cpu", DeviceChoice::kCpu}, {"cuda", DeviceChoice::kCuda}, {"auto", DeviceChoice::kAuto}};
+  sub->add_option("--device", device, "CRM device: cpu, cuda or auto (cuda when a device is present)")
+      ->transform(CLI::CheckedTransformer(names))
+      ->capture_default_str();
+}
+
 void add_crm_settling_options(CLI::App* sub, TerrainOptions& o) {
-  sub->add_option("--settle-time", o.settle_time, "CRM settling before the test [s]")->capture_default_str();
+  sub->add_option("--settle-time", o.settle_time, "CRM settling before the test [s]")
+      ->check(in_range(CrmRanges::kSettleTime))
+      ->capture_default_str();
   sub->add_option("--settle-jitter", o.settle_jitter,
-                  "CRM settling starts up to this fraction of the spacing off the lattice, seeded (0: the exact lattice; results/crm_settling)")
+                  "CRM settling starts up to this fraction of the spacing off the lattice (0: the exact lattice)")
+      ->check(in_range(CrmRanges::kSettleJitter))
       ->capture_default_str();
-  sub->add_option("--settle-seed", o.settle_seed, "the seed of --settle-jitter: another seed is another realisation of the same bed")
+  sub->add_option("--settle-seed", o.settle_seed, "seed of --settle-jitter: another seed, another realisation of the bed")
+      ->check(CLI::Range(0L, CrmRanges::kMaxSettleSeed))
       ->capture_default_str();
+  const auto& damping = HourglassDamping::settings()[0];
   sub->add_option("--hourglass-damping", o.hourglass_damping,
-                  "CRM effect hourglass_damping with this alpha: a Laplacian viscosity nu = alpha h c/10 that damps the lattice's "
-                  "checkerboard mode; on for the rigs by default, because without it the bed softens with finer spacing and "
-                  "larger bins (0: off; results/plate_bin_check)")
+                  fmt::format("CRM effect hourglass_damping with this alpha ({}; 0: off)", damping.help))
+      ->check(off_or_in_range(damping.range))
       ->capture_default_str();
+  const auto& stiffness = HourglassStiffness::settings()[0];
   sub->add_option("--hourglass-stiffness", o.hourglass_stiffness,
-                  "CRM effect hourglass_stiffness with this beta: a frictional spring k = beta E/(rho h^2) on each particle's "
-                  "displacement that its neighbours' velocity gradient does not explain; on for the rigs by default, because the "
-                  "damping alone lets soil escape from under a plate through the checkerboard mode (0: off, at most 0.1; "
-                  "results/plate_bin_check)")
+                  fmt::format("CRM effect hourglass_stiffness with this beta ({}; 0: off)", stiffness.help))
+      ->check(off_or_in_range(stiffness.range))
       ->capture_default_str();
-  sub->add_option("--h-over-d0", o.h_over_d0,
-                  "CRM smoothing length h over the particle spacing; 1.4 keeps the particle lattice stable under compression "
-                  "(at 1.2 a column mode grows and softens the bed; results/crm_settling)")
+  sub->add_option("--h-over-d0", o.h_over_d0, "CRM smoothing length over the particle spacing")
+      ->check(in_range(CrmRanges::kHOverD0))
       ->capture_default_str();
   sub->add_option("--marker-velocity", o.marker_velocity,
-                  "CRM boundary markers' velocity: mirror (Adami's 2 v_wall - v~, v~ averaged around the marker), "
-                  "mirror_image (2 v_wall - v at the marker's mirror image across the wall: a consistent mirror of a linear "
-                  "flow), mirror_contact (Adami's mirror only where soil touches the wall: a held plate keeps more of its force, "
-                  "but plate forces no longer converge with the spacing; "
-                  "results/plate_bin_check, ninth study) or wall (the wall's own: plate curves nearly independent of the "
-                  "plate's speed, but plate forces that no longer converge with the spacing; eighth study)")
+                  "CRM boundary markers' velocity: mirror, mirror_image, mirror_contact or wall (docs/crm_scene.md)")
+      ->transform(CLI::CheckedTransformer(marker_velocity_map()))
       ->capture_default_str();
 }
 
 void add_terrain_options(CLI::App* sub, TerrainOptions& o, bool crm, bool scm) {
   if (crm) {
     sub->add_option("--soil", o.soil_json, "CRM soil material (JSON, DESIGN.md 'Soil')");
-    sub->add_option("--spacing", o.spacing, "CRM particle spacing [m]")->capture_default_str();
-    sub->add_option("--device", o.device, "CRM device: cpu, cuda or auto")->capture_default_str();
+    sub->add_option("--spacing", o.spacing, "CRM particle spacing [m]")
+        ->check(in_range(RigRanges::kSpacing))
+        ->capture_default_str();
+    add_device_option(sub, o.device);
     sub->add_option("--cache", o.cache, "folder of settled CRM beds ('' = no cache)")->capture_default_str();
     add_crm_settling_options(sub, o);
-    sub->add_option("--bin-scale", o.bin_scale, "CRM bin (and bed depth) scaled by this factor: the bin-size check")->capture_default_str();
-    sub->add_option("--bin-depth-scale", o.bin_depth_scale, "CRM bed depth scaled by this factor instead (0: as --bin-scale)")->capture_default_str();
+    sub->add_option("--bin-scale", o.bin_scale, "CRM bins (and bed depth) scaled by this factor: the bin-size check")
+        ->check(in_range(RigRanges::kBinScale))
+        ->capture_default_str();
+    sub->add_option("--bin-depth-scale", o.bin_depth_scale, "CRM bed depth scaled by this factor instead (0: as --bin-scale)")
+        ->check(off_or_in_range(RigRanges::kBinScale))
+        ->capture_default_str();
   }
   if (scm) {
     sub->add_option("--scm", o.scm_json, "SCM parameter file (Chrono SCM JSON or terracal's scm_params.json)");
-    sub->add_option("--grid", o.grid, "SCM grid spacing [m]")->capture_default_str();
-    sub->add_option("--scm-effects", o.scm_effects, "SCM effects: damping, elastic_unloading, bulldozing, or none")->capture_default_str();
+    sub->add_option("--grid", o.grid, "SCM grid spacing [m]")->check(in_range(RigRanges::kScmGrid))->capture_default_str();
+    sub->add_option("--scm-effects", o.scm_effects, "SCM effects: damping, elastic_unloading, bulldozing, or none")
+        ->capture_default_str();
     sub->add_option("--gravity", o.gravity, "gravity vector for SCM (default Earth) [m/s^2]")->expected(3);
   }
-  sub->add_option("--step", o.step, "time step [s] (0: CRM from its CFL limit, SCM 1e-3)")->capture_default_str();
+  sub->add_option("--step", o.step, "time step [s] (0: CRM from its CFL limit, SCM 1e-3 s)")
+      ->check(in_range(RigRanges::kStep))
+      ->capture_default_str();
 }
 
 CrmSoil load_crm_soil(const std::string& path) { return parse_crm_soil(read_json_file(path, "soil file"), path); }
 
 lowfi::ScmSoil load_scm_soil(const std::string& path) { return lowfi::read_scm_json(path); }
 
-CrmDevice resolve_device(const std::string& device) {
-  if (device == "cpu") return CrmDevice::kCpu;
+CrmDevice resolve_device(DeviceChoice device) {
+  if (device == DeviceChoice::kCpu) return CrmDevice::kCpu;
   std::string why;
   const bool have = cuda_engine_available(&why);
-  if (device == "cuda") {
+  if (device == DeviceChoice::kCuda) {
     if (!have) throw InputError(fmt::format("--device cuda: no CUDA device available ({})", why));
     return CrmDevice::kCuda;
   }
-  if (device != "auto") throw InputError(fmt::format("--device {}: expected cpu, cuda or auto", device));
   spdlog::info("CRM on the {}", have ? "GPU (CUDA)" : fmt::format("CPU ({})", why));
   return have ? CrmDevice::kCuda : CrmDevice::kCpu;
 }
 
-std::unique_ptr<TerrainSite> crm_site(const CrmSoil& soil, const TerrainOptions& o, double half_length, double half_width, double depth) {
-  if (!(o.spacing > 0 && o.spacing < 1)) throw InputError(fmt::format("--spacing {}: expected in (0, 1) m", o.spacing));
-  if (!(o.step >= 0)) throw InputError(fmt::format("--step {}: expected >= 0 s", o.step));
-  if (!(o.settle_jitter >= 0 && o.settle_jitter <= 0.3))
-    throw InputError(fmt::format("--settle-jitter {}: expected in [0, 0.3] (a fraction of the spacing)", o.settle_jitter));
-  if (!(o.settle_seed >= 0 && o.settle_seed <= (1L << 62)))
-    throw InputError(fmt::format("--settle-seed {}: expected an integer in [0, 2^62]", o.settle_seed));
-  if (!(o.hourglass_damping >= 0 && o.hourglass_damping <= 2))
-    throw InputError(fmt::format("--hourglass-damping {}: expected in [0, 2] (0: off)", o.hourglass_damping));
-  if (!(o.hourglass_stiffness >= 0 && o.hourglass_stiffness <= 0.1))
-    throw InputError(fmt::format("--hourglass-stiffness {}: expected in [0, 0.1] (0: off)", o.hourglass_stiffness));
-  if (!(o.h_over_d0 >= 1.0 && o.h_over_d0 <= 1.6))
-    throw InputError(fmt::format("--h-over-d0 {}: expected in [1.0, 1.6]", o.h_over_d0));
-  if (o.marker_velocity != "mirror" && o.marker_velocity != "mirror_image" && o.marker_velocity != "mirror_contact" && o.marker_velocity != "wall")
-    throw InputError(fmt::format("--marker-velocity {}: expected mirror, mirror_image, mirror_contact or wall", o.marker_velocity));
-  if (!(o.bin_scale >= 1 && o.bin_scale <= 10)) throw InputError(fmt::format("--bin-scale {}: expected in [1, 10]", o.bin_scale));
-  if (!(o.bin_depth_scale == 0 || (o.bin_depth_scale >= 1 && o.bin_depth_scale <= 10)))
-    throw InputError(fmt::format("--bin-depth-scale {}: expected 0 (as --bin-scale) or in [1, 10]", o.bin_depth_scale));
+// The rigs' CRM scene: the soil, the rigs' effects and the resolution from the options. Every value
+// is checked by validate_crm_scene (CrmSite), against the ranges the command line checked too.
+std::unique_ptr<TerrainSite> crm_site(const CrmSoil& soil, const TerrainOptions& o, double half_length,
+                                      double half_width, double depth) {
+  check_range(RigRanges::kSpacing, o.spacing, "--spacing");
+  check_range(RigRanges::kBinScale, o.bin_scale, "--bin-scale");
   CrmScene sc;
   sc.source = o.soil_json.empty() ? "embedded soil" : o.soil_json;
   sc.soil = soil;
-  sc.effects.artificial_viscosity = true;
-  sc.effects.cohesion = soil.cohesion > 0;
-  sc.effects.hourglass_damping = o.hourglass_damping > 0;
-  if (o.hourglass_damping > 0) sc.numerics.hourglass_alpha = o.hourglass_damping;
-  sc.effects.hourglass_stiffness = o.hourglass_stiffness > 0;
-  if (o.hourglass_stiffness > 0) sc.numerics.hourglass_beta = o.hourglass_stiffness;
+  sc.effects.enable<ArtificialViscosity>();
+  if (soil.cohesion > 0) sc.effects.enable<Cohesion>();
+  if (o.hourglass_damping > 0) sc.effects.enable<HourglassDamping>({o.hourglass_damping});
+  if (o.hourglass_stiffness > 0) sc.effects.enable<HourglassStiffness>({o.hourglass_stiffness});
   sc.numerics.spacing = o.spacing;
   sc.numerics.h_over_d0 = o.h_over_d0;
-  sc.numerics.marker_velocity = marker_velocity_from_name(o.marker_velocity);
+  sc.numerics.marker_velocity = o.marker_velocity;
   sc.numerics.time_step = o.step;
   // Whole spacings, and a bin at least a few spacings around the rig.
   const double d0 = o.spacing;
-  sc.bin.size = {2 * std::ceil(half_length / d0) * d0, 2 * std::ceil(half_width / d0) * d0, std::ceil(1.5 * depth / d0) * d0};
+  sc.bin.size = {2 * std::ceil(half_length / d0) * d0, 2 * std::ceil(half_width / d0) * d0,
+                 std::ceil(1.5 * depth / d0) * d0};
   sc.bin.fill_height = std::ceil(depth / d0) * d0;
   sc.settle_time = o.settle_time;
   sc.settle_jitter = o.settle_jitter;
   sc.settle_seed = o.settle_seed;
   if (o.settle_jitter == 0 && o.settle_seed != kDefaultSettleSeed)
-    spdlog::warn("--settle-seed {} has no effect without --settle-jitter: the bed settles from the exact lattice", o.settle_seed);
-  spdlog::info("CRM bin {:.3g} x {:.3g} m, soil {:.3g} m deep at spacing {} m: settling (or reading the cached bed)", sc.bin.size.x,
-               sc.bin.size.y, sc.bin.fill_height, d0);
+    spdlog::warn("--settle-seed {} has no effect without --settle-jitter: the bed settles from the exact lattice",
+                 o.settle_seed);
+  spdlog::info("CRM bin {:.3g} x {:.3g} m, soil {:.3g} m deep at spacing {} m: settling (or reading the cached bed)",
+               sc.bin.size.x, sc.bin.size.y, sc.bin.fill_height, d0);
   return std::make_unique<CrmSite>(sc, resolve_device(o.device), o.cache);
 }
 

@@ -15,7 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "highfi/crm_solver.hpp"
+#include "highfi/crm/crm_solver.hpp"
 #include "bench/bench_stats.hpp"
 
 using namespace terracal;

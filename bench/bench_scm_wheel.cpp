@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
   lowfi::ScmSettings s;
   s.grid = grid;
   s.time_step = 1e-3;
-  s.effects.damping = true;
+  s.effects.enable<lowfi::ScmDamping>();
   const lowfi::ScmSite site(sand, s);
   rigs::WheelSpec wheel;
   rigs::WheelRun run;

@@ -37,6 +37,15 @@ double JsonObject::number(const std::string& key, double lo, double hi, bool lo_
   return x;
 }
 
+double JsonObject::number(const std::string& key, const Range& r, bool whole) {
+  const nlohmann::json& v = raw(key);
+  if (!v.is_number()) fail(key, fmt::format("value {} is not a number", v.dump()));
+  if (whole && !v.is_number_integer()) fail(key, fmt::format("value {} is not a whole number", v.dump()));
+  const double x = v.get<double>();
+  if (!(std::isfinite(x) && r.contains(x))) fail(key, fmt::format("value {} is outside the allowed range {}", v.dump(), r.text()));
+  return x;
+}
+
 double JsonObject::number_or(const std::string& key, double fallback, double lo, double hi, bool lo_open, bool hi_open) {
   return has(key) ? number(key, lo, hi, lo_open, hi_open) : fallback;
 }

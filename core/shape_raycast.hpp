@@ -1,7 +1,7 @@
 #pragma once
 // Ray casts against a rigid body's collision shape (core/body_shape.hpp), in the body frame: the SCM
 // terrain uses them to find how far above each grid node the body's underside is. The solids are
-// exactly those of shape_signed_distance (highfi/body_markers.cpp), where it is <= 0.
+// exactly those of shape_signed_distance (highfi/crm/body_markers.cpp), where it is <= 0.
 #include <algorithm>
 #include <vector>
 

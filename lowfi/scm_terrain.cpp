@@ -30,15 +30,9 @@ void world_bounds(const ShapeRaycaster& shape, const BodyState& s, Vec3<double>&
 }
 }  // namespace
 
-ScmEffects parse_scm_effects(const std::vector<std::string>& names, const std::string& key) {
-  ScmEffects e;
-  for (const auto& n : names) {
-    if (n == "elastic_unloading") e.elastic_unloading = true;
-    else if (n == "damping") e.damping = true;
-    else if (n == "bulldozing") e.bulldozing = true;
-    else
-      throw InputError(fmt::format("{}: unknown SCM effect '{}'; known: elastic_unloading, damping, bulldozing", key, n));
-  }
+ScmEffectChoice parse_scm_effects(const std::vector<std::string>& names, const std::string& key) {
+  ScmEffectChoice e;
+  e.named = effect_set_from_names<ScmEffects>(names, key);
   return e;
 }
 
@@ -48,8 +42,7 @@ void validate(const ScmSettings& s, const ScmSoil& soil) {
   };
   check("grid", s.grid, 1e-4, 1.0, "m");
   check("time_step", s.time_step, 1e-6, 0.1, "s");
-  check("repose_angle_deg", s.repose_angle_deg, 1, 89, "degrees");
-  check("erosion_sweeps", s.erosion_sweeps, 0, 100, "");
+  check_effect_settings(s.effects, "SCM settings");
   if (!(norm(s.gravity) <= 1000)) throw InputError(fmt::format("SCM setting 'gravity': |g| = {} outside [0, 1000] m/s^2", norm(s.gravity)));
   check("Bekker Kphi", soil.Kphi, 0, 1e12, "Pa/m^n");
   check("Bekker n exponent", soil.n, 0.05, 5, "");
@@ -58,7 +51,7 @@ void validate(const ScmSettings& s, const ScmSoil& soil) {
 }
 
 ScmTerrain::ScmTerrain(const ScmSoil& soil, const ScmSettings& settings, std::vector<RigidBody> bodies)
-    : soil_(soil), settings_(settings), bodies_(std::move(bodies)) {
+    : soil_(soil), settings_(settings), bodies_(std::move(bodies)), nodes_(settings.surface_height) {
   validate(settings_, soil_);
   tan_phi_ = std::tan(soil_.friction_deg * M_PI / 180.0);
   for (const auto& b : bodies_) {
@@ -78,9 +71,7 @@ ScmTerrain::ScmTerrain(const ScmSoil& soil, const ScmSettings& settings, std::ve
 
 std::string ScmTerrain::description() const {
   std::string effects;
-  if (settings_.effects.elastic_unloading) effects += " elastic_unloading";
-  if (settings_.effects.damping) effects += " damping";
-  if (settings_.effects.bulldozing) effects += " bulldozing";
+  for (const std::string& e : effect_names(settings_.effects.named)) effects += " " + e;
   return fmt::format("SCM, grid {} m, step {} s, effects:{}", settings_.grid, settings_.time_step, effects.empty() ? " none" : effects);
 }
 
@@ -89,22 +80,16 @@ std::string ScmSite::description() const { return ScmTerrain(soil_, settings_, {
 ScmTerrain::Volumes ScmTerrain::volumes() const {
   Volumes v;
   const double a = settings_.grid * settings_.grid;
-  for (const auto& [k, n] : nodes_) {
+  for (const auto& [k, n] : nodes_.nodes()) {
     v.pushed_down += n.plastic_sinkage * a;
     v.piled_up += n.level_offset * a;
   }
   return v;
 }
 
-const ScmNode* ScmTerrain::node(int i, int j) const {
-  const auto it = nodes_.find(key(i, j));
-  return it == nodes_.end() ? nullptr : &it->second;
-}
+const ScmNode* ScmTerrain::node(int i, int j) const { return nodes_.find(i, j); }
 
-double ScmTerrain::free_surface(int i, int j) const {
-  const ScmNode* n = node(i, j);
-  return settings_.surface_height + (n ? n->level_offset - n->plastic_sinkage : 0.0);
-}
+double ScmTerrain::free_surface(int i, int j) const { return nodes_.free_surface(i, j); }
 
 // One vertical ray per node under each body's bounds, cast up from below the body to the highest
 // the soil reaches. The body's outward normal at each hit comes from the hit heights of the
@@ -112,7 +97,7 @@ double ScmTerrain::free_surface(int i, int j) const {
 // lets the pressure act normal to the body as in Wong-Reece, so a wheel meets compaction resistance.
 void ScmTerrain::cast_rays(std::vector<Hit>& hits) {
   hits.clear();
-  const double top = settings_.surface_height + max_level_offset_;
+  const double top = settings_.surface_height + nodes_.max_level_offset();
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
     RayGrid r;
     if (!ray_grid(b, top, r)) continue;
@@ -253,7 +238,11 @@ void ScmTerrain::contact(const std::vector<Hit>& candidates) {
     press(hits[h], *scratch_.pressed_nodes[h], patches.bekker_width[p], displaced[p]);
   }
   release_left_nodes();
-  if (settings_.effects.bulldozing) bulldoze(hits, patches, displaced);
+  ScmContactView view{scratch_.pressed_at, patches, displaced, nodes_, settings_.grid};
+  settings_.effects.named.for_each_named([&](auto tag) {
+    using E = typename decltype(tag)::type;
+    E::after_contact(settings_.effects.of<E>(), view);
+  });
 }
 
 // The hits below their node's free surface, each with its node: one hash lookup per hit, and a
@@ -266,11 +255,11 @@ void ScmTerrain::select_pressed(const std::vector<Hit>& candidates) {
   nodes.clear();
   at.clear();
   for (const Hit& c : candidates) {
-    const std::int64_t k = key(c.i, c.j);
+    const ScmNodeGrid::Key k = ScmNodeGrid::key(c.i, c.j);
     auto it = nodes_.find(k);
     const double surface = settings_.surface_height + (it == nodes_.end() ? 0.0 : it->second.level_offset - it->second.plastic_sinkage);
     if (c.level >= surface) continue;
-    if (it == nodes_.end()) it = nodes_.emplace(k, ScmNode{}).first;
+    if (it == nodes_.end()) it = nodes_.emplace(k);
     hits.push_back(c);
     nodes.push_back(&it->second);
     at.push_back({c.i, c.j});
@@ -285,7 +274,7 @@ void ScmTerrain::check_bekker_strength(const std::vector<Hit>& hits, const Conta
     const double b = patches.bekker_width[p];
     if (soil_.Kc / b + soil_.Kphi > 0) continue;
     const auto h = std::find(patches.patch_of.begin(), patches.patch_of.end(), int(p)) - patches.patch_of.begin();
-    throw RunError(fmt::format("SCM: body '{}' at t = {:.4g} s: contact patch of Bekker width b = {:.3g} m gives Kc/b + Kphi = {:.4g} "
+    throw NoBekkerStrength(fmt::format("SCM: body '{}' at t = {:.4g} s: contact patch of Bekker width b = {:.3g} m gives Kc/b + Kphi = {:.4g} "
                                "Pa/m^n <= 0: this set's pressure-sinkage law has no strength for contacts narrower than "
                                "|Kc|/Kphi = {:.3g} m (calibrate on plates nearer this width, or fix Kc)",
                                bodies_[hits[h].body].name, time_, b, soil_.Kc / b + soil_.Kphi, std::abs(soil_.Kc) / soil_.Kphi));
@@ -313,7 +302,10 @@ void ScmTerrain::press(const Hit& hit, ScmNode& n, double b, double& displaced) 
   const Vec3<double> r = p - s.position;
   const Vec3<double> v = s.velocity + cross(s.omega, r);
   const Vec3<double> nrm = hit.normal;
-  if (settings_.effects.damping) sigma += soil_.damping * std::max(0.0, -dot(v, nrm));
+  settings_.effects.named.for_each_named([&](auto tag) {
+    using E = typename decltype(tag)::type;
+    E::pressure(settings_.effects.of<E>(), soil_, v, nrm, sigma);
+  });
   sigma = std::max(sigma, 0.0);
   // Janosi shear from the displacement accumulated along the body's surface during this contact.
   const Vec3<double> v_tan = v - dot(v, nrm) * nrm;
@@ -346,62 +338,18 @@ void ScmTerrain::release_left_nodes() {
   for (ScmNode* node : contact_nodes_) {
     ScmNode& n = *node;
     if (n.contact_step == steps_) continue;  // still in contact
-    if (!settings_.effects.elastic_unloading) n.plastic_sinkage = std::max(n.plastic_sinkage, n.last_sinkage);
+    double rut = std::max(n.plastic_sinkage, n.last_sinkage);  // the effects may keep another (elastic_unloading)
+    settings_.effects.named.for_each_named([&](auto tag) {
+      using E = typename decltype(tag)::type;
+      E::release(settings_.effects.of<E>(), n, rut);
+    });
+    n.plastic_sinkage = rut;
     n.last_sinkage = 0;
     n.shear = {};
     n.sigma = n.tau = 0;
     n.in_contact = false;
   }
   contact_nodes_.swap(scratch_.pressed_nodes);
-}
-
-// Bulldozing: the volume each patch pushed down plastically this step is laid on the nodes around
-// the patch, then the loose surface is relaxed until no slope between neighbours exceeds the angle
-// of repose. Nodes under a body are not moved.
-void ScmTerrain::bulldoze(const std::vector<Hit>& hits, const ContactPatches& patches, const std::vector<double>& displaced) {
-  if (hits.empty()) return;
-  const double g = settings_.grid;
-  auto in_contact = [&](int i, int j) {
-    const auto it = nodes_.find(key(i, j));
-    return it != nodes_.end() && it->second.in_contact;
-  };
-  const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
-  std::vector<std::vector<std::int64_t>> rims(patches.count());
-  int ilo = hits[0].i, ihi = ilo, jlo = hits[0].j, jhi = jlo;
-  for (std::size_t h = 0; h < hits.size(); ++h) {
-    ilo = std::min(ilo, hits[h].i); ihi = std::max(ihi, hits[h].i);
-    jlo = std::min(jlo, hits[h].j); jhi = std::max(jhi, hits[h].j);
-    for (int q = 0; q < 4; ++q) {
-      const int i = hits[h].i + di[q], j = hits[h].j + dj[q];
-      if (!in_contact(i, j)) rims[patches.patch_of[h]].push_back(key(i, j));
-    }
-  }
-  for (std::size_t p = 0; p < rims.size(); ++p) {
-    auto& rim = rims[p];
-    std::sort(rim.begin(), rim.end());
-    rim.erase(std::unique(rim.begin(), rim.end()), rim.end());
-    if (rim.empty() || displaced[p] <= 0) continue;
-    const double dh = displaced[p] / (double(rim.size()) * g * g);
-    for (const auto k : rim) max_level_offset_ = std::max(max_level_offset_, nodes_[k].level_offset += dh);
-  }
-  // Erosion sweeps over the region around the patches.
-  const double max_step = g * std::tan(settings_.repose_angle_deg * M_PI / 180.0);
-  const int margin = 6;
-  for (int sweep = 0; sweep < settings_.erosion_sweeps; ++sweep)
-    for (int i = ilo - margin; i <= ihi + margin; ++i)
-      for (int j = jlo - margin; j <= jhi + margin; ++j) {
-        if (in_contact(i, j)) continue;
-        for (int q = 0; q < 2; ++q) {  // +x and +y neighbours: each pair once
-          const int i2 = i + di[2 * q], j2 = j + dj[2 * q];
-          if (in_contact(i2, j2)) continue;
-          const double diff = free_surface(i, j) - free_surface(i2, j2);
-          if (std::abs(diff) <= max_step) continue;
-          const double move = 0.25 * (std::abs(diff) - max_step) * (diff > 0 ? 1 : -1);
-          nodes_[key(i, j)].level_offset -= move;
-          max_level_offset_ = std::max(max_level_offset_, nodes_[key(i2, j2)].level_offset += move);
-          max_level_offset_ = std::max(max_level_offset_, nodes_[key(i, j)].level_offset);
-        }
-      }
 }
 
 // A free body resting on the elastic soil is a mass on a spring of stiffness Ke x contact area;

@@ -5,20 +5,7 @@
 // elastic-plastic pressure (stiffness Ke up to the Bekker yield, plastic sinkage remembered) and
 // Janosi shear from each node's accumulated shear displacement.
 //
-// Effects (named in the settings; a name not given costs nothing):
-//   elastic_unloading  when a body leaves a node, the soil springs back by the elastic part it still
-//                      holds (sigma/Ke), even if the body left at once. In force terms this is
-//                      Chrono's SCM, whose stress counts from the plastic sinkage whatever level it
-//                      draws. Without the effect the rut stays where the body last held it (Chrono's
-//                      drawn level) and so does the soil's spring: a body rising slowly has had the
-//                      soil follow it up elastically, so its rut has sprung back; one that leaves at
-//                      once leaves the soil compressed, and that elastic part becomes permanent.
-//                      Keeping the deepest sinkage instead would let the soil push a rising body up
-//                      and then not be there to stop it coming down: energy from nowhere, which made
-//                      a slow wheel on stiff soil hop (results/scm_vs_wong_reece/hop.md).
-//   damping            a normal pressure R v_n against the speed of sinking (Chrono's "Damping").
-//   bulldozing         soil displaced by plastic sinkage is pushed to the patch's rim, then the
-//                      surface is eroded down to the angle of repose.
+// Effects (named in the settings; a name not given costs nothing): lowfi/effects/, one file each.
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -28,43 +15,35 @@
 
 #include "core/rigid_body.hpp"
 #include "core/shape_raycast.hpp"
+#include "core/errors.hpp"
 #include "core/terrain.hpp"
 #include "lowfi/contact_patches.hpp"
+#include "lowfi/effects/scm_effects.hpp"
+#include "lowfi/scm_nodes.hpp"
 #include "lowfi/scm_soil.hpp"
 
 namespace terracal::lowfi {
 
-struct ScmEffects {
-  bool elastic_unloading = false, damping = false, bulldozing = false;
+// A set whose pressure-sinkage law has no strength for a contact as narrow as the one a body made:
+// Kc/b + Kphi <= 0 (a negative Kc fitted on wider plates). The run cannot go on with this set.
+struct NoBekkerStrength : RunError {
+  using RunError::RunError;
 };
-inline const std::array<const char*, 3> kScmEffectNames = {"elastic_unloading", "damping", "bulldozing"};
-// Parses a list of effect names; throws InputError naming `key` and the unknown name.
-ScmEffects parse_scm_effects(const std::vector<std::string>& names, const std::string& key);
+
+// Names the effects in `names` (with their default settings); throws InputError naming `key` and an
+// unknown name.
+ScmEffectChoice parse_scm_effects(const std::vector<std::string>& names, const std::string& key);
 
 struct ScmSettings {
   double grid = 0.01;          // node spacing [m]
   double time_step = 1e-3;     // [s]
   Vec3<double> gravity{0, 0, -9.81};
   double surface_height = 0;   // the undisturbed surface is the plane z = surface_height
-  double repose_angle_deg = 30; // bulldozing: slope the eroded surface relaxes to
-  int erosion_sweeps = 5;      // bulldozing: relaxation sweeps per step
   bool coarse_rays = true;     // cull rays far above the soil with a coarse pass (same result, fewer rays)
-  ScmEffects effects;
+  ScmEffectChoice effects;
 };
 // Throws InputError naming the setting, its value and the allowed range.
 void validate(const ScmSettings& s, const ScmSoil& soil);
-
-// One stored node: what a node remembers between steps.
-struct ScmNode {
-  double plastic_sinkage = 0;  // z_p below the undisturbed surface
-  double last_sinkage = 0;     // the sinkage at the last step of the current contact
-  double sigma = 0;            // normal pressure at the last step [Pa]
-  double tau = 0;              // shear stress at the last step [Pa]
-  Vec3<double> shear{};        // accumulated shear displacement of the current contact [m]
-  double level_offset = 0;     // bulldozing: soil added (+) or removed (-) on top of the undisturbed surface
-  bool in_contact = false;
-  long contact_step = -1;      // the last step this node was in contact (releases the others)
-};
 
 struct ScmStepStats {
   int contact_nodes = 0, patches = 0, rays = 0;
@@ -107,7 +86,6 @@ class ScmTerrain final : public Terrain {
   const ScmNode* node(int i, int j) const;
 
  private:
-  static std::int64_t key(int i, int j) { return (std::int64_t(i) << 32) ^ std::int64_t(std::uint32_t(j)); }
   // A node under a body whose underside is below the soil's free surface there.
   struct Hit {
     int i, j, body;
@@ -137,7 +115,6 @@ class ScmTerrain final : public Terrain {
   void release_left_nodes();
   void check_step() const;
   void update_contact();  // rays, contact and wrenches at the current poses
-  void bulldoze(const std::vector<Hit>& hits, const ContactPatches& patches, const std::vector<double>& displaced);
 
   ScmSoil soil_;
   ScmSettings settings_;
@@ -146,7 +123,7 @@ class ScmTerrain final : public Terrain {
   std::vector<ShapeRaycaster> shapes_;
   std::vector<BodyState> states_;
   std::vector<BodyWrench> wrenches_;
-  std::unordered_map<std::int64_t, ScmNode> nodes_;
+  ScmNodeGrid nodes_;
   // Nodes in contact at the last step. Pointers into nodes_, which never erases, so they stay valid
   // (and they save a hash lookup per node and step when the nodes are released).
   std::vector<ScmNode*> contact_nodes_;
@@ -162,7 +139,6 @@ class ScmTerrain final : public Terrain {
     std::vector<double> displaced;  // plastic volume pushed aside per patch
   } scratch_;
   ScmStepStats stats_;
-  double max_level_offset_ = 0;  // the highest the soil was piled (bounds the rays from above)
   double time_ = 0;
   long steps_ = 0;
 };

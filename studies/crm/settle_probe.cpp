@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "highfi/crm_scene.hpp"
-#include "highfi/crm_solver.hpp"
-#include "highfi/crm_terrain.hpp"
+#include "highfi/crm/crm_scene.hpp"
+#include "highfi/crm/crm_solver.hpp"
+#include "highfi/crm/crm_terrain.hpp"
 
 using namespace terracal;
 
@@ -36,17 +36,18 @@ int main(int argc, char** argv) {
   sc.bin.size = {width, width, 1.5 * depth};
   sc.bin.fill_height = depth;
   sc.numerics.spacing = d0;
-  sc.effects.artificial_viscosity = true;  // as the rigs' sites
+  sc.effects.enable<ArtificialViscosity>();  // as the rigs' sites
   for (std::size_t at = 0; at < extra.size();) {
     std::size_t end = extra.find(',', at);
     if (end == std::string::npos) end = extra.size();
     const std::string item = extra.substr(at, end - at);
     at = end + 1;
     if (item == "shifting") {
-      sc.effects.shifting = true;
+      sc.effects.enable<Shifting>();
     } else if (item.rfind("hourglass_damping", 0) == 0) {
-      sc.effects.hourglass_damping = true;
-      if (item.size() > 18 && item[17] == ':') sc.numerics.hourglass_alpha = std::atof(item.c_str() + 18);
+      HourglassDamping::Settings hg;
+      if (item.size() > 18 && item[17] == ':') hg.alpha = std::atof(item.c_str() + 18);
+      sc.effects.enable<HourglassDamping>(hg);
     } else if (item.rfind("h:", 0) == 0) {
       sc.numerics.h_over_d0 = std::atof(item.c_str() + 2);  // the smoothing length h/d0 (not an effect)
     } else {
@@ -63,8 +64,8 @@ int main(int argc, char** argv) {
   std::printf("# bed %.3g m deep, %.3g x %.3g m, spacing %.3g m, h/d0 %.3g, jitter %.3g, %zu particles, step %.3g s; 4H/c = %.3g s; effects: "
               "artificial_viscosity%s%s\n",
               depth, width, width, d0, sc.numerics.h_over_d0, jitter, solver->soil().size(), dt, 4 * depth / sc.soil.sound_speed(),
-              sc.effects.shifting ? ", shifting" : "",
-              sc.effects.hourglass_damping ? (", hourglass_damping " + std::to_string(sc.numerics.hourglass_alpha)).c_str() : "");
+              sc.effects.on<Shifting>() ? ", shifting" : "",
+              sc.effects.on<HourglassDamping>() ? (", hourglass_damping " + std::to_string(sc.effects.of<HourglassDamping>().alpha)).c_str() : "");
   std::printf("t_s,kinetic_energy_J,rms_speed_m_s,max_speed_m_s,surface_m\n");
   const long every = std::max(1L, long(std::lround(0.025 / dt)));
   bool zeroed = !(t_zero > 0);

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 # The plate force at 2 cm sinkage from a `terracal crm` run's bodies.csv, as the convergence test
-# measures it (tests/highfi/crm_plate_study.hpp): a least-squares line of force against sinkage over
+# measures it (tests/highfi/crm/crm_plate_study.hpp): a least-squares line of force against sinkage over
 # 1.5-2.5 cm, read at 2 cm. Usage: force_at_2cm.py RUN/bodies.csv [...]
 import csv, sys
 for path in sys.argv[1:]:

@@ -41,7 +41,7 @@ Row scm_row(const std::string& name, const std::string& what, const lowfi::ScmSo
   lowfi::ScmSettings s;
   s.grid = 0.01;
   s.time_step = 1e-3;
-  s.effects.damping = damping;
+  if (damping) s.effects.enable<lowfi::ScmDamping>();
   const lowfi::ScmSite site(soil, s);
   rigs::WheelRun run;
   run.duration = 4.0;

@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/apps/cli_runner.hpp"
-#include "tests/highfi/crm_test_scenes.hpp"
+#include "tests/highfi/crm/crm_test_scenes.hpp"
 #include "tests/scratch_dir.hpp"
 
 using namespace terracal;
@@ -36,7 +36,7 @@ TEST_CASE("terracal crm: bad scenes exit 2 naming the key, value and range", "[a
   const std::vector<Case> cases = {
       {"spacing too coarse for the bin", [](auto& j) { j["resolution"]["spacing"] = 0.03; }, {"bin.size", "too coarse"}},
       {"spacing too coarse for the body", [](auto& j) { j["bodies"][0]["shape"]["radius"] = 0.015; }, {"shape.radius", "too coarse"}},
-      {"h/d0 out of range", [](auto& j) { j["resolution"]["h_over_d0"] = 2.0; }, {"h_over_d0", "2", "[1.0, 1.6]"}},
+      {"h/d0 out of range", [](auto& j) { j["resolution"]["h_over_d0"] = 2.0; }, {"h_over_d0", "2", "[1, 1.6]"}},
       {"marker velocity not a known rule", [](auto& j) { j["resolution"]["marker_velocity"] = "slip"; }, {"marker_velocity", "slip", "mirror"}},
       {"step above CFL", [](auto& j) { j["resolution"]["time_step"] = 1e-3; }, {"time_step", "0.001", "CFL"}},
       {"nu >= 0.5", [](auto& j) { j["soil"]["poisson_ratio"] = 0.5; }, {"poisson_ratio", "0.5", "[0, 0.5)"}},

@@ -14,6 +14,7 @@
 #include "core/gnuplot.hpp"
 #include "core/rng.hpp"
 #include "../scratch_dir.hpp"
+#include "tests/skip.hpp"
 
 namespace fs = std::filesystem;
 using terracal::bayes::FitSeries;
@@ -62,10 +63,7 @@ std::vector<FitSeries> two_plates() {
 }  // namespace
 
 TEST_CASE("plots: plot_fit writes a PNG with points, lines and bands", "[plots]") {
-  if (!terracal::gnuplot_available()) {
-    WARN("gnuplot not found on PATH: plot test skipped");
-    return;
-  }
+  if (!terracal::test::gnuplot_or_skip("plots: plot_fit writes a PNG with points, lines and bands")) return;
   ScratchDir dir("fit");
   const fs::path png = dir.path / "fit_pressure_sinkage.png";
   terracal::bayes::plot_fit(png.string(), "Pressure-sinkage fit (posterior mean, 95 % band)", "sinkage z [m]",
@@ -77,10 +75,7 @@ TEST_CASE("plots: plot_fit writes a PNG with points, lines and bands", "[plots]"
 }
 
 TEST_CASE("plots: plot_pairs writes a PNG of pairwise marginals", "[plots]") {
-  if (!terracal::gnuplot_available()) {
-    WARN("gnuplot not found on PATH: plot test skipped");
-    return;
-  }
+  if (!terracal::test::gnuplot_or_skip("plots: plot_pairs writes a PNG of pairwise marginals")) return;
   ScratchDir dir("pairs");
   const fs::path png = dir.path / "pairs.png";
   terracal::Rng rng(11);
@@ -110,10 +105,7 @@ TEST_CASE("plots: bad input and a missing folder throw RunError and leave no fil
 }
 
 TEST_CASE("plots: a gnuplot error is reported with gnuplot's message", "[plots]") {
-  if (!terracal::gnuplot_available()) {
-    WARN("gnuplot not found on PATH: plot test skipped");
-    return;
-  }
+  if (!terracal::test::gnuplot_or_skip("plots: a gnuplot error is reported with gnuplot's message")) return;
   ScratchDir dir("gnuplot_error");
   try {
     terracal::run_gnuplot("plot 'no_such_file.dat' using 1:2\n", dir.path.string());

@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "core/device_selftest.hpp"
+#include "tests/skip.hpp"
 #include "core/rng.hpp"
 
 using namespace terracal;
@@ -27,12 +28,8 @@ TEST_CASE("device self-test: the CPU loop computes a x + y", "[core][device]") {
 }
 
 TEST_CASE("device self-test: CUDA and CPU agree", "[core][device][gpu]") {
+  if (!test::cuda_device_or_skip("device self-test: CUDA and CPU agree")) return;
   const CudaDeviceInfo info = cuda_device_info();
-  if (!info.available) {
-    std::fprintf(stderr, "SKIPPED: GPU test 'CUDA and CPU agree': %s\n", info.description.c_str());
-    WARN("GPU test skipped: " << info.description);
-    return;
-  }
   INFO("device: " << info.description);
   std::vector<double> x(1 << 20), y(1 << 20);
   random_inputs(x, y, 6);

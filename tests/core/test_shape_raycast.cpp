@@ -1,5 +1,5 @@
 // Ray casts against body shapes: closed-form answers, agreement with the signed distance that
-// defines each solid (highfi/body_markers.cpp), and the BVH against a brute-force loop.
+// defines each solid (highfi/crm/body_markers.cpp), and the BVH against a brute-force loop.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -9,7 +9,7 @@
 
 #include "core/shape_raycast.hpp"
 #include "core/triangle_bvh.hpp"
-#include "highfi/body_markers.hpp"
+#include "highfi/crm/body_markers.hpp"
 
 using namespace terracal;
 using V = Vec3<double>;

@@ -233,7 +233,7 @@ TEST_CASE("SCM wheel on the Moon and on very soft soil: finite, in equilibrium, 
   const auto w = design_wheel();
   lowfi::ScmSettings earth_settings;
   earth_settings.grid = 0.01;
-  earth_settings.effects.damping = true;
+  earth_settings.effects.enable<lowfi::ScmDamping>();
   const auto earth = rigs::run_wheel(lowfi::ScmSite(sand, earth_settings), w, 0.2, run_of(3.0));
   lowfi::ScmSettings moon_settings = earth_settings;
   moon_settings.gravity = {0, 0, -1.62};
@@ -290,7 +290,7 @@ TEST_CASE("SCM coarse ray pass changes nothing: a grousered wheel gives the same
   w.grouser_thickness = 0.01;
   lowfi::ScmSettings fine;
   fine.grid = 0.01;
-  fine.effects.damping = true;
+  fine.effects.enable<lowfi::ScmDamping>();
   fine.coarse_rays = false;
   lowfi::ScmSettings coarse = fine;
   coarse.coarse_rays = true;

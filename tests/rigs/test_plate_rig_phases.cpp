@@ -7,8 +7,8 @@
 #include <algorithm>
 #include <string>
 
-#include "highfi/crm_terrain.hpp"
-#include "tests/highfi/crm_test_scenes.hpp"
+#include "highfi/crm/crm_terrain.hpp"
+#include "tests/highfi/crm/crm_test_scenes.hpp"
 #include "virtual_bevameter/plate_rig.hpp"
 
 using namespace terracal;

@@ -1,0 +1,21 @@
+#include "core/range.hpp"
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+
+namespace terracal {
+
+std::string Range::text() const {
+  std::string s = fmt::format("{}{}, {}{}", lo_open ? "(" : "[", lo, hi, hi_open ? ")" : "]");
+  if (unit && *unit) s += fmt::format(" {}", unit);
+  return s;
+}
+
+void check_range(const Range& r, double v, const std::string& key, const std::string& where) {
+  if (r.contains(v)) return;
+  const std::string prefix = where.empty() ? "" : where + ": ";
+  throw InputError(fmt::format("{}key '{}': value {} is outside the allowed range {}", prefix, key, v, r.text()));
+}
+
+}  // namespace terracal

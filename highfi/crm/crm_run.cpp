@@ -1,0 +1,241 @@
+#include "highfi/crm/crm_run.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+
+#include "core/atomic_file.hpp"
+#include "core/errors.hpp"
+#include "core/vtu_writer.hpp"
+#include "highfi/crm/crm_checkpoint.hpp"
+
+namespace terracal {
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+// The rms particle speed above which a settled bed counts as still moving: ten times that of a
+// quiet bed (about 0.002 m/s at 0.06 m, results/crm_settling).
+constexpr double kSettledRmsSpeed = 0.02;
+
+void check_finite(const CrmSolver& s, const char* phase) {
+  const SoilStats st = s.stats();
+  if (st.nonfinite > 0)
+    throw RunError(fmt::format("{}: {} particles have a non-finite state at step {} (t = {:.6g} s, dt = {:.4g} s); the "
+                               "scene is unstable at this step size: lower resolution.cfl or resolution.time_step",
+                               phase, st.nonfinite, s.steps(), s.time(), s.time_step()));
+}
+
+// Progress in the style of a long solver run: simulated time, speed and real-time factor.
+class Progress {
+ public:
+  Progress(std::string phase, double total, double every) : phase_(std::move(phase)), total_(total), every_(every) {}
+  void maybe(const CrmSolver& s, bool force = false) {
+    const auto now = Clock::now();
+    if (!force && std::chrono::duration<double>(now - last_).count() < every_) return;
+    const double wall = std::chrono::duration<double>(now - start_).count();
+    const long steps = s.steps() - first_step_;
+    const double rate = wall > 0 ? double(steps) / wall : 0;
+    const SoilStats st = s.stats();
+    spdlog::info("{}: t = {:.4f} / {:.4f} s, step {}, {:.3g} steps/s, {:.3g} particle-steps/s, real-time factor {:.3g}, "
+                 "max speed {:.3g} m/s, lost {}",
+                 phase_, s.time(), total_, s.steps(), rate, rate * double(s.engine().soil_count()),
+                 wall > 0 ? (s.time() - first_time_) / wall : 0.0, st.max_speed, st.lost);
+    last_ = now;
+  }
+  void start(const CrmSolver& s) {
+    first_step_ = s.steps();
+    first_time_ = s.time();
+    start_ = last_ = Clock::now();
+  }
+  double wall() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
+
+ private:
+  std::string phase_;
+  double total_, every_;
+  long first_step_ = 0;
+  double first_time_ = 0;
+  Clock::time_point start_ = Clock::now(), last_ = Clock::now();
+};
+
+}  // namespace
+
+HostSoil settled_bed(const CrmScene& scene, CrmDevice device, const fs::path& cache_dir, bool* from_cache) {
+  if (from_cache) *from_cache = false;
+  CrmScene bed = scene;
+  bed.bodies.clear();
+  // Effects that act only around moving bodies change nothing in a bed without them: the same bed.
+  for_each_effect(CrmEffects{}, [&](auto tag) {
+    using E = typename decltype(tag)::type;
+    if constexpr (E::kOnlyAroundBodies) bed.effects.disable<E>();
+  });
+  if (scene.settle_time <= 0) return initial_bed(bed);
+  const std::string key = crm_fingerprint(bed, device, false);
+  const fs::path file = cache_dir.empty() ? fs::path() : cache_dir / ("bed_" + key + ".h5");
+  if (!file.empty() && fs::exists(file)) {
+    CrmCheckpoint c = read_crm_checkpoint(file);
+    if (c.fingerprint == key) {
+      spdlog::info("settled bed from the cache: {}", file.string());
+      if (from_cache) *from_cache = true;
+      return std::move(c.soil);
+    }
+  }
+  const HostSoil start = settling_start(bed);
+  CrmSolver solver(bed, device, &start);
+  Progress progress("settling", scene.settle_time, scene.output.progress_seconds);
+  progress.start(solver);
+  while (solver.time() < scene.settle_time - 0.5 * solver.time_step()) {
+    solver.step();
+    progress.maybe(solver);
+  }
+  check_finite(solver, "settling");
+  progress.maybe(solver, true);
+  // A bed released from the exact lattice (settle_jitter 0) stays still for a while, then rearranges
+  // in a burst that takes about a second to die out (results/crm_settling; sooner in deeper beds and
+  // at finer spacing). A bed still moving carries its motion into the test: say so.
+  const SoilStats st = solver.stats();
+  const double rms_speed = st.mass > 0 ? std::sqrt(2 * st.kinetic_energy / st.mass) : 0;
+  if (rms_speed > kSettledRmsSpeed)
+    spdlog::warn("settling: the bed is still moving after {:.3g} s (rms particle speed {:.3g} m/s, largest {:.3g} m/s, above {} m/s): "
+                 "a test on it meets that motion; settle longer (--settle-time), see results/crm_settling",
+                 solver.time(), rms_speed, st.max_speed, kSettledRmsSpeed);
+  HostSoil soil = solver.soil();
+  // A settled bed starts at rest.
+  for (auto& v : soil.vel) v = {0, 0, 0, v.w == double(kParticleLost) ? v.w : double(kParticleActive)};
+  if (!file.empty()) {
+    fs::create_directories(cache_dir);
+    write_crm_checkpoint(file, {soil, {}, 0, 0, key});
+    spdlog::info("settled bed cached: {}", file.string());
+  }
+  return soil;
+}
+
+void write_crm_snapshot(const fs::path& file, const CrmSolver& solver) {
+  const HostSoil s = solver.soil();
+  std::vector<double> xyz;
+  xyz.reserve(3 * s.size());
+  VtuPointData vel{"velocity", 3, {}}, stress{"stress", 6, {}}, pressure{"pressure", 1, {}}, density{"density", 1, {}},
+      plastic{"plastic_strain", 1, {}}, status{"status", 1, {}}, id{"id", 1, {}};
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    xyz.insert(xyz.end(), {s.pos[i].x, s.pos[i].y, s.pos[i].z});
+    vel.values.insert(vel.values.end(), {float(s.vel[i].x), float(s.vel[i].y), float(s.vel[i].z)});
+    // ParaView's symmetric tensor order: xx, yy, zz, xy, yz, xz.
+    stress.values.insert(stress.values.end(), {float(s.s0[i].x), float(s.s0[i].y), float(s.s0[i].z), float(s.s0[i].w),
+                                               float(s.s1[i].y), float(s.s1[i].x)});
+    pressure.values.push_back(float(-(s.s0[i].x + s.s0[i].y + s.s0[i].z) / 3));
+    density.values.push_back(float(s.pos[i].w));
+    plastic.values.push_back(float(s.s1[i].z));
+    status.values.push_back(float(s.vel[i].w));
+    id.values.push_back(float(s.ids[i]));
+  }
+  write_vtu_points(file, xyz, {vel, stress, pressure, density, plastic, status, id}, solver.time());
+  // Body markers in a second file beside it.
+  std::vector<double> bxyz;
+  VtuPointData body{"body", 1, {}};
+  for (std::size_t b = 0; b < solver.bodies().size(); ++b) {
+    const BodyState& st = solver.bodies()[b];
+    for (const auto& l : solver.body_markers(b)) {
+      const Vec3<double> x = st.position + st.orientation.rotate(l);
+      bxyz.insert(bxyz.end(), {x.x, x.y, x.z});
+      body.values.push_back(float(b));
+    }
+  }
+  fs::path bfile = file;
+  bfile.replace_filename("bodies_" + file.filename().string());
+  write_vtu_points(bfile, bxyz, {body}, solver.time());
+}
+
+CrmRunSummary run_crm_scene(const CrmScene& scene, const CrmRunOptions& o) {
+  fs::create_directories(o.out);
+  CrmRunSummary sum;
+  const HostSoil bed = settled_bed(scene, o.device, o.cache_dir, &sum.bed_from_cache);
+  CrmSolver solver(scene, o.device, &bed);
+  const std::string fingerprint = crm_fingerprint(scene, o.device, true);
+  const fs::path ckpt = o.out / "checkpoint.h5";
+  std::vector<std::string> rows;
+  std::vector<std::pair<double, std::string>> snapshots;
+  const std::string header = "time_s,body,fx_N,fy_N,fz_N,tx_Nm,ty_Nm,tz_Nm,x_m,y_m,z_m,vx_mps,vy_mps,vz_mps";
+  if (o.resume) {
+    CrmCheckpoint c = read_crm_checkpoint(ckpt);
+    if (c.fingerprint != fingerprint)
+      throw InputError(fmt::format("--resume: {} belongs to a different scene or device (fingerprint {} != {})", ckpt.string(),
+                                   c.fingerprint, fingerprint));
+    solver.restore(c.soil, c.bodies, c.time, c.steps);
+    std::ifstream in(o.out / "bodies.csv");
+    std::string line;
+    std::getline(in, line);
+    while (std::getline(in, line))
+      if (std::stod(line.substr(0, line.find(','))) <= c.time + 0.5 * solver.time_step()) rows.push_back(line);
+    spdlog::info("resumed from {} at t = {} s, step {}", ckpt.string(), c.time, c.steps);
+  }
+  auto write_rows = [&] {
+    std::string text = header + "\n";
+    for (const auto& r : rows) text += r + "\n";
+    write_text_atomically((o.out / "bodies.csv").string(), text);
+  };
+  auto record = [&] {
+    for (std::size_t b = 0; b < solver.bodies().size(); ++b) {
+      const BodyWrench& w = solver.wrenches()[b];
+      const BodyState& s = solver.bodies()[b];
+      rows.push_back(fmt::format("{:.9g},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}",
+                                 solver.time(), scene.bodies[b].name, w.force.x, w.force.y, w.force.z, w.torque.x, w.torque.y,
+                                 w.torque.z, s.position.x, s.position.y, s.position.z, s.velocity.x, s.velocity.y, s.velocity.z));
+    }
+  };
+  auto checkpoint = [&] {
+    write_crm_checkpoint(ckpt, {solver.soil(), solver.bodies(), solver.time(), solver.steps(), fingerprint});
+    write_rows();
+  };
+  auto snapshot = [&] {
+    fs::create_directories(o.out / "vtu");
+    const std::string name = fmt::format("soil_{:08d}.vtu", solver.steps());
+    write_crm_snapshot(o.out / "vtu" / name, solver);
+    snapshots.emplace_back(solver.time(), "vtu/" + name);
+    write_pvd(o.out / "soil.pvd", snapshots);
+  };
+  spdlog::info("CRM: {} particles, {} markers, dt = {:.4g} s, {} on {}", solver.engine().soil_count(),
+               solver.engine().marker_count(), solver.time_step(), scene.duration, solver.engine().description());
+  Progress progress("run", scene.duration, scene.output.progress_seconds);
+  progress.start(solver);
+  const long first = solver.steps();
+  if (scene.output.vtu_every > 0 && !o.resume) snapshot();
+  while (solver.time() < scene.duration - 0.5 * solver.time_step()) {
+    solver.step();
+    const long k = solver.steps();
+    if (o.record_every > 0 && k % o.record_every == 0) record();
+    if (scene.output.vtu_every > 0 && k % scene.output.vtu_every == 0) snapshot();
+    if (scene.output.checkpoint_every > 0 && k % scene.output.checkpoint_every == 0) {
+      check_finite(solver, "run");
+      checkpoint();
+    }
+    progress.maybe(solver);
+  }
+  check_finite(solver, "run");
+  progress.maybe(solver, true);
+  checkpoint();
+  sum.particles = solver.engine().soil_count();
+  sum.markers = solver.engine().marker_count();
+  sum.steps = solver.steps() - first;
+  sum.time_step = solver.time_step();
+  sum.simulated = solver.time();
+  sum.wall_seconds = progress.wall();
+  sum.particle_steps_per_second = sum.wall_seconds > 0 ? double(sum.steps) * double(sum.particles) / sum.wall_seconds : 0;
+  sum.lost = solver.stats().lost;
+  sum.device = solver.engine().description();
+  if (sum.lost > 0) spdlog::warn("{} particles left the domain and were removed from the simulation", sum.lost);
+  nlohmann::ordered_json j = {{"particles", sum.particles}, {"markers", sum.markers}, {"steps", sum.steps},
+                              {"time_step_s", sum.time_step}, {"simulated_s", sum.simulated},
+                              {"wall_s", sum.wall_seconds}, {"particle_steps_per_second", sum.particle_steps_per_second},
+                              {"lost_particles", sum.lost}, {"bed_from_cache", sum.bed_from_cache}, {"device", sum.device},
+                              {"device_bytes_per_particle", double(solver.engine().device_bytes()) / double(std::max<std::size_t>(1, sum.particles))}};
+  write_text_atomically((o.out / "summary.json").string(), j.dump(2) + "\n");
+  return sum;
+}
+
+}  // namespace terracal

@@ -1,0 +1,39 @@
+#pragma once
+// Running a CRM scene end to end: the settled bed (from the cache or settled now), the time loop
+// with progress lines, stability checks, ParaView snapshots, body wrenches and checkpoints.
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "highfi/crm/crm_solver.hpp"
+
+namespace terracal {
+
+struct CrmRunOptions {
+  std::filesystem::path out;                     // bodies.csv, summary.json, checkpoint.h5, soil.pvd + vtu/
+  CrmDevice device = CrmDevice::kCpu;
+  std::filesystem::path cache_dir;               // settled beds; empty = no cache
+  bool resume = false;                           // continue from out/checkpoint.h5
+  long record_every = 10;                        // steps between rows of bodies.csv
+};
+
+struct CrmRunSummary {
+  std::size_t particles = 0, markers = 0;
+  long steps = 0;
+  double time_step = 0, simulated = 0, wall_seconds = 0, particle_steps_per_second = 0;
+  long lost = 0;
+  bool bed_from_cache = false;
+  std::string device;
+};
+
+// The bed of a scene after settle_time seconds without bodies; cached per (soil, bin, spacing,
+// numerics, device) under cache_dir when that is not empty.
+HostSoil settled_bed(const CrmScene& scene, CrmDevice device, const std::filesystem::path& cache_dir, bool* from_cache = nullptr);
+
+// Runs the scene for scene.duration; throws RunError naming the step when the state turns non-finite.
+CrmRunSummary run_crm_scene(const CrmScene& scene, const CrmRunOptions& options);
+
+// Writes the soil (and body markers) as VTU for ParaView.
+void write_crm_snapshot(const std::filesystem::path& file, const CrmSolver& solver);
+
+}  // namespace terracal

@@ -1,0 +1,59 @@
+#pragma once
+// CRM behind the rigs' Terrain interface: a CrmSite settles its bed once (or loads it from the
+// cache) and starts every terrain from it; CrmTerrain steps the CRM solver with the rig's bodies.
+#include <filesystem>
+#include <memory>
+
+#include "core/terrain.hpp"
+#include "highfi/crm/crm_run.hpp"
+#include "highfi/crm/crm_solver.hpp"
+
+namespace terracal {
+
+// The soil surface of a bed: the mean height of its top layer of particles in the middle half of the
+// bin (away from the walls' meniscus), plus half a spacing. Throws RunError for a bed with no
+// particles there.
+double bed_surface_height(const HostSoil& bed, const CrmScene& scene);
+
+class CrmTerrain final : public Terrain {
+ public:
+  CrmTerrain(const CrmScene& scene, CrmDevice device, const HostSoil& bed) : solver_(scene, device, &bed) {}
+  std::string description() const override;
+  void step() override;
+  double time() const override { return solver_.time(); }
+  double time_step() const override { return solver_.time_step(); }
+  const std::vector<BodyState>& bodies() const override { return solver_.bodies(); }
+  const std::vector<BodyWrench>& wrenches() const override { return solver_.wrenches(); }
+  const CrmSolver& solver() const { return solver_; }
+
+ private:
+  CrmSolver solver_;
+};
+
+class CrmSite final : public TerrainSite {
+ public:
+  // `base` holds the soil, bin, resolution, effects and settle time (its bodies are ignored); the
+  // bed is settled now, or read from cache_dir when it holds one for the same soil, bin and numerics.
+  CrmSite(const CrmScene& base, CrmDevice device, const std::filesystem::path& cache_dir);
+  std::string name() const override { return "crm"; }
+  std::string description() const override;
+  double surface_height() const override { return surface_; }
+  Vec3<double> gravity() const override { return base_.soil.gravity; }
+  Vec3<double> centre() const override;
+  double half_length() const override;
+  double half_width() const override { return 0.5 * base_.bin.size.y; }
+  std::unique_ptr<Terrain> make(std::vector<RigidBody> bodies, double duration) const override;
+  const CrmScene& base() const { return base_; }
+  bool bed_from_cache() const { return from_cache_; }
+  std::size_t particles() const { return bed_.size(); }
+
+ private:
+  CrmScene base_;
+  double requested_step_ = 0;  // the scene's time step as given (0: from the CFL limit with the bodies' speed)
+  CrmDevice device_;
+  HostSoil bed_;
+  double surface_ = 0;
+  bool from_cache_ = false;
+};
+
+}  // namespace terracal

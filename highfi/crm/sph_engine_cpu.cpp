@@ -1,0 +1,111 @@
+// The CPU backend of the CRM engine: host memory, OpenMP loops, a stable counting sort by cell
+// and double-precision reductions. The physics is the shared functors of sph_stage.hpp.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include <omp.h>
+
+#include "core/errors.hpp"
+#include "core/parallel_for.hpp"
+#include "highfi/crm/sph_engine_impl.hpp"
+
+namespace terracal {
+namespace {
+
+struct CpuBackend {
+  static std::string name() { return "CPU (OpenMP, " + std::to_string(omp_get_max_threads()) + " threads)"; }
+  static std::size_t scratch_bytes() { return 0; }
+  // 8 records of padding: the SIMD neighbour filter reads up to 7 records past a row's end.
+  template <typename U>
+  static U* alloc(std::size_t n) { return new U[n + 8](); }
+  template <typename U>
+  static void release(U* p) { delete[] p; }
+  template <typename U>
+  static void upload(U* dst, const U* src, std::size_t n) { if (n) std::memcpy(static_cast<void*>(dst), src, n * sizeof(U)); }
+  template <typename U>
+  static void download(U* dst, const U* src, std::size_t n) { if (n) std::memcpy(static_cast<void*>(dst), src, n * sizeof(U)); }
+  template <typename U>
+  static void copy(U* dst, const U* src, std::size_t n) { if (n) std::memcpy(static_cast<void*>(dst), src, n * sizeof(U)); }
+  template <typename F>
+  static void parallel_for(long n, const F& f) { parallel_for_cpu(n, f); }
+  template <typename F>
+  static void parallel_for_heavy(long n, const F& f) { parallel_for_cpu_balanced(n, f); }
+  static void fill_begin(int* begin, int count, int value) { std::fill(begin, begin + count, value); }
+
+  // Stable counting sort of values by key (keys in [0, bins)); begin[c] is the first sorted index of
+  // cell c (size bins + 1). Stable, so it gives the same order as the GPU's radix sort.
+  static const int* sort_cells(int n, int bins, int* keys, int* vals, int* /*keys_alt*/, int* vals_alt, int* begin) {
+    std::fill(begin, begin + bins + 1, 0);
+    for (int i = 0; i < n; ++i) ++begin[keys[i] + 1];
+    for (int c = 0; c < bins; ++c) begin[c + 1] += begin[c];
+    std::vector<int> next(begin, begin + bins);
+    for (int i = 0; i < n; ++i) vals_alt[next[std::size_t(keys[i])]++] = vals[i];
+    return vals_alt;
+  }
+
+  template <typename T>
+  static void wrench_sum(const MarkerArrays<T>& mk, long nm, const BodyPose<T>* poses, int bodies, double* /*scratch*/,
+                         double* out) {
+    std::fill(out, out + 6 * bodies, 0.0);
+    for (long m = 0; m < nm; ++m) {
+      const int b = int(mk.local[m].w);
+      const Vec3<double> f{double(mk.force[m].x), double(mk.force[m].y), double(mk.force[m].z)};
+      const Vec3<double> c{double(poses[b].center.x), double(poses[b].center.y), double(poses[b].center.z)};
+      const Vec3<double> x{double(mk.pos[m].x), double(mk.pos[m].y), double(mk.pos[m].z)};
+      const Vec3<double> t = cross(x - c, f);
+      double* o = out + 6 * b;
+      o[0] += f.x; o[1] += f.y; o[2] += f.z;
+      o[3] += t.x; o[4] += t.y; o[5] += t.z;
+    }
+  }
+
+  template <typename T>
+  static SoilStats soil_stats(const SoilArrays<T>& s, long n, double mass) {
+    SoilStats st;
+    double ke = 0, px = 0, py = 0, pz = 0, vmax = 0;
+    long bad = 0, lost = 0, frozen = 0;
+#pragma omp parallel for reduction(+ : ke, px, py, pz, bad, lost, frozen) reduction(max : vmax)
+    for (long i = 0; i < n; ++i) {
+      const Vec4<T> v = s.vel[i], p = s.pos[i];
+      const double vx = v.x, vy = v.y, vz = v.z;
+      const bool finite = std::isfinite(vx) && std::isfinite(vy) && std::isfinite(vz) && std::isfinite(double(p.x)) &&
+                          std::isfinite(double(p.y)) && std::isfinite(double(p.z)) && std::isfinite(double(p.w));
+      if (!finite) { ++bad; continue; }
+      if (v.w == T(kParticleLost)) { ++lost; continue; }
+      if (v.w == T(kParticleFrozen)) ++frozen;
+      const double v2 = vx * vx + vy * vy + vz * vz;
+      ke += 0.5 * mass * v2;
+      px += mass * vx; py += mass * vy; pz += mass * vz;
+      vmax = std::max(vmax, std::sqrt(v2));
+    }
+    st.mass = mass * double(n - lost - bad);
+    st.kinetic_energy = ke;
+    st.momentum = {px, py, pz};
+    st.max_speed = vmax;
+    st.nonfinite = bad;
+    st.lost = lost;
+    st.frozen = frozen;
+    return st;
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<SphEngine> make_cpu_engine(const EngineSetup& setup, CrmPrecision precision) {
+  if (precision == CrmPrecision::kDouble) return std::make_unique<SphEngineImpl<double, CpuBackend>>(setup);
+  return std::make_unique<SphEngineImpl<float, CpuBackend>>(setup);
+}
+
+#if !defined(TERRACAL_HAVE_CUDA)
+std::unique_ptr<SphEngine> make_cuda_engine(const EngineSetup&) {
+  throw RunError("this terracal was built without CUDA (TERRACAL_CUDA=OFF or no nvcc): use --device cpu");
+}
+bool cuda_engine_available(std::string* why) {
+  if (why) *why = "built without CUDA";
+  return false;
+}
+#endif
+
+}  // namespace terracal

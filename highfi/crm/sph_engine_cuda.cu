@@ -1,0 +1,229 @@
+// The CUDA backend of the CRM engine: device memory (never managed memory), the shared functors of
+// sph_stage.hpp launched by parallel_for_cuda, CUB's stable radix sort by cell, and double-precision
+// reductions with warp shuffles and atomics.
+#include <cub/device/device_radix_sort.cuh>
+
+#include <cmath>
+#include <cstdlib>
+#include <string>
+
+#include "core/cuda_check.hpp"
+#include "core/parallel_for_cuda.cuh"
+#include "highfi/crm/sph_engine_impl.hpp"
+
+namespace terracal {
+namespace {
+
+constexpr int kDefaultMinBlocks = 4;  // 3.96e8 vs 2.98e8 particle-steps/s at 4M on an H100 (bench/RESULTS.md)
+
+// Scratch memory of CUB's sort, grown on demand and kept for the engine's lifetime.
+struct CubScratch {
+  void* p = nullptr;
+  std::size_t bytes = 0;
+  ~CubScratch() { if (p) cudaFree(p); }
+  void* ensure(std::size_t n) {
+    if (n > bytes) {
+      if (p) TERRACAL_CUDA_CHECK(cudaFree(p));
+      TERRACAL_CUDA_CHECK(cudaMalloc(&p, n));
+      bytes = n;
+    }
+    return p;
+  }
+};
+CubScratch& cub_scratch() {
+  static CubScratch s;
+  return s;
+}
+
+struct CellBegin {  // begin[c] = first sorted index with key >= c (binary search)
+  const int* keys;
+  int n;
+  int* begin;
+  __device__ void operator()(long c) const {
+    int lo = 0, hi = n;
+    while (lo < hi) {
+      const int mid = (lo + hi) >> 1;
+      if (keys[mid] < int(c)) lo = mid + 1;
+      else hi = mid;
+    }
+    begin[c] = lo;
+  }
+};
+
+struct FillInt {
+  int* p;
+  int v;
+  __device__ void operator()(long i) const { p[i] = v; }
+};
+
+__device__ inline double warp_sum(double v) {
+  for (int o = 16; o > 0; o >>= 1) v += __shfl_down_sync(0xffffffffu, v, o);
+  return v;
+}
+__device__ inline double warp_max(double v) {
+  for (int o = 16; o > 0; o >>= 1) v = fmax(v, __shfl_down_sync(0xffffffffu, v, o));
+  return v;
+}
+// atomicMax for non-negative doubles: their bit patterns order like the values.
+__device__ inline void atomic_max_nonneg(double* a, double v) {
+  atomicMax(reinterpret_cast<unsigned long long*>(a), static_cast<unsigned long long>(__double_as_longlong(v)));
+}
+
+template <typename T>
+__global__ void wrench_kernel(MarkerArrays<T> mk, long nm, const BodyPose<T>* poses, int bodies, double* out) {
+  // Each thread sums a strided share per body; bodies are few (one pass per body keeps it simple).
+  for (int b = 0; b < bodies; ++b) {
+    double acc[6] = {0, 0, 0, 0, 0, 0};
+    const Vec3<double> c{double(poses[b].center.x), double(poses[b].center.y), double(poses[b].center.z)};
+    for (long m = blockIdx.x * long(blockDim.x) + threadIdx.x; m < nm; m += long(blockDim.x) * gridDim.x) {
+      if (int(mk.local[m].w) != b) continue;
+      const Vec4<T> f4 = mk.force[m], x4 = mk.pos[m];
+      const Vec3<double> f{double(f4.x), double(f4.y), double(f4.z)};
+      const Vec3<double> t = cross(Vec3<double>{double(x4.x), double(x4.y), double(x4.z)} - c, f);
+      acc[0] += f.x; acc[1] += f.y; acc[2] += f.z;
+      acc[3] += t.x; acc[4] += t.y; acc[5] += t.z;
+    }
+    for (int q = 0; q < 6; ++q) {
+      const double s = warp_sum(acc[q]);
+      if ((threadIdx.x & 31) == 0 && s != 0.0) atomicAdd(out + 6 * b + q, s);
+    }
+  }
+}
+
+template <typename T>
+__global__ void stats_kernel(SoilArrays<T> s, long n, double mass, double* out) {
+  // out: ke, px, py, pz, vmax, nonfinite, lost, frozen
+  double acc[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  for (long i = blockIdx.x * long(blockDim.x) + threadIdx.x; i < n; i += long(blockDim.x) * gridDim.x) {
+    const Vec4<T> v = s.vel[i], p = s.pos[i];
+    const double vx = v.x, vy = v.y, vz = v.z;
+    const bool finite = isfinite(vx) && isfinite(vy) && isfinite(vz) && isfinite(double(p.x)) &&
+                        isfinite(double(p.y)) && isfinite(double(p.z)) && isfinite(double(p.w));
+    if (!finite) { acc[5] += 1; continue; }
+    if (v.w == T(kParticleLost)) { acc[6] += 1; continue; }
+    if (v.w == T(kParticleFrozen)) acc[7] += 1;
+    const double v2 = vx * vx + vy * vy + vz * vz;
+    acc[0] += 0.5 * mass * v2;
+    acc[1] += mass * vx; acc[2] += mass * vy; acc[3] += mass * vz;
+    acc[4] = fmax(acc[4], sqrt(v2));
+  }
+  for (int q = 0; q < 8; ++q) {
+    const double r = q == 4 ? warp_max(acc[q]) : warp_sum(acc[q]);
+    if ((threadIdx.x & 31) == 0) {
+      if (q == 4) atomic_max_nonneg(out + 4, r);
+      else if (r != 0.0) atomicAdd(out + q, r);
+    }
+  }
+}
+
+struct CudaBackend {
+  static std::string name() {
+    cudaDeviceProp prop{};
+    TERRACAL_CUDA_CHECK(cudaGetDeviceProperties(&prop, 0));
+    return std::string("CUDA (") + prop.name + ")";
+  }
+  static std::size_t scratch_bytes() { return cub_scratch().bytes; }
+  template <typename U>
+  static U* alloc(std::size_t n) {
+    U* p = nullptr;
+    TERRACAL_CUDA_CHECK(cudaMalloc(&p, (n > 0 ? n : 1) * sizeof(U)));
+    TERRACAL_CUDA_CHECK(cudaMemset(p, 0, (n > 0 ? n : 1) * sizeof(U)));
+    return p;
+  }
+  template <typename U>
+  static void release(U* p) { if (p) cudaFree(p); }
+  template <typename U>
+  static void upload(U* dst, const U* src, std::size_t n) {
+    if (n) TERRACAL_CUDA_CHECK(cudaMemcpy(dst, src, n * sizeof(U), cudaMemcpyHostToDevice));
+  }
+  template <typename U>
+  static void download(U* dst, const U* src, std::size_t n) {
+    if (n) TERRACAL_CUDA_CHECK(cudaMemcpy(dst, src, n * sizeof(U), cudaMemcpyDeviceToHost));
+  }
+  template <typename U>
+  static void copy(U* dst, const U* src, std::size_t n) {
+    if (n) TERRACAL_CUDA_CHECK(cudaMemcpy(dst, src, n * sizeof(U), cudaMemcpyDeviceToDevice));
+  }
+  template <typename F>
+  static void parallel_for(long n, const F& f) { parallel_for_cuda(n, f); }
+  // The neighbour-loop stages; TERRACAL_CUDA_MIN_BLOCKS (1-4) picks the occupancy/register trade-off
+  // for tuning runs (bench/RESULTS.md); the default is the measured best.
+  template <typename F>
+  static void parallel_for_heavy(long n, const F& f) {
+    static const int min_blocks = [] {
+      const char* e = std::getenv("TERRACAL_CUDA_MIN_BLOCKS");
+      const int v = e ? std::atoi(e) : kDefaultMinBlocks;
+      return v >= 1 && v <= 4 ? v : kDefaultMinBlocks;
+    }();
+    switch (min_blocks) {
+      case 1: parallel_for_cuda_bounded<1>(n, f); break;
+      case 2: parallel_for_cuda_bounded<2>(n, f); break;
+      case 3: parallel_for_cuda_bounded<3>(n, f); break;
+      default: parallel_for_cuda_bounded<4>(n, f); break;
+    }
+  }
+  static void fill_begin(int* begin, int count, int value) { parallel_for_cuda(count, FillInt{begin, value}); }
+
+  static const int* sort_cells(int n, int bins, int* keys, int* vals, int* keys_alt, int* vals_alt, int* begin) {
+    int end_bit = 1;
+    while ((1 << end_bit) <= bins && end_bit < 31) ++end_bit;
+    std::size_t bytes = 0;
+    TERRACAL_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, bytes, keys, keys_alt, vals, vals_alt, n, 0, end_bit));
+    void* tmp = cub_scratch().ensure(bytes);
+    TERRACAL_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(tmp, bytes, keys, keys_alt, vals, vals_alt, n, 0, end_bit));
+    parallel_for_cuda(long(bins) + 1, CellBegin{keys_alt, n, begin});
+    return vals_alt;
+  }
+
+  template <typename T>
+  static void wrench_sum(const MarkerArrays<T>& mk, long nm, const BodyPose<T>* poses, int bodies, double* scratch,
+                         double* out) {
+    TERRACAL_CUDA_CHECK(cudaMemset(scratch, 0, 6 * sizeof(double) * bodies));
+    const int threads = 256;
+    const int blocks = int(std::min<long>((nm + threads - 1) / threads, 1024));
+    wrench_kernel<<<blocks, threads>>>(mk, nm, poses, bodies, scratch);
+    TERRACAL_CUDA_CHECK(cudaGetLastError());
+    TERRACAL_CUDA_CHECK(cudaMemcpy(out, scratch, 6 * sizeof(double) * bodies, cudaMemcpyDeviceToHost));
+  }
+
+  template <typename T>
+  static SoilStats soil_stats(const SoilArrays<T>& s, long n, double mass) {
+    double* d = alloc<double>(8);
+    const int threads = 256;
+    const int blocks = int(std::max<long>(1, std::min<long>((n + threads - 1) / threads, 2048)));
+    stats_kernel<<<blocks, threads>>>(s, n, mass, d);
+    TERRACAL_CUDA_CHECK(cudaGetLastError());
+    double h[8];
+    download(h, d, 8);
+    release(d);
+    SoilStats st;
+    st.kinetic_energy = h[0];
+    st.momentum = {h[1], h[2], h[3]};
+    st.max_speed = h[4];
+    st.nonfinite = long(h[5]);
+    st.lost = long(h[6]);
+    st.frozen = long(h[7]);
+    st.mass = mass * double(n - st.lost - st.nonfinite);
+    return st;
+  }
+};
+
+}  // namespace
+
+bool cuda_engine_available(std::string* why) {
+  int count = 0;
+  const cudaError_t err = cudaGetDeviceCount(&count);
+  if (err != cudaSuccess || count == 0) {
+    if (why) *why = err == cudaSuccess ? "no CUDA device found" : cudaGetErrorString(err);
+    return false;
+  }
+  return true;
+}
+
+std::unique_ptr<SphEngine> make_cuda_engine(const EngineSetup& setup) {
+  std::string why;
+  if (!cuda_engine_available(&why)) throw RunError("--device cuda: " + why);
+  return std::make_unique<SphEngineImpl<float, CudaBackend>>(setup);
+}
+
+}  // namespace terracal

@@ -1,0 +1,319 @@
+#pragma once
+// The step algorithm, written once over a backend B that supplies memory, parallel_for, a stable
+// sort by cell and reductions (sph_engine_cpu.cpp, sph_engine_cuda.cu). Included by both.
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <initializer_list>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "highfi/crm/marker_stage.hpp"
+#include "highfi/crm/soil_stage.hpp"
+#include "highfi/crm/sph_engine.hpp"
+#include "highfi/crm/sph_sort.hpp"
+
+namespace terracal {
+
+template <typename T>
+inline Vec4<T> to_t(const Vec4<double>& v) { return {T(v.x), T(v.y), T(v.z), T(v.w)}; }
+template <typename T>
+inline Vec3<T> to_t(const Vec3<double>& v) { return {T(v.x), T(v.y), T(v.z)}; }
+
+template <typename T>
+SphConstants<T> constants_in(const SphConstants<double>& c) {
+  SphConstants<T> k;
+  k.kernel.type = c.kernel.type;
+  k.kernel.h = T(c.kernel.h);
+  k.kernel.inv_h = T(c.kernel.inv_h);
+  k.kernel.alpha = T(c.kernel.alpha);
+  k.model = {T(c.model.shear_modulus), T(c.model.bulk_modulus), T(c.model.mu_s), T(c.model.mu_2), T(c.model.I0),
+             T(c.model.grain_diameter), T(c.model.rho0), T(c.model.cohesion)};
+  k.mass = T(c.mass);
+  k.gravity = to_t<T>(c.gravity);
+  k.free_surface_support = T(c.free_surface_support);
+  k.spacing = T(c.spacing);
+  k.marker_velocity = c.marker_velocity;
+  return k;
+}
+template <typename T>
+GridGeometry<T> grid_in(const GridGeometry<double>& g) {
+  return {to_t<T>(g.origin), T(g.inv_cell), g.nx, g.ny, g.nz, g.reach};
+}
+
+// Calls f(slot) for the record slot of every named effect that keeps a record per particle.
+inline void for_each_named_record(const CrmEffectSet& effects, const std::function<void(int)>& f) {
+  effects.for_each_named([&](auto tag) {
+    using E = typename decltype(tag)::type;
+    if constexpr (E::kRecord) f(kRecordSlot<E>);
+  });
+}
+
+// Device-side storage of one soil state: four Vec4 arrays, and one per named effect with a record.
+template <typename T, typename B>
+struct SoilBuffers {
+  SoilArrays<T> a;
+  void allocate(std::size_t n, const CrmEffectSet& effects) {
+    a.pos = B::template alloc<Vec4<T>>(n);
+    a.vel = B::template alloc<Vec4<T>>(n);
+    a.s0 = B::template alloc<Vec4<T>>(n);
+    a.s1 = B::template alloc<Vec4<T>>(n);
+    for_each_named_record(effects, [&](int slot) { a.record[slot] = B::template alloc<Vec4<T>>(n); });
+  }
+  void release() {
+    B::release(a.pos);
+    B::release(a.vel);
+    B::release(a.s0);
+    B::release(a.s1);
+    for (Vec4<T>* r : a.record)
+      if (r) B::release(r);
+  }
+};
+
+template <typename T, typename B>
+class SphEngineImpl final : public SphEngine {
+ public:
+  explicit SphEngineImpl(const EngineSetup& s)
+      : k_(constants_in<T>(s.constants)),
+        ec_(s.template effect_constants<T>()),
+        effects_(s.effects),
+        grid_(grid_in<T>(s.grid)),
+        n_(s.soil.size()),
+        nm_(s.markers.size()),
+        bodies_(s.bodies),
+        room_lo_(to_t<T>(s.room_lo)),
+        room_hi_(to_t<T>(s.room_hi)) {
+    for_each_named_record(effects_, [&](int) { ++records_; });
+    const std::size_t nn = n_ > 0 ? n_ : 1, mm = nm_ > 0 ? nm_ : 1;
+    A_.allocate(nn, effects_);
+    B_.allocate(nn, effects_);
+    ids_ = B::template alloc<int>(nn);
+    keys_ = B::template alloc<int>(std::max(nn, mm));
+    vals_ = B::template alloc<int>(std::max(nn, mm));
+    keys_alt_ = B::template alloc<int>(std::max(nn, mm));
+    vals_alt_ = B::template alloc<int>(std::max(nn, mm));
+    const std::size_t cells = std::size_t(grid_.cells()) + 2;
+    soil_begin_ = B::template alloc<int>(cells);
+    marker_begin_ = B::template alloc<int>(cells);
+    mk_.pos = B::template alloc<Vec4<T>>(mm);
+    mk_.vel = B::template alloc<Vec4<T>>(mm);
+    mk_.s0 = B::template alloc<Vec4<T>>(mm);
+    mk_.s1 = B::template alloc<Vec4<T>>(mm);
+    mk_.local = B::template alloc<Vec4<T>>(mm);
+    mk_.wall_vel = B::template alloc<Vec4<T>>(mm);
+    mk_.force = B::template alloc<Vec4<T>>(mm);
+    // Normals only for the marker rules that need them: the others neither store nor sort them.
+    const std::size_t mn = needs_wall_normals(k_.marker_velocity) ? mm : 1;
+    mk_.normal = B::template alloc<Vec4<T>>(mn);
+    canon_.pos = B::template alloc<Vec4<T>>(mm);
+    canon_.local = B::template alloc<Vec4<T>>(mm);
+    canon_.wall_vel = B::template alloc<Vec4<T>>(mm);
+    canon_.normal = B::template alloc<Vec4<T>>(mn);
+    poses_ = B::template alloc<BodyPose<T>>(std::size_t(bodies_));
+    boxes_ = B::template alloc<ActiveBox<T>>(16);
+    wrench_ = B::template alloc<double>(6 * std::size_t(bodies_));
+    upload(s.soil);
+    upload_markers(s.markers);
+    std::vector<BodyPose<double>> rest(static_cast<std::size_t>(bodies_));
+    set_poses(rest);
+  }
+  ~SphEngineImpl() override {
+    A_.release();
+    B_.release();
+    for (int* p : {ids_, keys_, vals_, keys_alt_, vals_alt_, soil_begin_, marker_begin_}) B::release(p);
+    Vec4<T>* const marker_fields[] = {mk_.pos,    mk_.vel,       mk_.s0,          mk_.s1,        mk_.local, mk_.wall_vel,
+                                        mk_.force,  mk_.normal,    canon_.pos,      canon_.local,  canon_.wall_vel,
+                                        canon_.normal};
+    for (Vec4<T>* p : marker_fields) B::release(p);
+    B::release(poses_);
+    B::release(boxes_);
+    B::release(wrench_);
+  }
+
+  std::string description() const override { return B::name() + (sizeof(T) == 8 ? " float64" : " float32"); }
+  std::size_t soil_count() const override { return n_; }
+  std::size_t marker_count() const override { return nm_; }
+  std::size_t device_bytes() const override {
+    const std::size_t per_soil = 2 * (4 + std::size_t(records_)) * sizeof(Vec4<T>) + 5 * sizeof(int);
+    const std::size_t per_marker = (needs_wall_normals(k_.marker_velocity) ? 12 : 10) * sizeof(Vec4<T>);
+    return n_ * per_soil + nm_ * per_marker + 2 * (std::size_t(grid_.cells()) + 2) * sizeof(int) + B::scratch_bytes();
+  }
+
+  void set_poses(const std::vector<BodyPose<double>>& poses) override {
+    std::vector<BodyPose<T>> p(poses.size());
+    bool any_moving = false;
+    for (std::size_t b = 0; b < poses.size(); ++b) {
+      p[b].center = to_t<T>(poses[b].center);
+      p[b].velocity = to_t<T>(poses[b].velocity);
+      p[b].omega = to_t<T>(poses[b].omega);
+      for (int q = 0; q < 9; ++q) p[b].R[q] = T(poses[b].R[q]);
+      p[b].moving = poses[b].moving;
+      any_moving = any_moving || poses[b].moving;
+    }
+    B::upload(poses_, p.data(), p.size());
+    if (nm_ == 0) {
+      sort_markers();
+      return;
+    }
+    if (any_moving) B::parallel_for(long(nm_), MarkerPoseUpdate<T>{poses_, canon_});
+    if (any_moving || !markers_sorted_) sort_markers();
+  }
+
+  void set_active(const std::vector<ActiveBox<double>>& boxes) override {
+    if (boxes.size() > 16) throw RunError("active_domain: at most 16 moving bodies");
+    std::vector<ActiveBox<T>> b(boxes.size());
+    for (std::size_t q = 0; q < boxes.size(); ++q) b[q] = {to_t<T>(boxes[q].lo), to_t<T>(boxes[q].hi)};
+    if (!b.empty()) B::upload(boxes_, b.data(), b.size());
+    if (b.empty()) {
+      // Everyone active: a single box that covers the whole grid.
+      ActiveBox<T> all{grid_.origin, grid_.origin + (T(1) / grid_.inv_cell) * Vec3<T>{T(grid_.nx), T(grid_.ny), T(grid_.nz)}};
+      B::upload(boxes_, &all, 1);
+    }
+    B::parallel_for(long(n_), MarkActive<T>{boxes_, int(std::max<std::size_t>(b.size(), 1)), A_.a});
+  }
+
+  void begin_step() override {
+    if (n_ == 0) {
+      B::fill_begin(soil_begin_, grid_.cells() + 2, 0);
+      return;
+    }
+    B::parallel_for(long(n_), SoilCellKey<T>{grid_, A_.a, room_lo_, room_hi_, keys_, vals_});
+    const int* perm = B::sort_cells(int(n_), grid_.cells() + 1, keys_, vals_, keys_alt_, vals_alt_, soil_begin_);
+    // Gather A into B in sorted order, then swap: B is scratch between steps.
+    B::parallel_for(long(n_), Gather<Vec4<T>>{A_.a.pos, B_.a.pos, perm});
+    B::parallel_for(long(n_), Gather<Vec4<T>>{A_.a.vel, B_.a.vel, perm});
+    B::parallel_for(long(n_), Gather<Vec4<T>>{A_.a.s0, B_.a.s0, perm});
+    B::parallel_for(long(n_), Gather<Vec4<T>>{A_.a.s1, B_.a.s1, perm});
+    for_each_named_record(effects_, [&](int r) {
+      B::parallel_for(long(n_), Gather<Vec4<T>>{A_.a.record[r], B_.a.record[r], perm});
+    });
+    // ids: gathered through the key buffer that the sort no longer needs.
+    int* spare = perm == vals_ ? keys_alt_ : keys_;
+    B::parallel_for(long(n_), Gather<int>{ids_, spare, perm});
+    B::copy(ids_, spare, n_);
+    std::swap(A_, B_);
+  }
+
+  std::vector<double> stage(int which, double dt) override {
+    const SoilArrays<T> eval = which == 0 ? A_.a : B_.a;
+    const SoilArrays<T> out = which == 0 ? B_.a : A_.a;
+    const T h = T(which == 0 ? 0.5 * dt : dt);
+    run_stage(eval, out, h);
+    std::vector<double> w(6 * std::size_t(bodies_), 0.0);
+    if (nm_ > 0) B::wrench_sum(mk_, long(nm_), poses_, bodies_, wrench_, w.data());
+    return w;
+  }
+
+  SoilStats stats() const override { return B::soil_stats(A_.a, long(n_), double(k_.mass)); }
+
+  void download(HostSoil& s) const override {
+    s.pos.resize(n_);
+    s.vel.resize(n_);
+    s.s0.resize(n_);
+    s.s1.resize(n_);
+    s.ids.resize(n_);
+    download_vec4(A_.a.pos, s.pos);
+    download_vec4(A_.a.vel, s.vel);
+    download_vec4(A_.a.s0, s.s0);
+    download_vec4(A_.a.s1, s.s1);
+    for (auto& r : s.records) r.clear();
+    for_each_named_record(effects_, [&](int r) {
+      s.records[r].resize(n_);
+      download_vec4(A_.a.record[r], s.records[r]);
+    });
+    B::download(s.ids.data(), ids_, n_);
+  }
+
+  void upload(const HostSoil& s) override {
+    if (s.size() != n_) throw RunError("engine upload: particle count changed");
+    upload_vec4(A_.a.pos, s.pos);
+    upload_vec4(A_.a.vel, s.vel);
+    upload_vec4(A_.a.s0, s.s0);
+    upload_vec4(A_.a.s1, s.s1);
+    for_each_named_record(effects_, [&](int r) {
+      // A bed settled without the effect starts with a zero record.
+      std::vector<Vec4<double>> record = s.records[r];
+      if (record.size() != n_) record.assign(n_, Vec4<double>{0, 0, 0, 0});
+      upload_vec4(A_.a.record[r], record);
+    });
+    B::upload(ids_, s.ids.data(), n_);
+  }
+
+ private:
+  // The passes are compiled for each list of named effects (core/effect_list.hpp, with_named), so
+  // that an effect a scene does not name costs nothing in them.
+  void run_stage(const SoilArrays<T>& eval, const SoilArrays<T>& out, T dt) {
+    if (nm_ > 0)
+      with_named<InMarkerLoop>(effects_, [&](auto mx) {
+        B::parallel_for_heavy(long(nm_), MarkerStage<T, decltype(mx)>{k_, ec_, grid_, soil_begin_, eval, mk_, poses_});
+      });
+    if (n_ == 0) return;
+    with_named<InSoilLoop>(effects_, [&](auto fx) {
+      B::parallel_for_heavy(long(n_), SoilStage<T, decltype(fx)>{k_, ec_, grid_, soil_begin_, marker_begin_, eval, A_.a,
+                                                                 out, mk_, dt});
+    });
+  }
+
+  // Markers are re-derived from their canonical (construction-order) arrays at every sort, so that
+  // their sorted order depends only on the current poses, never on the history: a run restarted
+  // from a checkpoint sums in exactly the same order as one that went on.
+  void sort_markers() {
+    if (nm_ == 0) {
+      B::fill_begin(marker_begin_, grid_.cells() + 2, 0);
+      markers_sorted_ = true;
+      return;
+    }
+    B::parallel_for(long(nm_), MarkerCellKey<T>{grid_, canon_, keys_, vals_});
+    const int* perm = B::sort_cells(int(nm_), grid_.cells() + 1, keys_, vals_, keys_alt_, vals_alt_, marker_begin_);
+    B::parallel_for(long(nm_), Gather<Vec4<T>>{canon_.pos, mk_.pos, perm});
+    B::parallel_for(long(nm_), Gather<Vec4<T>>{canon_.local, mk_.local, perm});
+    B::parallel_for(long(nm_), Gather<Vec4<T>>{canon_.wall_vel, mk_.wall_vel, perm});
+    if (needs_wall_normals(k_.marker_velocity))
+      B::parallel_for(long(nm_), Gather<Vec4<T>>{canon_.normal, mk_.normal, perm});
+    markers_sorted_ = true;
+  }
+
+  void upload_markers(const HostMarkers& m) {
+    upload_vec4(canon_.pos, m.pos);
+    upload_vec4(canon_.local, m.local);
+    upload_vec4(canon_.wall_vel, m.wall_vel);
+    if (needs_wall_normals(k_.marker_velocity)) {
+      std::vector<Vec4<double>> normal = m.normal;
+      normal.resize(m.pos.size(), Vec4<double>{0, 0, 0, 0});
+      upload_vec4(canon_.normal, normal);
+    }
+    markers_sorted_ = false;
+  }
+  void upload_vec4(Vec4<T>* dst, const std::vector<Vec4<double>>& src) {
+    std::vector<Vec4<T>> t(src.size());
+    for (std::size_t i = 0; i < src.size(); ++i) t[i] = to_t<T>(src[i]);
+    B::upload(dst, t.data(), t.size());
+  }
+  void download_vec4(const Vec4<T>* src, std::vector<Vec4<double>>& dst) const {
+    std::vector<Vec4<T>> t(dst.size());
+    B::download(t.data(), src, t.size());
+    for (std::size_t i = 0; i < t.size(); ++i) dst[i] = {double(t[i].x), double(t[i].y), double(t[i].z), double(t[i].w)};
+  }
+
+  SphConstants<T> k_;
+  CrmEffectConstants<T> ec_;
+  CrmEffectSet effects_;
+  int records_ = 0;  // arrays of effect records per soil state
+  GridGeometry<T> grid_;
+  std::size_t n_, nm_;
+  int bodies_;
+  Vec3<T> room_lo_, room_hi_;
+  bool markers_sorted_ = false;
+  SoilBuffers<T, B> A_, B_;
+  MarkerArrays<T> mk_;
+  MarkerArrays<T> canon_;  // construction order: pos, local, wall_vel, normal
+  int *ids_ = nullptr, *keys_ = nullptr, *vals_ = nullptr, *keys_alt_ = nullptr, *vals_alt_ = nullptr;
+  int *soil_begin_ = nullptr, *marker_begin_ = nullptr;
+  BodyPose<T>* poses_ = nullptr;
+  ActiveBox<T>* boxes_ = nullptr;
+  double* wrench_ = nullptr;
+};
+
+}  // namespace terracal

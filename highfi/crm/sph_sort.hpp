@@ -1,0 +1,89 @@
+#pragma once
+// The per-step bookkeeping around the two stages, written once for both backends: the markers'
+// rigid motion, the cell keys the particles are sorted by, the gathers into sorted order, and the
+// active domain's marks.
+#include "highfi/crm/soil_arrays.hpp"
+
+namespace terracal {
+
+// Rigid motion of body markers (BodyPose): x = c + R local, v_wall = v + omega x (R local).
+template <typename T>
+struct MarkerPoseUpdate {
+  const BodyPose<T>* poses;
+  MarkerArrays<T> mk;
+  TERRACAL_HD void operator()(long m) const {
+    const Vec4<T> l = mk.local[m];
+    const BodyPose<T>& b = poses[int(l.w)];
+    if (!b.moving) return;
+    const Vec3<T> rl{b.R[0] * l.x + b.R[1] * l.y + b.R[2] * l.z, b.R[3] * l.x + b.R[4] * l.y + b.R[5] * l.z,
+                     b.R[6] * l.x + b.R[7] * l.y + b.R[8] * l.z};
+    const Vec4<T> p = mk.pos[m];
+    mk.pos[m] = make_vec4(b.center + rl, p.w);
+    mk.wall_vel[m] = make_vec4(b.velocity + cross(b.omega, rl), T(1));
+  }
+};
+
+// Cell keys for sorting; a soil particle that has left the domain, or broken into the walls (left
+// the room [room_lo, room_hi]), is marked lost, stopped and parked in the last bin, where no
+// neighbour loop sees it.
+template <typename T>
+struct SoilCellKey {
+  GridGeometry<T> grid;
+  SoilArrays<T> s;
+  Vec3<T> room_lo, room_hi;
+  int* keys;
+  int* values;
+  TERRACAL_HD void operator()(long i) const {
+    const Vec3<T> x = s.pos[i].xyz();
+    int key = grid.key(x);
+    const bool in_room = x.x >= room_lo.x && x.y >= room_lo.y && x.z >= room_lo.z && x.x <= room_hi.x &&
+                         x.y <= room_hi.y && x.z <= room_hi.z;
+    if (!in_room) key = grid.cells();
+    if (s.vel[i].w == T(kParticleLost)) key = grid.cells();
+    if (key == grid.cells() && s.vel[i].w != T(kParticleLost)) s.vel[i] = {T(0), T(0), T(0), T(kParticleLost)};
+    keys[i] = key;
+    values[i] = int(i);
+  }
+};
+
+template <typename T>
+struct MarkerCellKey {
+  GridGeometry<T> grid;
+  MarkerArrays<T> mk;
+  int* keys;
+  int* values;
+  TERRACAL_HD void operator()(long i) const {
+    keys[i] = grid.key(mk.pos[i].xyz());
+    values[i] = int(i);
+  }
+};
+
+// Gathers a record array into sorted order: dst[i] = src[perm[i]].
+template <typename R>
+struct Gather {
+  const R* src;
+  R* dst;
+  const int* perm;
+  TERRACAL_HD void operator()(long i) const { dst[i] = src[perm[i]]; }
+};
+
+// Active domain: particles outside every box (moving bodies' bounds plus a margin) are frozen.
+template <typename T>
+struct MarkActive {
+  const ActiveBox<T>* boxes;
+  int count;
+  SoilArrays<T> s;
+  TERRACAL_HD void operator()(long i) const {
+    const Vec4<T> v = s.vel[i];
+    if (v.w == T(kParticleLost)) return;
+    const Vec3<T> x = s.pos[i].xyz();
+    bool active = false;
+    for (int b = 0; b < count && !active; ++b)
+      active = x.x >= boxes[b].lo.x && x.x <= boxes[b].hi.x && x.y >= boxes[b].lo.y && x.y <= boxes[b].hi.y &&
+               x.z >= boxes[b].lo.z && x.z <= boxes[b].hi.z;
+    const T status = active ? T(kParticleActive) : T(kParticleFrozen);
+    if (v.w != status) s.vel[i] = {active ? v.x : T(0), active ? v.y : T(0), active ? v.z : T(0), status};
+  }
+};
+
+}  // namespace terracal
