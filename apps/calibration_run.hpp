@@ -1,24 +1,63 @@
 #pragma once
-// One calibration from curve files to the output folder; shared by `calibrate` and `demo`.
+// One calibration, from its data to the output folder; shared by `calibrate`, `demo` and `pipeline`.
+// The data come from curve files (`calibrate`) or from the rigs' curves in memory (`pipeline`).
 #include <cstdint>
+#include <optional>
 #include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "apps/rig_runs.hpp"
+#include "bayes/calibration_problem.hpp"
+#include "bayes/calibrator.hpp"
+#include "bayes/observations.hpp"
+#include "bayes/priors.hpp"
+#include "lowfi/scm_soil.hpp"
 
 namespace terracal::app {
 
-struct CalibrationRequest {
-  std::string plate_csv, shear_csv, priors_json, out_dir;
+// The options of one calibration (docs/architecture.md, "Calibration").
+struct CalibrationSettings {
+  std::string out_dir;
   std::uint64_t seed = 1;
   int chains = 4;
   double min_ess = 1000;
   long max_draws = 100000;
-  std::string sampler = "dram";   // dram | ensemble
-  std::string noise = "relative"; // relative | absolute
+  bayes::SamplerKind sampler = bayes::SamplerKind::kDram;
+  bayes::NoiseModel noise = bayes::NoiseModel::kRelative;
   bool plots = true;
 };
 
-// Validates every input before anything is written (bad input: InputError, no output files),
-// then runs the three stages and writes scm_params.json, posterior.h5, summary.txt and the plots.
-// Returns 0, or 1 if sampling ended without convergence (the outputs are still written).
-int run_calibration(const CalibrationRequest& request);
+// What is calibrated: the plate data, optionally the shear data, and the priors.
+struct CalibrationData {
+  bayes::PlateData plate;
+  std::optional<bayes::ShearData> shear;
+  bayes::Priors priors = bayes::default_priors();
+};
+
+// The curve files of `calibrate`: plate (required), shear and priors (optional, "" = none).
+struct CalibrationFiles {
+  std::string plate_csv, shear_csv, priors_json;
+};
+CalibrationData read_calibration_files(const CalibrationFiles& files);
+
+// The rigs' curves as they are in memory, validated as the files would be; `dir` is where the
+// pipeline wrote the same rows (plate.csv, shear.csv), which messages cite by line.
+CalibrationData calibration_data(const BevameterCurves& curves, const std::string& dir);
+
+struct CalibrationOutcome {
+  bool converged = false;
+  lowfi::ScmSoil fitted;           // the MAP set, validated as an SCM soil
+  nlohmann::ordered_json params;   // scm_params.json as written
+};
+
+// Validates the settings before anything is written (bad input: InputError, no output files), then
+// runs the three stages and writes scm_params.json, posterior.h5, summary.txt and the plots. When
+// sampling ends without convergence the outputs are still written and `converged` is false.
+CalibrationOutcome run_calibration(const CalibrationData& data, const CalibrationSettings& settings);
+
+// The sampler's and noise model's names as the options and scm_params.json spell them.
+std::string sampler_name(bayes::SamplerKind kind);
+std::string noise_name(bayes::NoiseModel model);
 
 }  // namespace terracal::app

@@ -1,4 +1,4 @@
-// `terracal demo`: the main job on its embedded default (issue 4, point 7): the whole pipeline on
+// `terracal demo`: the main job on its embedded default: the whole pipeline on
 // the CRM bevameter study soil (2022) at a coarse resolution, sized to finish within minutes on
 // 2 CPU cores (faster with a GPU). `--calibration-only` calibrates the embedded example curves of
 // studies/demo instead (seconds).
@@ -30,12 +30,11 @@ int calibrate_embedded(const DemoArgs& a) {
   write_text_atomically(data + "/shear.csv", kDemoShearCsv);
   write_text_atomically(data + "/truth.json", kDemoTruthJson);
   spdlog::info("demo: the data set of studies/demo (true parameters in {}/truth.json)", data);
-  CalibrationRequest req;
-  req.plate_csv = data + "/plate.csv";
-  req.shear_csv = data + "/shear.csv";
-  req.out_dir = a.out;
-  req.seed = a.seed;
-  return run_calibration(req);
+  CalibrationSettings settings;
+  settings.out_dir = a.out;
+  settings.seed = a.seed;
+  const CalibrationData d = read_calibration_files({data + "/plate.csv", data + "/shear.csv", ""});
+  return run_calibration(d, settings).converged ? 0 : 1;
 }
 }  // namespace
 
@@ -53,7 +52,7 @@ Command add_demo(CLI::App& app) {
     p.soil = CrmSoil{};  // "bevameter study soil (2022)" of shared/reference/crm_soils.csv
     p.soil_name = "bevameter study soil (2022), coarse demo";
     p.terrain.spacing = 0.04;
-    // Without hourglass_stiffness, which the rigs have on since session 13: it costs about a third
+    // Without hourglass_stiffness, which the rigs have on (docs/decisions.md): it costs about a third
     // more CPU time, and the demo was 484 s of its 600 without it (bench/RESULTS.md). The report
     // says that it is off.
     p.terrain.hourglass_stiffness = 0;

@@ -1,4 +1,4 @@
-// terracal: soil calibration and vehicle-mobility tool. Exit codes (DESIGN.md section 3):
+// terracal: soil calibration and vehicle-mobility tool. Exit codes (docs/architecture.md, "Errors and outputs"):
 // 0 success; 2 bad input (the message names file, line/key, value and what was expected);
 // 1 a run that failed (the message says which step and why).
 #include <cstdio>

@@ -1,7 +1,8 @@
 #pragma once
-// The whole loop (issue 4, point 7): a CRM soil -> CRM bevameter (plates, annulus) -> calibrated
-// SCM set -> single-wheel slip sweeps in CRM, in SCM with the calibrated set, and with Wong-Reece ->
-// a Markdown report with plots and an error table. `terracal pipeline` and `terracal demo` run it.
+// The whole loop: a CRM soil -> CRM bevameter (plates, annulus) -> calibrated SCM set -> single-wheel
+// slip sweeps in CRM, in SCM with the calibrated set, and with Wong-Reece -> a Markdown report with
+// plots and an error table (apps/pipeline_report.hpp). `terracal pipeline` and `terracal demo` run it;
+// docs/architecture.md walks through the stages.
 #include <string>
 #include <vector>
 
@@ -24,9 +25,8 @@ struct PipelinePlan {
   std::vector<std::string> checks;
   // Realisations per bin in the annulus's and the wheel's bin checks (1 ... 16): the base run, and
   // check_realisations - 1 more whose bed settled from a start jittered off the lattice with another
-  // seed (pipeline.cpp, realisation()); the check compares
-  // the means. Single CRM runs of the thin annulus scatter by about as much as the bin moves them
-  // (results/plate_bin_check, eleventh study).
+  // seed (pipeline_checks.cpp, realisation()); the check compares the means. Single CRM runs of the
+  // thin annulus scatter by about as much as the bin moves them (results/plate_bin_check).
   int check_realisations = 1;
   std::string out;
 };

@@ -18,17 +18,47 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 std::unique_ptr<TerrainSite> site_for(const SoilChoice& soil, const TerrainOptions& o, double half_length, double half_width, double depth) {
-  if (soil.solver == "crm") {
+  if (soil.solver == SoilModel::kCrm) {
     if (!soil.crm) throw InputError("--solver crm needs a CRM soil (--soil SOIL.json)");
     return crm_site(*soil.crm, o, o.bin_scale * half_length, o.bin_scale * half_width, o.depth_scale() * depth);
   }
-  if (soil.solver == "scm") {
+  if (soil.solver == SoilModel::kScm) {
     if (!soil.scm) throw InputError("--solver scm needs an SCM parameter set (--scm SCM.json)");
     return scm_site(*soil.scm, o, soil.gravity);
   }
-  throw InputError(fmt::format("solver '{}': expected crm or scm", soil.solver));
+  throw InputError(fmt::format("solver '{}': the rigs' sites are crm or scm", soil_model_name(soil.solver)));
+}
+
+std::vector<rigs::WheelResult> wong_reece_sweep(const SoilChoice& soil, const rigs::WheelSpec& wheel, const std::vector<double>& slips) {
+  if (!soil.scm) throw InputError("--terrain wong-reece needs an SCM parameter set (--scm SCM.json)");
+  std::vector<rigs::WheelResult> out;
+  for (double s : slips) {
+    const auto t0 = Clock::now();
+    const auto wr = lowfi::wong_reece(*soil.scm, {wheel.radius, wheel.width}, wheel.mass * norm(soil.gravity), s);
+    rigs::WheelResult r;
+    r.slip = s;
+    r.load = wr.load;
+    r.dbp = wr.dbp;
+    r.torque = wr.torque;
+    r.sinkage = wr.sinkage;
+    r.wall_seconds = seconds_since(t0);
+    out.push_back(r);
+  }
+  return out;
 }
 }  // namespace
+
+const std::map<std::string, SoilModel>& soil_model_names() {
+  static const std::map<std::string, SoilModel> names{
+      {"crm", SoilModel::kCrm}, {"scm", SoilModel::kScm}, {"wong-reece", SoilModel::kWongReece}};
+  return names;
+}
+
+std::string soil_model_name(SoilModel model) {
+  for (const auto& [name, m] : soil_model_names())
+    if (m == model) return name;
+  return "?";
+}
 
 rigs::RigProgress progress_logger() {
   auto start = std::make_shared<Clock::time_point>(Clock::now());
@@ -107,30 +137,16 @@ BevameterCurves run_bevameter(const SoilChoice& soil, const TerrainOptions& o, c
   return c;
 }
 
-std::vector<rigs::WheelResult> run_wheel_sweep(const std::string& solver, const SoilChoice& soil, const TerrainOptions& o,
+std::vector<rigs::WheelResult> run_wheel_sweep(SoilModel solver, const SoilChoice& soil, const TerrainOptions& o,
                                                const rigs::WheelSpec& wheel, const std::vector<double>& slips, const rigs::WheelRun& run,
                                                std::string* site_description) {
   rigs::validate(wheel);
   rigs::validate(run);
   for (double s : slips)
     if (!(s > -1 && s < 1)) throw InputError(fmt::format("--slips: slip {} outside (-1, 1)", s));
-  if (solver == "wong-reece") {
-    if (!soil.scm) throw InputError("--terrain wong-reece needs an SCM parameter set (--scm SCM.json)");
-    std::vector<rigs::WheelResult> out;
-    for (double s : slips) {
-      const auto t0 = Clock::now();
-      const auto wr = lowfi::wong_reece(*soil.scm, {wheel.radius, wheel.width}, wheel.mass * norm(soil.gravity), s);
-      rigs::WheelResult r;
-      r.slip = s;
-      r.load = wr.load;
-      r.dbp = wr.dbp;
-      r.torque = wr.torque;
-      r.sinkage = wr.sinkage;
-      r.wall_seconds = seconds_since(t0);
-      out.push_back(r);
-    }
+  if (solver == SoilModel::kWongReece) {
     if (site_description) *site_description = "Wong-Reece (analytic, GSL quadrature)";
-    return out;
+    return wong_reece_sweep(soil, wheel, slips);
   }
   SoilChoice s = soil;
   s.solver = solver;
@@ -146,10 +162,10 @@ std::vector<rigs::WheelResult> run_wheel_sweep(const std::string& solver, const 
   for (double slip : slips) {
     out.push_back(rigs::run_wheel(*site, wheel, slip, run, progress));
     const auto& r = out.back();
-    spdlog::info("{} wheel at slip {}: DBP {:.4g} N, torque {:.4g} N m, sinkage {:.4g} m ({:.3g} s wall)", solver, slip, r.dbp, r.torque,
+    spdlog::info("{} wheel at slip {}: DBP {:.4g} N, torque {:.4g} N m, sinkage {:.4g} m ({:.3g} s wall)", soil_model_name(solver), slip, r.dbp, r.torque,
                  r.sinkage, r.wall_seconds);
     if (const std::string why = rigs::unsteady_reason(r); !why.empty())
-      spdlog::warn("{} {} (wheel_series.csv has the time series)", solver, why);
+      spdlog::warn("{} {} (wheel_series.csv has the time series)", soil_model_name(solver), why);
   }
   return out;
 }

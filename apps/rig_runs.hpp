@@ -2,6 +2,7 @@
 // The rigs as the commands run them: sites sized for each rig (a CRM bin per rig, or an SCM patch),
 // progress lines on long runs, and the curves with their wall times. Shared by `bevameter`, `wheel`
 // and `pipeline`.
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,9 +15,16 @@
 
 namespace terracal::app {
 
+// The soil models a rig runs on: CRM (SPH continuum), SCM (Bekker-Wong-Janosi grid), and the
+// analytic Wong-Reece wheel model of an SCM set (wheel only).
+enum class SoilModel { kCrm, kScm, kWongReece };
+// "crm", "scm", "wong-reece": the names the options take and the outputs print.
+const std::map<std::string, SoilModel>& soil_model_names();
+std::string soil_model_name(SoilModel model);
+
 // One soil seen by either solver: a CRM material or an SCM parameter set.
 struct SoilChoice {
-  std::string solver;                  // crm | scm
+  SoilModel solver = SoilModel::kCrm;
   std::optional<CrmSoil> crm;
   std::optional<lowfi::ScmSoil> scm;
   Vec3<double> gravity{0, 0, -9.81};
@@ -60,9 +68,8 @@ rigs::RigProgress progress_logger();
 
 BevameterCurves run_bevameter(const SoilChoice& soil, const TerrainOptions& o, const BevameterPlan& plan, bool plate, bool shear);
 
-// A slip sweep on CRM or SCM (soil.solver), or the analytic Wong-Reece model (solver "wong-reece",
-// which needs soil.scm).
-std::vector<rigs::WheelResult> run_wheel_sweep(const std::string& solver, const SoilChoice& soil, const TerrainOptions& o,
+// A slip sweep on CRM or SCM, or the analytic Wong-Reece model (which needs soil.scm).
+std::vector<rigs::WheelResult> run_wheel_sweep(SoilModel solver, const SoilChoice& soil, const TerrainOptions& o,
                                                const rigs::WheelSpec& wheel, const std::vector<double>& slips, const rigs::WheelRun& run,
                                                std::string* site_description = nullptr);
 

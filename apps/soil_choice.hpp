@@ -8,6 +8,6 @@
 
 namespace terracal::app {
 
-SoilChoice choose_soil(const std::string& solver, const TerrainOptions& o);
+SoilChoice choose_soil(SoilModel solver, const TerrainOptions& o);
 
 }  // namespace terracal::app

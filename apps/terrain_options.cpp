@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 #include "apps/cli_checks.hpp"
@@ -25,9 +26,7 @@ std::map<std::string, MarkerVelocity> marker_velocity_map() {
 void add_device_option(CLI::App* sub, DeviceChoice& device) {
   const std::map<std::string, DeviceChoice> names{
       {"cpu", DeviceChoice::kCpu}, {"cuda", DeviceChoice::kCuda}, {"auto", DeviceChoice::kAuto}};
-  sub->add_option("--device", device, "CRM device: cpu, cuda or auto (cuda when a device is present)")
-      ->transform(CLI::CheckedTransformer(names))
-      ->capture_default_str();
+  add_choice(sub, "--device", device, names, "CRM device: cpu, cuda or auto (cuda when a device is present)");
 }
 
 void add_crm_settling_options(CLI::App* sub, TerrainOptions& o) {
@@ -41,12 +40,12 @@ void add_crm_settling_options(CLI::App* sub, TerrainOptions& o) {
   sub->add_option("--settle-seed", o.settle_seed, "seed of --settle-jitter: another seed, another realisation of the bed")
       ->check(CLI::Range(0L, CrmRanges::kMaxSettleSeed))
       ->capture_default_str();
-  const auto& damping = HourglassDamping::settings()[0];
+  const auto damping = HourglassDamping::settings()[0];
   sub->add_option("--hourglass-damping", o.hourglass_damping,
                   fmt::format("CRM effect hourglass_damping with this alpha ({}; 0: off)", damping.help))
       ->check(off_or_in_range(damping.range))
       ->capture_default_str();
-  const auto& stiffness = HourglassStiffness::settings()[0];
+  const auto stiffness = HourglassStiffness::settings()[0];
   sub->add_option("--hourglass-stiffness", o.hourglass_stiffness,
                   fmt::format("CRM effect hourglass_stiffness with this beta ({}; 0: off)", stiffness.help))
       ->check(off_or_in_range(stiffness.range))
@@ -54,38 +53,46 @@ void add_crm_settling_options(CLI::App* sub, TerrainOptions& o) {
   sub->add_option("--h-over-d0", o.h_over_d0, "CRM smoothing length over the particle spacing")
       ->check(in_range(CrmRanges::kHOverD0))
       ->capture_default_str();
-  sub->add_option("--marker-velocity", o.marker_velocity,
-                  "CRM boundary markers' velocity: mirror, mirror_image, mirror_contact or wall (docs/crm_scene.md)")
-      ->transform(CLI::CheckedTransformer(marker_velocity_map()))
+  add_choice(sub, "--marker-velocity", o.marker_velocity, marker_velocity_map(),
+             "CRM boundary markers' velocity (docs/crm_scene.md)");
+}
+
+CLI::Option* add_crm_terrain_options(CLI::App* sub, TerrainOptions& o) {
+  auto* soil = sub->add_option("--soil", o.soil_json, "CRM soil material (JSON, docs/formats.md 'CRM soil')");
+  sub->add_option("--spacing", o.spacing, "CRM particle spacing [m]")->check(in_range(RigRanges::kSpacing))->capture_default_str();
+  add_device_option(sub, o.device);
+  sub->add_option("--cache", o.cache, "folder of settled CRM beds ('' = no cache)")->capture_default_str();
+  add_crm_settling_options(sub, o);
+  sub->add_option("--bin-scale", o.bin_scale, "CRM bins (and bed depth) scaled by this factor: the bin-size check")
+      ->check(in_range(RigRanges::kBinScale))
+      ->capture_default_str();
+  sub->add_option("--bin-depth-scale", o.bin_depth_scale, "CRM bed depth scaled by this factor instead (0: as --bin-scale)")
+      ->check(off_or_in_range(RigRanges::kBinScale))
+      ->capture_default_str();
+  return soil;
+}
+
+void add_scm_grid_option(CLI::App* sub, TerrainOptions& o) {
+  sub->add_option("--grid", o.grid, "SCM grid spacing [m]")->check(in_range(RigRanges::kScmGrid))->capture_default_str();
+}
+
+void add_step_option(CLI::App* sub, TerrainOptions& o) {
+  sub->add_option("--step", o.step, "time step [s] (0: CRM from its CFL limit, SCM 1e-3 s)")
+      ->check(in_range(RigRanges::kStep))
       ->capture_default_str();
 }
 
 void add_terrain_options(CLI::App* sub, TerrainOptions& o, bool crm, bool scm) {
-  if (crm) {
-    sub->add_option("--soil", o.soil_json, "CRM soil material (JSON, DESIGN.md 'Soil')");
-    sub->add_option("--spacing", o.spacing, "CRM particle spacing [m]")
-        ->check(in_range(RigRanges::kSpacing))
-        ->capture_default_str();
-    add_device_option(sub, o.device);
-    sub->add_option("--cache", o.cache, "folder of settled CRM beds ('' = no cache)")->capture_default_str();
-    add_crm_settling_options(sub, o);
-    sub->add_option("--bin-scale", o.bin_scale, "CRM bins (and bed depth) scaled by this factor: the bin-size check")
-        ->check(in_range(RigRanges::kBinScale))
-        ->capture_default_str();
-    sub->add_option("--bin-depth-scale", o.bin_depth_scale, "CRM bed depth scaled by this factor instead (0: as --bin-scale)")
-        ->check(off_or_in_range(RigRanges::kBinScale))
-        ->capture_default_str();
-  }
+  if (crm) add_crm_terrain_options(sub, o);
   if (scm) {
     sub->add_option("--scm", o.scm_json, "SCM parameter file (Chrono SCM JSON or terracal's scm_params.json)");
-    sub->add_option("--grid", o.grid, "SCM grid spacing [m]")->check(in_range(RigRanges::kScmGrid))->capture_default_str();
-    sub->add_option("--scm-effects", o.scm_effects, "SCM effects: damping, elastic_unloading, bulldozing, or none")
+    add_scm_grid_option(sub, o);
+    sub->add_option("--scm-effects", o.scm_effects,
+                    fmt::format("SCM effects: {}, or none", fmt::join(EffectSet<lowfi::ScmEffects>::kNames, ", ")))
         ->capture_default_str();
     sub->add_option("--gravity", o.gravity, "gravity vector for SCM (default Earth) [m/s^2]")->expected(3);
   }
-  sub->add_option("--step", o.step, "time step [s] (0: CRM from its CFL limit, SCM 1e-3 s)")
-      ->check(in_range(RigRanges::kStep))
-      ->capture_default_str();
+  add_step_option(sub, o);
 }
 
 CrmSoil load_crm_soil(const std::string& path) { return parse_crm_soil(read_json_file(path, "soil file"), path); }

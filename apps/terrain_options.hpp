@@ -20,7 +20,7 @@ namespace terracal::app {
 enum class DeviceChoice { kCpu, kCuda, kAuto };
 
 struct TerrainOptions {
-  std::string soil_json, scm_json;  // CRM material (DESIGN.md "Soil") or Chrono SCM parameter file
+  std::string soil_json, scm_json;  // CRM material (docs/formats.md, "CRM soil") or Chrono SCM set
   double spacing = 0.02;            // CRM particle spacing [m]
   DeviceChoice device = DeviceChoice::kAuto;
   std::string cache = "results/runs/bed_cache";
@@ -49,7 +49,15 @@ struct RigRanges {
   static constexpr Range kStep{0, 0.1, false, false, "s"};  // 0: from the CFL limit (CRM), 1e-3 s (SCM)
 };
 
+// The CRM options (--soil, --spacing, --device, --cache, the settling options, --bin-scale,
+// --bin-depth-scale) and/or the SCM options (--scm, --grid, --scm-effects, --gravity), and --step.
 void add_terrain_options(CLI::App* sub, TerrainOptions& o, bool crm, bool scm);
+// The CRM options alone; returns --soil.
+CLI::Option* add_crm_terrain_options(CLI::App* sub, TerrainOptions& o);
+// --grid, the SCM grid spacing.
+void add_scm_grid_option(CLI::App* sub, TerrainOptions& o);
+// --step, the time step of CRM and SCM.
+void add_step_option(CLI::App* sub, TerrainOptions& o);
 // The CRM options of the rigs that `pipeline` takes besides its own: --settle-time, --settle-jitter,
 // --settle-seed, --hourglass-damping, --hourglass-stiffness, --h-over-d0 and --marker-velocity.
 void add_crm_settling_options(CLI::App* sub, TerrainOptions& o);

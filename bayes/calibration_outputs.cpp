@@ -78,8 +78,7 @@ ordered_json elastic_fit_block(const ElasticFit& e) {
 
 }  // namespace
 
-void write_scm_params_json(const std::string& path, const CalibrationProblem& pb, const CalibrationResult& res,
-                           const OutputContext& ctx) {
+nlohmann::ordered_json scm_params_json(const CalibrationProblem& pb, const CalibrationResult& res, const OutputContext& ctx) {
   ordered_json j;
   j["Type"] = "SCM";
   ordered_json soil;
@@ -127,7 +126,11 @@ void write_scm_params_json(const std::string& path, const CalibrationProblem& pb
   notes.insert(notes.end(), res.notes.begin(), res.notes.end());
   fit["notes"] = notes;
   j["Fit"] = fit;
-  write_text_atomically(path, j.dump(2) + "\n");
+  return j;
+}
+
+void write_scm_params_json(const std::string& path, const nlohmann::ordered_json& params) {
+  write_text_atomically(path, params.dump(2) + "\n");
 }
 
 InferenceData make_inference_data(const CalibrationProblem& pb, const CalibrationResult& res, std::uint64_t seed,

@@ -1,9 +1,11 @@
 #pragma once
-// What `terracal calibrate` leaves in its output folder (DESIGN.md section 3): scm_params.json
+// What `terracal calibrate` leaves in its output folder (docs/formats.md): scm_params.json
 // (Chrono's SCM block at the MAP point, the posterior summary, the fit), posterior.h5 (ArviZ
 // InferenceData), PNG plots, and the summary report. Every file is written under a temporary
 // name and renamed.
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 #include "bayes/calibration_problem.hpp"
 #include "bayes/calibrator.hpp"
@@ -16,13 +18,14 @@ namespace terracal::bayes {
 inline constexpr double kDefaultDamping = 3e4;  // Pa s/m
 
 struct OutputContext {
-  std::string sampler;       // "dram" or "ensemble"
+  std::string sampler;       // "dram" or "ensemble", as scm_params.json names it
   std::uint64_t seed = 0;
   int warmup = 0;
 };
 
-void write_scm_params_json(const std::string& path, const CalibrationProblem& pb, const CalibrationResult& res,
-                           const OutputContext& ctx);
+// scm_params.json's content: the "Soil parameters" block at the MAP point, "Posterior", "Fit".
+nlohmann::ordered_json scm_params_json(const CalibrationProblem& pb, const CalibrationResult& res, const OutputContext& ctx);
+void write_scm_params_json(const std::string& path, const nlohmann::ordered_json& params);
 
 // posterior, sample_stats, observed_data, constant_data, posterior_predictive (at most
 // `predictive_draws` draws per chain, evenly thinned).

@@ -1,5 +1,5 @@
 #pragma once
-// Analytic bevameter forward models (issue 2, point 4). Templated on the scalar so that Ceres
+// Analytic bevameter forward models. Templated on the scalar so that Ceres
 // differentiates them automatically (Jets) and marked host/device so that GPU batch evaluators
 // use the very same source.
 #include <cmath>

@@ -1,6 +1,8 @@
 #pragma once
-// Bevameter observations as read from the curve files of DESIGN.md section 3, validated once.
+// Bevameter observations (docs/formats.md, "plate.csv" and "shear.csv"), validated once.
 // A loaded data set is immutable and every number in it is in SI units.
+#include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,11 +36,24 @@ struct ShearData {
   std::vector<ShearPoint> points;
 };
 
-// Load and validate. Bad input throws InputError naming the file, line, column, value and what was
-// expected: missing columns, non-numeric or non-finite cells, negative or zero radii, negative
-// sinkage, sinkage or radii that look like millimetres, an unknown phase, an unload row deeper than
-// its plate's deepest sinkage so far, an empty file.
+// Where point i's value of a column came from, for messages ("plate.csv:12, column 'force_N' (3)").
+using PointLocator = std::function<std::string(std::size_t point, const std::string& column)>;
+
+// Validate points from any source (a file, or a rig's curves in memory) into a data set. Bad input
+// throws InputError naming the place (`where`), value and what was expected: negative or zero radii,
+// negative sinkage, sinkage or radii that look like millimetres, an unload row deeper than its
+// plate's deepest sinkage so far, no loading rows. `source` names the data set as a whole.
+PlateData make_plate_data(std::vector<PlatePoint> points, const std::string& source, const PointLocator& where);
+// Shear points at angle 0 (not developed) carry no information (the torque model is 0 there) and are
+// left out of the data set; every other bad point throws.
+ShearData make_shear_data(std::vector<ShearPoint> points, const std::string& source, const PointLocator& where);
+
+// Read a curve file and validate it as above; besides, missing columns, non-numeric or non-finite
+// cells, an unknown phase and an empty file are refused.
 PlateData load_plate_csv(const std::string& path);
 ShearData load_shear_csv(const std::string& path);
+
+// A phase as the curve files spell it: "load" (or empty), "unload", "reload"; nullopt otherwise.
+std::optional<PlatePhase> parse_plate_phase(const std::string& text);
 
 }  // namespace terracal::bayes

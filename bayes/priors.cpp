@@ -79,6 +79,14 @@ Priors default_priors() {
   return p;
 }
 
+Prior fixed_prior(double value) {
+  Prior p;
+  p.kind = Prior::Kind::kFixed;
+  p.value = p.lower = p.upper = value;
+  p.user_given = true;
+  return p;
+}
+
 Priors load_priors(const std::string& path) {
   const nlohmann::json j = read_json_file(path, "priors file");
   if (!j.is_object()) throw InputError(fmt::format("{}: expected a JSON object keyed by parameter name", path));
@@ -102,11 +110,10 @@ Priors load_priors(const std::string& path) {
       pr.sd = get_number(spec, path, key, "sd");
       if (!(pr.sd > 0)) throw InputError(fmt::format("{}: key '{}.sd': {} must be > 0", path, key, pr.sd));
     } else if (type == "fixed") {
-      pr.kind = Prior::Kind::kFixed;
-      pr.value = get_number(spec, path, key, "value");
-      if (!physically_allowed(i, pr.value))
-        throw InputError(fmt::format("{}: key '{}.value': {} is outside the physical range {}", path, key, pr.value, range_text(i)));
-      pr.lower = pr.upper = pr.value;
+      const double value = get_number(spec, path, key, "value");
+      if (!physically_allowed(i, value))
+        throw InputError(fmt::format("{}: key '{}.value': {} is outside the physical range {}", path, key, value, range_text(i)));
+      pr = fixed_prior(value);
       continue;
     } else {
       throw InputError(fmt::format("{}: key '{}.type': '{}' is not a prior type; expected uniform, normal, lognormal or fixed", path, key, type));

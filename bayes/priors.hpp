@@ -25,9 +25,13 @@ struct Prior {
 
 using Priors = std::array<Prior, kNumParams>;
 
-// Physical limits (issue 2, point 6): 0 < n <= 2, 0 <= phi <= 60 deg, c >= 0, k > 0; Kc may be
+// Physical limits: 0 < n <= 2, 0 <= phi <= 60 deg, c >= 0, k > 0; Kc may be
 // negative (Kc/r + Kphi > 0 is enforced per plate radius by the problem).
 Priors default_priors();
+
+// A parameter fixed at `value` by the user (a priors file's {"type": "fixed"}, or a command that
+// fixes one, as `pipeline` fixes Kc = 0 when the free-Kc set cannot drive the SCM wheel).
+Prior fixed_prior(double value);
 
 // Reads a priors file: {"Kphi": {"type": "uniform", "lower": 1e5, "upper": 1e8},
 // "n": {"type": "normal", "mean": 1.0, "sd": 0.2}, "k": {"type": "lognormal", "mean": -4.6, "sd": 0.5},

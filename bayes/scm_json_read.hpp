@@ -1,5 +1,5 @@
 #pragma once
-// Reads the "Soil parameters" block of a Chrono SCM JSON file (DESIGN.md section 3) -- the
+// Reads the "Soil parameters" block of a Chrono SCM JSON file (docs/formats.md) -- the
 // block terracal writes -- into a parameter vector.
 #include <string>
 

@@ -8,7 +8,7 @@ namespace terracal::bayes {
 
 enum Param : int { kKc = 0, kKphi, kN, kCohesion, kFriction, kJanosi, kNumParams };
 
-// Names exactly as in Chrono's SCM JSON "Soil parameters" block (DESIGN.md section 3).
+// Names exactly as in Chrono's SCM JSON "Soil parameters" block (docs/formats.md).
 inline constexpr std::array<std::string_view, kNumParams> kChronoNames = {
     "Bekker Kc", "Bekker Kphi", "Bekker n exponent", "Mohr cohesive limit", "Mohr friction limit",
     "Janosi shear coefficient"};

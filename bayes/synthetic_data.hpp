@@ -30,7 +30,7 @@ struct SyntheticDesign {
 PlateData synthesize_plate(const ParamVector& truth, const SyntheticDesign& design, Rng& rng);
 ShearData synthesize_shear(const ParamVector& truth, const SyntheticDesign& design, Rng& rng);
 
-// CSV in the formats of DESIGN.md section 3, written atomically (plate: with the phase column
+// CSV in the formats of docs/formats.md, written atomically (plate: with the phase column
 // when some row is not `load`).
 void write_plate_csv(const std::string& path, const PlateData& data);
 void write_shear_csv(const std::string& path, const ShearData& data);

@@ -1,4 +1,4 @@
-// Issue 2, point 13. Two figures, each the median of repeated runs:
+// The calibration's speed. Two figures, each the median of repeated runs:
 //   1. analytic likelihood evaluations per second on one core (target >= 1e6);
 //   2. seconds from curves to a posterior with R-hat < 1.01 and bulk ESS >= 1000 for every
 //      parameter (target <= 5 s on the 2-core machine).

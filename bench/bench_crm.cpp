@@ -1,4 +1,4 @@
-// Issue 3, point 14: CRM particle-steps per second (soil particles x full steps / wall second),
+// CRM particle-steps per second (soil particles x full steps / wall second),
 // device memory per particle, and the speed-up of active_domain for a single wheel in a 4 m bin.
 // Each figure is the median of `repeats` timed blocks of `steps` steps after a warm-up.
 // Usage: bench_crm cpu|cuda [particles=1e5,...] [steps=20] [repeats=5] [wheel]
@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
                         {"bin", {{"size", {side * d0, side * d0, (depth + 4) * d0}}, {"fill_height", depth * d0}}},
                         {"resolution", {{"spacing", d0}, {"h_over_d0", 1.2}, {"cpu_precision", "float"}}},
                         {"effects", {"artificial_viscosity"}}};
-    // BENCH_GRID_REACH=1 times DESIGN.md's 2h grid instead of the default cells of h.
+    // BENCH_GRID_REACH=1 times the plain 2h grid instead of the default cells of h.
     if (const char* reach = std::getenv("BENCH_GRID_REACH")) j["resolution"]["grid_reach"] = std::atoi(reach);
     const Timing t = time_scene(j, device, steps, repeats);
     std::printf("%-12zu %-12zu %-10.1f %-16.4g %-14.3f %s\n", t.particles, t.markers, double(t.bytes) / t.particles, t.rate,

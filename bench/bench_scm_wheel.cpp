@@ -1,4 +1,4 @@
-// Issue 4, point 12: the SCM single wheel (radius 0.47 m, width 0.25 m, 108 kg, 1 rad/s, slip 0.3) on
+// The SCM single wheel (radius 0.47 m, width 0.25 m, 108 kg, 1 rad/s, slip 0.3) on
 // dry sand at a 0.01 m grid and a 1e-3 s step, on one core: simulated seconds per wall second
 // (target >= 20), the median of repeated runs (where the time goes: perf, see RESULTS.md).
 // Usage: bench_scm_wheel [repeats=5] [grid=0.01] [duration=5]

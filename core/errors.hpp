@@ -1,5 +1,5 @@
 #pragma once
-// Two kinds of failure, mapped to the exit codes of DESIGN.md section 3:
+// Two kinds of failure, mapped to exit codes (docs/architecture.md, "Errors and outputs"):
 //   InputError -> exit 2: bad input; the message names the file, the line/key, the value and what was expected.
 //   RunError   -> exit 1: a run that failed; the message says which step and why.
 #include <stdexcept>

@@ -1,5 +1,5 @@
 #pragma once
-// Terrain: the soil seen by a rig (DESIGN.md section 2). It owns the rigid bodies a rig gave it
+// Terrain: the soil seen by a rig (docs/architecture.md, "Terrain"). It owns the rigid bodies a rig gave it
 // (shape, motion program, mass), advances soil and bodies together one step at a time and reports
 // the wrench of the soil on each body. CRM (highfi) and SCM (lowfi) implement it; rigs never know
 // which one they drive. Bodies integrate inside the terrain because CRM couples them within its
@@ -39,8 +39,9 @@ class TerrainSite {
   virtual Vec3<double> centre() const { return {0, 0, surface_height()}; }
   virtual double half_length() const { return std::numeric_limits<double>::infinity(); }
   virtual double half_width() const { return std::numeric_limits<double>::infinity(); }
-  // A terrain with these bodies; `duration` is how long the rig will run it (CRM sizes its step
-  // for the fastest body and checks the bodies stay in the bin).
+  // A terrain with these bodies; `duration` is how long the rig will run it (CRM keeps it as its
+  // scene's duration; its step is sized from the bodies' prescribed speeds, and the rigs check that
+  // the bodies have room with rigs::check_fits).
   virtual std::unique_ptr<Terrain> make(std::vector<RigidBody> bodies, double duration) const = 0;
 };
 

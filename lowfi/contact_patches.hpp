@@ -1,8 +1,8 @@
 #pragma once
 // Contact patches of the SCM grid: connected sets of nodes in contact (4-neighbour) and the Bekker
-// width b of each, b = 2 A / P of the patch's convex hull (DESIGN.md section 4; b = r for a circular
-// plate). The hull of node centres is offset outward by half a cell, so that a patch's hull covers
-// its cells: a single node gets b = grid / 2 instead of 0.
+// width b of each, b = 2 A / P of the patch's convex hull (docs/architecture.md, "SCM and Wong-Reece";
+// b = r for a circular plate). The hull of node centres is offset outward by half a cell, so that a
+// patch's hull covers its cells: a single node gets b = grid / 2 instead of 0.
 #include <utility>
 #include <vector>
 

@@ -1,6 +1,7 @@
 #pragma once
-// The SCM's sparse grid of nodes (DESIGN.md section 4): keyed by integer node coordinates, only
-// nodes a body has touched are stored, so the patch is unbounded and a neighbour is one lookup.
+// The SCM's sparse grid of nodes (docs/architecture.md, "SCM and Wong-Reece"): keyed by integer node
+// coordinates, only nodes a body has touched are stored, so the patch is unbounded and a neighbour is
+// one lookup.
 #include <algorithm>
 #include <cstdint>
 #include <unordered_map>

@@ -1,8 +1,8 @@
 #pragma once
 // The SCM soil: Bekker-Wong pressure-sinkage, Mohr-Coulomb strength and Janosi shear, plus the
-// elastic stiffness and damping of Chrono's SCM, in Chrono's units (the "Soil parameters" block of
-// DESIGN.md section 3): Kc [Pa/m^(n-1)], Kphi [Pa/m^n], n [-], cohesion [Pa], friction [deg],
-// Janosi k [m], elastic stiffness [Pa/m], damping [Pa s/m].
+// elastic stiffness and damping of Chrono's SCM, in Chrono's units (the "Soil parameters" block;
+// docs/formats.md, "SCM parameter sets and scm_params.json"): Kc [Pa/m^(n-1)], Kphi [Pa/m^n], n [-],
+// cohesion [Pa], friction [deg], Janosi k [m], elastic stiffness [Pa/m], damping [Pa s/m].
 #include <cmath>
 #include <string>
 

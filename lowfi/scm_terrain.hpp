@@ -1,9 +1,9 @@
 #pragma once
-// The Soil Contact Model terrain (DESIGN.md section 4), in the manner of Chrono's SCM: a sparse grid
-// of nodes keyed by integer coordinates (only touched nodes are stored, the patch is unbounded), one
-// vertical ray per node under each body's bounding box, contact patches with their Bekker width,
-// elastic-plastic pressure (stiffness Ke up to the Bekker yield, plastic sinkage remembered) and
-// Janosi shear from each node's accumulated shear displacement.
+// The Soil Contact Model terrain (docs/architecture.md, "SCM and Wong-Reece"), in the manner of
+// Chrono's SCM: a sparse grid of nodes keyed by integer coordinates (only touched nodes are stored,
+// the patch is unbounded), one vertical ray per node under each body's bounding box, contact
+// patches with their Bekker width, elastic-plastic pressure (stiffness Ke up to the Bekker yield,
+// plastic sinkage remembered) and Janosi shear from each node's accumulated shear displacement.
 //
 // Effects (named in the settings; a name not given costs nothing): lowfi/effects/, one file each.
 #include <array>

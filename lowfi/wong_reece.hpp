@@ -1,5 +1,6 @@
 #pragma once
-// The analytic Wong-Reece rigid wheel on a Bekker-Wong-Janosi soil (DESIGN.md section 4).
+// The analytic Wong-Reece rigid wheel on a Bekker-Wong-Janosi soil (docs/architecture.md,
+// "SCM and Wong-Reece").
 // Sources: J.Y. Wong and A.R. Reece, "Prediction of rigid wheel performance based on the analysis of
 // soil-wheel stresses", J. Terramechanics 4(1) and 4(2), 1967; J.Y. Wong, Theory of Ground Vehicles,
 // 4th ed. (2008), chapter 5.

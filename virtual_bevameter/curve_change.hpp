@@ -1,6 +1,7 @@
 #pragma once
 // How far a rig's curve moves between a run and its check (a bigger bin, a longer run): the measure
-// the pipeline's checks and studies/pipeline/plate_bin_check.sh report against issue 4's 5 % bound.
+// the pipeline's checks and studies/pipeline/plate_bin_check.sh report against the 5 % bound
+// (docs/decisions.md, "Bin-size and run-length checks").
 #include <vector>
 
 namespace terracal::rigs {

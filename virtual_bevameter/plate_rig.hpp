@@ -1,7 +1,7 @@
 #pragma once
-// Plate-sinkage rig (issue 4, point 3): a circular plate pushed into the soil at constant speed to a
+// Plate-sinkage rig: a circular plate pushed into the soil at constant speed to a
 // maximum sinkage, with one unload-reload cycle on the way; force against sinkage, with the phase
-// of each sample (the rows of DESIGN.md's plate.csv). The loading part gives Bekker's Kc, Kphi, n;
+// of each sample (the rows of plate.csv, docs/formats.md). The loading part gives Bekker's Kc, Kphi, n;
 // the unloading slope gives SCM's elastic stiffness.
 #include <string>
 #include <vector>
@@ -32,7 +32,7 @@ struct PlateRow {
 // to the plate's underside; force is the soil's vertical force on the plate.
 std::vector<PlateRow> run_plate(const TerrainSite& site, const PlateTest& test, const RigProgress& progress = {});
 
-// DESIGN.md's plate.csv (plate_radius_m,sinkage_m,force_N,phase), written atomically.
+// plate.csv (plate_radius_m,sinkage_m,force_N,phase; docs/formats.md, "plate.csv"), written atomically.
 void write_plate_csv(const std::string& path, const std::vector<PlateRow>& rows);
 
 }  // namespace terracal::rigs

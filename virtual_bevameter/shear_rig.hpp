@@ -1,7 +1,7 @@
 #pragma once
-// Annulus-shear rig (issue 4, point 4): an annulus under a dead normal load (free to sink), left to
+// Annulus-shear rig: an annulus under a dead normal load (free to sink), left to
 // settle, then turned at a constant rate; torque against angle for each load (the rows of
-// DESIGN.md's shear.csv). Gives the Mohr-Coulomb c, phi and the Janosi k.
+// shear.csv, docs/formats.md). Gives the Mohr-Coulomb c, phi and the Janosi k.
 #include <string>
 #include <vector>
 
@@ -30,7 +30,7 @@ struct ShearRow {
 // Torque is what the drive applies (minus the soil's torque about the vertical axis).
 std::vector<ShearRow> run_shear(const TerrainSite& site, const ShearTest& test, const RigProgress& progress = {});
 
-// DESIGN.md's shear.csv (inner_radius_m,outer_radius_m,normal_load_N,angle_rad,torque_Nm), plus the
+// shear.csv (inner_radius_m,outer_radius_m,normal_load_N,angle_rad,torque_Nm; docs/formats.md), plus the
 // annulus's sinkage (sinkage_m; the calibrator ignores it), atomically.
 void write_shear_csv(const std::string& path, const std::vector<ShearRow>& rows);
 

@@ -1,8 +1,8 @@
 #pragma once
-// Single-wheel rig (issue 4, point 5): a rigid wheel under a dead load (its mass; free to sink)
+// Single-wheel rig: a rigid wheel under a dead load (its mass; free to sink)
 // turning at omega while its carriage moves at v = omega r (1 - s). Drawbar pull, driving torque and
 // sinkage against time, their steady means over the last part of the run, and slip sweeps (the rows
-// of DESIGN.md's wheel.csv).
+// of wheel.csv, docs/formats.md).
 #include <string>
 #include <vector>
 
@@ -13,7 +13,7 @@
 
 namespace terracal::rigs {
 
-// DESIGN.md's wheel JSON.
+// The wheel JSON (docs/formats.md, "Wheel").
 struct WheelSpec {
   double radius = 0.47, width = 0.25, mass = 108, angular_velocity = 1.0;
   int grouser_count = 0;
@@ -66,7 +66,7 @@ std::string unsteady_reason(const WheelResult& r);
 // One Markdown line on a sweep's steadiness: the unsteady runs, or the largest vertical scatter.
 std::string steadiness_summary(const std::string& model, const std::vector<WheelResult>& results);
 
-// DESIGN.md's wheel.csv (slip,load_N,dbp_N,torque_Nm,sinkage_m,dbp_sd_N,torque_sd_Nm), atomically;
+// wheel.csv (slip,load_N,dbp_N,torque_Nm,sinkage_m,dbp_sd_N,torque_sd_Nm; docs/formats.md), atomically;
 // and the time series of every slip in one long table.
 void write_wheel_csv(const std::string& path, const std::vector<WheelResult>& results);
 void write_wheel_series_csv(const std::string& path, const std::vector<WheelResult>& results);

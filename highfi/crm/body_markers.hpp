@@ -1,6 +1,6 @@
 #pragma once
-// Boundary markers (DESIGN.md §4: at least 3 layers inside every wall and body surface), generated
-// in the body frame at the particle spacing d0.
+// Boundary markers (at least 3 layers inside every wall and body surface; docs/architecture.md,
+// "CRM"), generated in the body frame at the particle spacing d0.
 #include <vector>
 
 #include "core/vec.hpp"

@@ -43,7 +43,7 @@ struct CrmNumerics {
   // The velocity boundary markers carry into the soil's velocity gradient and viscosity (scene key
   // resolution.marker_velocity, rigs' --marker-velocity), see MarkerVelocity.
   MarkerVelocity marker_velocity = MarkerVelocity::kMirror;
-  int grid_reach = 2;  // neighbour cells of size 2h / reach (1: the 2h grid of DESIGN.md)
+  int grid_reach = 2;  // neighbour cells of size 2h / reach (1: the plain 2h grid)
   CrmPrecision cpu_precision = CrmPrecision::kDouble;
   double smoothing_length() const { return h_over_d0 * spacing; }
   double cfl_limit(const CrmSoil& soil, double speed) const {

@@ -1,5 +1,5 @@
 #pragma once
-// The CRM material (DESIGN.md section 3, "Soil"): the soil a scene, a rig or a pipeline simulates.
+// The CRM material (docs/formats.md, "CRM soil"): the soil a scene, a rig or a pipeline simulates.
 #include <cmath>
 
 #include "core/vec.hpp"

@@ -1,7 +1,7 @@
 #pragma once
 // CrmSolver: the CRM time loop on one engine (CPU or CUDA). It owns the rigid bodies (prescribed
 // or dynamic degrees of freedom, integrated with the same midpoint rule as the soil) and returns
-// the wrench of the soil on each body. Settling and caching of beds live in crm_bed.hpp.
+// the wrench of the soil on each body. Settling and caching of beds live in crm_run.hpp.
 #include <cstdint>
 #include <memory>
 #include <vector>

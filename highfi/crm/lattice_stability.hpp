@@ -1,7 +1,7 @@
 #pragma once
 // Linear stability of the SPH particle lattice under a uniform stress (results/crm_settling,
 // "lattice stability"). Perturbing a simple cubic lattice by u e^{ik.x} gives, for the momentum
-// equation of DESIGN.md §4 with the Jaumann/elastic stress response,
+// equation of the CRM (docs/architecture.md, "CRM") with the Jaumann/elastic stress response,
 //   rho u'' = 2 sigma . D(k) u - [(lambda + mu) G G^T + mu |G|^2 I] u,
 //   D(k) = sum_l V Hess W(l) (1 - cos k.l),   G(k) = sum_l V sin(k.l) grad W(l),
 // over the lattice vectors l within the kernel's support. The first term is the geometric stiffness

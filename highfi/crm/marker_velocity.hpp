@@ -4,8 +4,8 @@ namespace terracal {
 
 // How a boundary marker's velocity is extrapolated from the soil.
 // - kMirror: Adami's 2 v_wall - v~, with v~ the Shepard average of the soil around the marker
-//   (DESIGN.md §4). That average sits about one spacing into the soil whatever the marker's depth,
-//   so the first marker layer over-extrapolates and the deeper ones under-extrapolate.
+//   (docs/architecture.md, "CRM"). That average sits about one spacing into the soil whatever the
+//   marker's depth, so the first marker layer over-extrapolates and the deeper ones under-extrapolate.
 // - kMirrorImage: 2 v_wall - v(x*), with v(x*) the Shepard average at the marker's mirror image
 //   x* = x_m + 2 a n across the wall (a: the marker's depth, n: the wall's normal). A linear velocity
 //   field is then mirrored about the wall's velocity at every depth. Where the image has little soil

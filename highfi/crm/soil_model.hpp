@@ -1,6 +1,7 @@
 #pragma once
 // The soil's constitutive law, shared by both backends: Jaumann stress rate with isotropic
-// elasticity, and mu(I) plasticity by radial return (DESIGN.md §4). Drucker-Prager is mu_2 = mu_s.
+// elasticity, and mu(I) plasticity by radial return (docs/architecture.md, "CRM"). Drucker-Prager
+// is mu_2 = mu_s.
 #include <cmath>
 
 #include "core/host_device.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// One midpoint stage for one soil particle, written once for both backends (DESIGN.md section 4):
+// One midpoint stage for one soil particle, written once for both backends (docs/architecture.md, "CRM"):
 // sum the momentum balance, the velocity gradient and the kernel support over the soil and marker
 // neighbours, let the named effects add their terms, then integrate and return-map the stress.
 // Fx is the compile-time list of the named effects with terms in this pass (CrmEffect::kInLoop):

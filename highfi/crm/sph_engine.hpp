@@ -1,7 +1,7 @@
 #pragma once
 // The CRM particle engine seen from the host: a precision- and device-independent interface in
 // double precision. Implementations: the CPU (OpenMP) backend in float64 or float32 and the CUDA
-// backend in float32; all run the same functors of sph_stage.hpp.
+// backend in float32; all run the same functors (soil_stage.hpp, marker_stage.hpp, sph_pair.hpp).
 #include <array>
 #include <memory>
 #include <string>

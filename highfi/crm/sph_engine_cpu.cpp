@@ -1,5 +1,6 @@
 // The CPU backend of the CRM engine: host memory, OpenMP loops, a stable counting sort by cell
-// and double-precision reductions. The physics is the shared functors of sph_stage.hpp.
+// and double-precision reductions. The physics is the shared functors of soil_stage.hpp and
+// marker_stage.hpp (through sph_engine_impl.hpp).
 #include <algorithm>
 #include <cmath>
 #include <cstring>

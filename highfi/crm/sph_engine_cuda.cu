@@ -1,6 +1,6 @@
 // The CUDA backend of the CRM engine: device memory (never managed memory), the shared functors of
-// sph_stage.hpp launched by parallel_for_cuda, CUB's stable radix sort by cell, and double-precision
-// reductions with warp shuffles and atomics.
+// soil_stage.hpp and marker_stage.hpp launched by parallel_for_cuda, CUB's stable radix sort by cell,
+// and double-precision reductions with warp shuffles and atomics.
 #include <cub/device/device_radix_sort.cuh>
 
 #include <cmath>
@@ -14,7 +14,7 @@
 namespace terracal {
 namespace {
 
-constexpr int kDefaultMinBlocks = 4;  // 3.96e8 vs 2.98e8 particle-steps/s at 4M on an H100 (bench/RESULTS.md)
+constexpr int kDefaultMinBlocks = 4;  // the measured best (bench/RESULTS.md, "Occupancy"; docs/decisions.md)
 
 // Scratch memory of CUB's sort, grown on demand and kept for the engine's lifetime.
 struct CubScratch {

@@ -47,7 +47,7 @@ TERRACAL_HD inline Sym3<T> stress_of(const Vec4<T>& s0, const Vec4<T>& s1) {
 
 // Uniform grid of cell size >= 2h / reach over the domain; cells ordered x fastest, so the cells of
 // a row of neighbours are contiguous in the sorted arrays. Key `cells()` is the bin for particles
-// outside the domain (lost), which no neighbour loop visits. reach = 1 is DESIGN.md's 2h grid
+// outside the domain (lost), which no neighbour loop visits. reach = 1 is the plain 2h grid
 // (27 cells, ~13.8 particles each at h = 1.2 d0); reach = 2 uses cells of h (125 cells of ~1.7),
 // which checks ~40 % fewer candidates for the same neighbours.
 template <typename T>

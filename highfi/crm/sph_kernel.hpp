@@ -1,6 +1,7 @@
 #pragma once
-// SPH smoothing kernels with support radius 2h (DESIGN.md §4). The gradient is returned as a
-// factor F with grad_i W_ij = F * (x_i - x_j), which avoids a division by r in the hot loop.
+// SPH smoothing kernels with support radius 2h (docs/architecture.md, "CRM"). The gradient is
+// returned as a factor F with grad_i W_ij = F * (x_i - x_j), which avoids a division by r in the hot
+// loop.
 #include "core/host_device.hpp"
 
 namespace terracal {

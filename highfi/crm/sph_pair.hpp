@@ -21,7 +21,8 @@ struct SoilSelf {
 // Sums over a soil particle's neighbours, or one neighbour's share of them: acceleration (per
 // unit neighbour mass), velocity gradient, kernel support (Shepard sum) and, for the effects that
 // ask for it (kUsesDrift), the kernel-weighted velocity of the neighbours relative to the particle,
-// sum V_j W_ij (v_j - v_i). These are the channels the CPU sums with SIMD (sph_stage.hpp).
+// sum V_j W_ij (v_j - v_i). These are the channels the CPU sums with SIMD (add_neighbours_simd,
+// sph_neighbours.hpp).
 template <typename T>
 struct SoilSums {
   Vec3<T> acc{}, drift{};

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 4, point 11: what accuracy costs in time for the bevameter. The plate test (r = 0.2 m to
+# What accuracy costs in time for the bevameter. The plate test (r = 0.2 m to
 # 0.2 m sinkage) on CRM at several particle spacings and on SCM at several grid sizes; the plate
 # force at fixed sinkages and the wall time of each run. Usage:
 #   studies/bevameter_cost/run.sh TERRACAL OUT [cuda|cpu] [CRM spacings] [SCM grids]

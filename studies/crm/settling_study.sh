@@ -7,14 +7,14 @@ set -euo pipefail
 out=${1:-results/crm_settling}; probe=${2:-build/crm_settle_probe}
 mkdir -p "$out"
 run() { [ -f "$out/$1" ] || { "$probe" "${@:2}" > "$out/$1.tmp" && mv "$out/$1.tmp" "$out/$1"; }; }
-# h/d0 1.2, the default before session 10: the lattice bursts.
+# h/d0 1.2, where the lattice is unstable (docs/decisions.md, "Smoothing length"): the lattice bursts.
 run bed_0.96m_d0.06.csv 0.96 0.06 1.5 1.5 0 cpu 0 h:1.2
 run bed_2.85m_d0.06.csv 2.85 0.06 1.5 1.5 0 cpu 0 h:1.2
 run bed_0.96m_d0.03.csv 0.96 0.03 1.5 1.0 0 cpu 0 h:1.2
 # The same beds started 0.1 spacing off the lattice (settle_jitter 0.1).
 run bed_0.96m_d0.06_jitter0.1.csv 0.96 0.06 1.5 1.5 0 cpu 0.1 h:1.2
 run bed_2.85m_d0.06_jitter0.1.csv 2.85 0.06 1.5 1.0 0 cpu 0.1 h:1.2
-# h/d0 1.4, the default since session 10: the lattice is stable (the 0.02 m bed of
+# h/d0 1.4, the default: the lattice is stable (the 0.02 m bed of
 # lattice_stability.png ran on a GPU: crm_settle_probe 2.85 0.02 1.5 0.8 0 cuda 0 h:1.4).
 run bed_2.85m_d0.06_h1.4.csv 2.85 0.06 1.5 0.8 0 cpu 0 h:1.4
 run bed_0.96m_d0.03_h1.4.csv 0.96 0.03 1.5 1.0 0 cpu 0 h:1.4

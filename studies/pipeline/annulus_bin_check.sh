@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 4, point 6, the annulus: how far the walls and the floor must be, and whether the torque
+# The bin-size and run-length checks of the annulus: how far the walls and the floor must be, and whether the torque
 # curve depends on how long the test lasts. Runs the 0.15-0.20 m annulus under LOAD (default the
 # pipeline's heaviest, 1962 N) in CRM, as gpu_validation.sh does (0.02 m unless SPACING, step 1e-4 s, 0.5 s
 # settling), once per case W:D:RATE:ANGLE (walls scaled by W, bed depth by D, turned at RATE rad/s to

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# Issue 4, point 6, the plate: how far the walls and the floor must be for the 0.3 m plate's loading
+# The bin-size check of the plate: how far the walls and the floor must be for the 0.3 m plate's loading
 # curve to stop moving. Runs the plate in CRM at several bin scales (1 = the bin the rigs use:
-# walls 13.5 radii away over 3 x (max sinkage + 2.5 radii) of soil since session 9, 9 radii and 2x
-# before; pass --plate-wall-radii 3 --plate-depth-scale 1 to start from the earliest bin, as
+# walls 13.5 radii away over 3 x (max sinkage + 2.5 radii) of soil, docs/decisions.md "Plate bin"; the
+# earlier bin had 9 radii and 2x; pass --plate-wall-radii 3 --plate-depth-scale 1 to start from the earliest bin, as
 # results/plate_bin_check's first study does) and prints
 # the change of the loading leg between each scale and the next, measured as the pipeline's bin
 # check does (rigs::curve_change: the second curve read at the first one's sinkages, in five parts;

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 4, point 6, the plate's run length: the CRM plate pushed at several speeds (each halving
+# The run-length check of the plate: the CRM plate pushed at several speeds (each halving
 # doubles the test's duration) in the rigs' bin, and the change of the loading leg from each speed
 # to the next, measured as the bin check measures it (curve_change.awk beside this file).
 # Usage: [SPACING=0.03] [PLATE=0.3] plate_speed_check.sh OUT [TERRACAL=build/terracal] [SPEEDS="0.1 0.05 0.025"] [extra options...]

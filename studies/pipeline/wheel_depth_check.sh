@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Issue 4, point 6: is the CRM wheel's bin effect (4.6 % deeper sinkage in the 1.5x bin, session 15)
-# a matter of the bed's depth? The wheel of point 10 (0.47 m, 0.25 m, 108 kg, 1 rad/s) at slip 0.4,
+# Is the CRM wheel's bin effect (4.6 % deeper sinkage in the 1.5x bin; results/plate_bin_check)
+# a matter of the bed's depth? The pipeline's wheel (0.47 m, 0.25 m, 108 kg, 1 rad/s) at slip 0.4,
 # 3 s, 0.02 m spacing, on the 2022 soil, in the rigs' bin, in beds 1.5x and 2x as deep (same width and
 # length), and in the 1.5x bin; SEEDS jittered realisations each (jitter 0.1 of the spacing).
 # CASES overrides the list (name:options ...).

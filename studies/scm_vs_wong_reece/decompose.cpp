@@ -1,4 +1,4 @@
-// Issue 4, point 9: what separates the SCM wheel from Wong-Reece, one assumption at a time. The
+// What separates the SCM wheel from Wong-Reece, one assumption at a time. The
 // ladder starts at the SCM wheel of the comparison (run.sh: damping on, the set's elastic stiffness)
 // and ends at Wong-Reece, changing one thing per row:
 //   1 SCM as compared            damping pressure R v_n, rear elastic rebound (Ke of the set)
@@ -9,7 +9,7 @@
 //   6 Wong-Reece                 peak at theta_m = (0.43 + 0.32 s) theta1, mirrored onto the rear
 // Rows 3 and 4 are the same wheel computed two ways (the test "SCM wheel matches the rigid-wheel
 // integrals under SCM's own assumptions" bounds their difference).
-// Usage: scm_wr_decomposition SCM.json [OUT.md]   (wheel of DESIGN.md: r 0.47 m, b 0.25 m, 108 kg, 1 rad/s;
+// Usage: scm_wr_decomposition SCM.json [OUT.md]   (the default wheel: r 0.47 m, b 0.25 m, 108 kg, 1 rad/s;
 // SCM at 0.01 m and 1e-3 s, 4 s per slip, means over the second half, as run.sh)
 #include <cstdio>
 #include <exception>

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 4, point 9: the SCM single wheel (0.01 m grid, 1e-3 s step, damping) against the Wong-Reece
+# The SCM single wheel (0.01 m grid, 1e-3 s step, damping) against the Wong-Reece
 # model on dry sand (shared/reference), slips 0.1-0.5. Writes OUT/comparison.md and the curves.
 # Then OUT/decomposition.md: what separates the two, one assumption at a time (decompose.cpp, built
 # as scm_wr_decomposition beside terracal).

@@ -1,4 +1,4 @@
-// Issue 2, points 7, 9 and 12: the outputs of `terracal calibrate`, byte-identical for the same
+// The outputs of `terracal calibrate`: byte-identical for the same
 // seed, resumable after a kill, and the single-plate case handled and reported.
 #include <catch2/catch.hpp>
 

@@ -1,4 +1,4 @@
-// Point 7 of the CRM issue: a scene is validated before anything runs; each bad value exits 2 with
+// A scene is validated before anything runs; each bad value exits 2 with
 // the key, the value and the allowed range. And a short run resumes exactly from its checkpoint.
 #include <catch2/catch.hpp>
 

@@ -1,5 +1,5 @@
-// Issue 4, points 7 and 13: the rig commands (bevameter, wheel, pipeline) write the curve files of
-// DESIGN.md section 3, and bad input exits 2 naming the option or key, before any output is written.
+// The rig commands (bevameter, wheel, pipeline) write the curve files of docs/formats.md, and bad
+// input exits 2 naming the option or key, before any output is written.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -89,7 +89,7 @@ TEST_CASE("rig commands: bad input exits 2 naming the option or key, and writes 
       {"wheel --terrain crm --scm " + d + "/sand.json --wheel " + d + "/wheel.json" + out, {"--soil"}},
       {"wheel --terrain scm --scm " + d + "/sand.json --wheel " + d + "/wheel.json --duration 0" + out, {"duration", "0"}},
       {"pipeline --soil " + d + "/soil_bad.json" + out, {"density", "-5"}},
-      {"pipeline --soil " + d + "/soil.json --shear-loads-kg 50,-3" + out, {"--shear-loads-kg", "-3"}},
+      {"pipeline --soil " + d + "/soil.json --shear-loads 490,-3" + out, {"--shear-loads", "-3"}},
       {"pipeline --soil " + d + "/soil.json --annulus 0.15" + out, {"--annulus"}},
       {"pipeline --soil " + d + "/soil.json --checks=annulus,plates" + out, {"--checks", "plates"}},
       {"pipeline --soil " + d + "/soil.json --device cpu --hourglass-damping -1" + out, {"--hourglass-damping", "-1"}},

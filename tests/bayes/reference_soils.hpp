@@ -13,7 +13,7 @@ struct ReferenceSoil {
   bayes::ParamVector truth;
 };
 
-// k = 0.01 m where the table leaves it empty (issue 2, point 10).
+// k = 0.01 m where the table leaves it empty.
 inline std::vector<ReferenceSoil> reference_soils() {
   const auto t = CsvTable::read(std::string(TERRACAL_REFERENCE_DIR) + "/bekker_wong_soils.csv");
   std::vector<ReferenceSoil> soils;

@@ -1,4 +1,4 @@
-// Issue 2, point 10 (second half): the posterior is calibrated, not just centred. Over 60 noisy
+// The posterior is calibrated, not just centred. Over 60 noisy
 // replicates of one soil, each parameter's 90 % credible interval covers the truth in 80-98 %
 // of them (the binomial sd of a 90 % rate over 60 replicates is 3.9 points).
 #include <catch2/catch.hpp>

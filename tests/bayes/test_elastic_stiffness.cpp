@@ -1,5 +1,5 @@
-// SCM's elastic stiffness Ke from the unloading of plate-sinkage curves (DESIGN.md section 3: "the
-// elastic stiffness [is fitted] to unloading"): an unload or reload branch of a plate of radius r
+// SCM's elastic stiffness Ke from the unloading of plate-sinkage curves (docs/formats.md, "plate.csv":
+// unload and reload rows fit Ke): an unload or reload branch of a plate of radius r
 // follows F = pi r^2 Ke (z - z_p), one plastic sinkage z_p per branch, Ke shared by all.
 #include <catch2/catch.hpp>
 

@@ -1,4 +1,4 @@
-// Issue 2, point 4: the forward models against independent numerical integration (GSL QAG),
+// The forward models against independent numerical integration (GSL QAG),
 // across the series / closed-form switch, in both limits, and through the shared-kernel path.
 #include <catch2/catch.hpp>
 

@@ -1,4 +1,4 @@
-// Plate phases and plate sizes as the calibrator sees them (DESIGN.md section 3): the Bekker law is
+// Plate phases and plate sizes as the calibrator sees them (docs/formats.md, "plate.csv"): the Bekker law is
 // fitted to loading beyond the previous maximum sinkage, and only plates with such rows count.
 #include <catch2/catch.hpp>
 

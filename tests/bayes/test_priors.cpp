@@ -1,4 +1,4 @@
-// Issue 2, point 6: priors files override the defaults -- bounds, normal and lognormal priors,
+// Priors files override the defaults -- bounds, normal and lognormal priors,
 // fixed parameters -- and both the MAP point and the posterior obey them.
 #include <catch2/catch.hpp>
 

@@ -1,4 +1,4 @@
-// Issue 2, point 10 (first half): the maximum a posteriori point recovers the parameters of every
+// The maximum a posteriori point recovers the parameters of every
 // reference soil from synthetic curves with 2 % noise.
 #include <catch2/catch.hpp>
 

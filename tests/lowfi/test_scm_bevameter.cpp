@@ -1,4 +1,4 @@
-// Issue 4, point 8: the SCM terrain driven by the plate and annulus rigs reproduces the analytic
+// The SCM terrain driven by the plate and annulus rigs reproduces the analytic
 // bevameter laws (the forward models of the calibrator), its unload slope is the elastic stiffness,
 // and calibrating on its curves recovers the soil.
 #include <catch2/catch.hpp>

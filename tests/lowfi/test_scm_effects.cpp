@@ -103,7 +103,7 @@ TEST_CASE("SCM refuses a set whose Bekker stiffness is negative for the contact'
   try {
     run(t, 0.5);
     FAIL("no error");
-  } catch (const RunError& e) {
+  } catch (const lowfi::NoBekkerStrength& e) {  // typed: `pipeline` recalibrates with Kc = 0 on it
     CHECK_THAT(e.what(), Catch::Matchers::Contains("narrower than") && Catch::Matchers::Contains("0.196"));
   }
 }

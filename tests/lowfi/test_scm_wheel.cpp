@@ -1,4 +1,4 @@
-// Issue 4, points 9 and 13: the SCM single wheel against the Wong-Reece model on dry sand, and the
+// The SCM single wheel against the Wong-Reece model on dry sand, and the
 // hard cases (high slip, skid, standstill, Moon gravity, very soft soil, a sweep of step sizes).
 #include <catch2/catch.hpp>
 
@@ -17,7 +17,7 @@ using Catch::Matchers::Contains;
 namespace {
 double rel(double a, double b) { return std::abs(a - b) / std::abs(b); }
 
-rigs::WheelSpec design_wheel() { return {}; }  // DESIGN.md's wheel: r 0.47 m, b 0.25 m, 108 kg, 1 rad/s
+rigs::WheelSpec design_wheel() { return {}; }  // the default wheel: r 0.47 m, b 0.25 m, 108 kg, 1 rad/s
 
 rigs::WheelRun run_of(double duration) {
   rigs::WheelRun r;

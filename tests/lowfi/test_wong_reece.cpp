@@ -21,7 +21,7 @@ namespace {
 ScmSoil dry_sand() { return reference_dry_sand(); }
 
 const WongReeceWheel kWheel{0.47, 0.25};
-const double kLoad = 108 * 9.81;  // the DESIGN.md wheel: 108 kg on Earth
+const double kLoad = 108 * 9.81;  // the default wheel (docs/formats.md, "Wheel"): 108 kg on Earth
 
 // Test-side quadrature (GSL QAGS), independent of the model's own integration code.
 double integrate(double (*f)(double, void*), void* params, double a, double b) {

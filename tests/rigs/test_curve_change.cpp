@@ -1,4 +1,5 @@
-// The measure behind issue 4, point 6 (a bigger bin or a longer run moves a rig's curve by < 5 %):
+// The measure behind the bin-size and run-length checks (a bigger bin or a longer run moves a rig's
+// curve by < 5 %; docs/decisions.md):
 // two runs sample their curves at different x when their time steps differ, so the check curve is
 // read at the base curve's x, not by sample number.
 #include <catch2/catch.hpp>

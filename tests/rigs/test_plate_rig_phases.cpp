@@ -1,4 +1,4 @@
-// The plate rig's phase labels (DESIGN.md's plate.csv): the calibrator rejects an unload row deeper
+// The plate rig's phase labels (docs/formats.md, "plate.csv"): the calibrator rejects an unload row deeper
 // than the deepest load row, so the rig must label each row by where the plate actually went. A
 // CRM terrain starts a leg of the schedule at a step that may still move the plate with the old
 // leg's velocity; with every step recorded, that step must stay a load row.

@@ -1,4 +1,4 @@
-// Point 2's triangle-mesh shape and point 3's settled-bed cache.
+// The triangle-mesh shape and the settled-bed cache.
 // - A box given as an OBJ mesh gets the same markers as the built-in box, so pushing either into
 //   the bed gives the same force: the mesh path (OBJ reader, signed distance by ray parity) agrees
 //   with the analytic shape.

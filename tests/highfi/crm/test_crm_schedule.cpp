@@ -1,4 +1,4 @@
-// Point 2: prescribed motion as a function of time. A plate follows a velocity schedule: pushed
+// Prescribed motion as a function of time. A plate follows a velocity schedule: pushed
 // into the bed, pulled back a little, then held. Its position follows the integral of the schedule,
 // the soil's force builds up while loading and falls steeply on unloading (the elastic rebound
 // that gives SCM its unloading stiffness), and a held plate stays put.
