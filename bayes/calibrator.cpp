@@ -195,6 +195,49 @@ Chains CalibrationResult::chains_of(int v) const {
   return out;
 }
 
+// The convergence test after each block: R-hat and bulk ESS of every free parameter against the
+// targets, or the draw cap. Fills res.values and, when done, res.termination.
+bool sampling_done(const CalibrationOptions& opt, const Checkpoint& cp, CalibrationResult& res) {
+  res.values.clear();
+  for (const auto& r : cp.records) res.values.push_back(r.values);
+  double max_rhat = 0, min_ess = 1e300;
+  bool stuck = false;
+  for (int v = 0; v < res.num_params; ++v) {
+    const Chains ch = res.chains_of(v);
+    max_rhat = std::max(max_rhat, rhat_rank(ch));
+    min_ess = std::min(min_ess, ess_bulk(ch));
+    stuck = stuck || some_chain_is_stuck(ch);
+  }
+  if (stuck) max_rhat = std::numeric_limits<double>::infinity();
+  if (opt.progress) opt.progress({"sampling", res.draws, max_rhat, min_ess});
+  if (max_rhat < opt.max_rhat && min_ess >= opt.min_ess) {
+    res.converged = true;
+    res.termination = fmt::format("converged: max R-hat {:.4f} < {}, min bulk ESS {:.0f} >= {}", max_rhat, opt.max_rhat, min_ess, opt.min_ess);
+    return true;
+  }
+  if (res.draws >= opt.max_draws) {
+    res.termination = fmt::format("NOT converged: draw cap {} per chain reached with max R-hat {:.4f} (target < {}) "
+                                  "and min bulk ESS {:.0f} (target >= {})", opt.max_draws, max_rhat, opt.max_rhat, min_ess, opt.min_ess);
+    return true;
+  }
+  return false;
+}
+
+// Log densities, acceptances and the summaries of the finished chains into res.
+void collect_draws(const Checkpoint& cp, long failed_evaluations, int count, int nv, CalibrationResult& res) {
+  res.lp.clear();
+  res.accepted.clear();
+  double acc = 0;
+  for (const auto& r : cp.records) {
+    res.lp.push_back(r.lp);
+    res.accepted.push_back(r.accepted);
+    for (double a : r.accepted) acc += a;
+  }
+  res.acceptance_rate = acc / double(count * res.draws);
+  res.failed_evaluations = failed_evaluations;
+  for (int v = 0; v < nv; ++v) res.summary.push_back(summarize(res.chains_of(v)));
+}
+
 CalibrationResult calibrate(const CalibrationProblem& pb, const CalibrationOptions& opt) {
   if (pb.dim() == 0) throw InputError("calibrate: every parameter is fixed; nothing to infer");
   if (opt.chains < 2) throw InputError(fmt::format("chains {}: at least 2 chains are needed for R-hat", opt.chains));
@@ -240,30 +283,7 @@ CalibrationResult calibrate(const CalibrationProblem& pb, const CalibrationOptio
   const int nv = static_cast<int>(res.names.size());
   for (;;) {
     res.draws = static_cast<long>(cp.records[0].lp.size());
-    if (res.draws >= 4) {
-      res.values.clear();
-      for (const auto& r : cp.records) res.values.push_back(r.values);
-      double max_rhat = 0, min_ess = 1e300;
-      bool stuck = false;
-      for (int v = 0; v < res.num_params; ++v) {
-        const Chains ch = res.chains_of(v);
-        max_rhat = std::max(max_rhat, rhat_rank(ch));
-        min_ess = std::min(min_ess, ess_bulk(ch));
-        stuck = stuck || some_chain_is_stuck(ch);
-      }
-      if (stuck) max_rhat = std::numeric_limits<double>::infinity();
-      if (opt.progress) opt.progress({"sampling", res.draws, max_rhat, min_ess});
-      if (max_rhat < opt.max_rhat && min_ess >= opt.min_ess) {
-        res.converged = true;
-        res.termination = fmt::format("converged: max R-hat {:.4f} < {}, min bulk ESS {:.0f} >= {}", max_rhat, opt.max_rhat, min_ess, opt.min_ess);
-        break;
-      }
-      if (res.draws >= opt.max_draws) {
-        res.termination = fmt::format("NOT converged: draw cap {} per chain reached with max R-hat {:.4f} (target < {}) "
-                                      "and min bulk ESS {:.0f} (target >= {})", opt.max_draws, max_rhat, opt.max_rhat, min_ess, opt.min_ess);
-        break;
-      }
-    }
+    if (res.draws >= 4 && sampling_done(opt, cp, res)) break;
     // Blocks grow with the chain (a quarter of the draws so far), so convergence checks and
     // checkpoint writes cost O(N log N) overall instead of O(N^2).
     const long block = std::max<long>(opt.block, res.draws / 4);
@@ -272,17 +292,7 @@ CalibrationResult calibrate(const CalibrationProblem& pb, const CalibrationOptio
     save();
   }
 
-  res.lp.clear();
-  res.accepted.clear();
-  double acc = 0;
-  for (const auto& r : cp.records) {
-    res.lp.push_back(r.lp);
-    res.accepted.push_back(r.accepted);
-    for (double a : r.accepted) acc += a;
-  }
-  res.acceptance_rate = acc / double(count * res.draws);
-  res.failed_evaluations = sampler->failed_evaluations();
-  for (int v = 0; v < nv; ++v) res.summary.push_back(summarize(res.chains_of(v)));
+  collect_draws(cp, sampler->failed_evaluations(), count, nv, res);
   return res;
 }
 

@@ -46,6 +46,47 @@ std::vector<Branch> find_branches(const PlateData& plate, int& lift_off_rows) {
   return out;
 }
 
+// The branches with at least 2 rows of force > 0 (a slope needs two); the others are noted in `fit`.
+std::vector<Branch> usable_branches(std::vector<Branch> found, const PlateData& plate, ElasticFit& fit) {
+  std::vector<Branch> branches;
+  for (auto& b : found) {
+    if (b.rows.size() >= 2) {
+      branches.push_back(std::move(b));
+      continue;
+    }
+    fit.notes.push_back(fmt::format("{}:{}: the {} branch of the plate r = {:g} m has {} row(s) with force > 0; a slope needs "
+                                    "at least 2: branch ignored for the elastic stiffness",
+                                    plate.path, b.info.first_line, phase_name(b.info.phase), b.info.radius, b.rows.size()));
+  }
+  return branches;
+}
+
+// The least-squares problem A [Ke, c_1 ... c_k] = y of the branches: one slope, one intercept per branch.
+void whitened_design(const PlateData& plate, const std::vector<Branch>& branches, bool relative_noise, Eigen::MatrixXd& A,
+                     Eigen::VectorXd& y) {
+  std::map<double, double> plate_max;  // largest force per plate: the floor of the relative weights
+  for (const auto& p : plate.points) plate_max[p.radius] = std::max(plate_max[p.radius], p.force);
+  int n = 0;
+  for (const auto& b : branches) n += static_cast<int>(b.rows.size());
+  const int cols = 1 + static_cast<int>(branches.size());
+  // Whitened design: row i divided by its noise weight w_i. The slope column is measured from the
+  // branch's first sinkage, not from z = 0: within a branch z moves by millimetres at a depth of
+  // centimetres, and the offset keeps that column from being nearly parallel to the intercept's.
+  A = Eigen::MatrixXd::Zero(n, cols);
+  y.resize(n);
+  int i = 0;
+  for (std::size_t k = 0; k < branches.size(); ++k) {
+    const double r = branches[k].info.radius, z_ref = branches[k].rows.front()->sinkage;
+    for (const PlatePoint* p : branches[k].rows) {
+      const double w = relative_noise ? std::max(p->force, 0.01 * plate_max[r]) : 1.0;
+      A(i, 0) = kPi * r * r * (p->sinkage - z_ref) / w;
+      A(i, 1 + static_cast<int>(k)) = 1.0 / w;
+      y[i] = p->force / w;
+      ++i;
+    }
+  }
+}
+
 }  // namespace
 
 double ElasticFit::quantile(double p) const { return fitted ? ke + sd * gsl_cdf_ugaussian_Pinv(p) : ke; }
@@ -58,42 +99,16 @@ ElasticFit fit_elastic_stiffness(const PlateData& plate, bool relative_noise) {
     fit.notes.push_back(fmt::format("{}: no unload rows (phase = unload); {}", plate.path, keep_default));
     return fit;
   }
-  std::vector<Branch> branches;
-  for (auto& b : found) {
-    if (b.rows.size() >= 2) {
-      branches.push_back(std::move(b));
-      continue;
-    }
-    fit.notes.push_back(fmt::format("{}:{}: the {} branch of the plate r = {:g} m has {} row(s) with force > 0; a slope needs "
-                                    "at least 2: branch ignored for the elastic stiffness",
-                                    plate.path, b.info.first_line, phase_name(b.info.phase), b.info.radius, b.rows.size()));
-  }
+  const std::vector<Branch> branches = usable_branches(std::move(found), plate, fit);
   if (branches.empty()) {
     fit.notes.push_back(fmt::format("{}: no unload or reload branch with 2 or more rows of force > 0; {}", plate.path, keep_default));
     return fit;
   }
 
-  std::map<double, double> plate_max;  // largest force per plate: the floor of the relative weights
-  for (const auto& p : plate.points) plate_max[p.radius] = std::max(plate_max[p.radius], p.force);
-  int n = 0;
-  for (const auto& b : branches) n += static_cast<int>(b.rows.size());
-  const int cols = 1 + static_cast<int>(branches.size());
-  // Whitened design: row i divided by its noise weight w_i. The slope column is measured from the
-  // branch's first sinkage, not from z = 0: within a branch z moves by millimetres at a depth of
-  // centimetres, and the offset keeps that column from being nearly parallel to the intercept's.
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, cols);
-  Eigen::VectorXd y(n);
-  int i = 0;
-  for (std::size_t k = 0; k < branches.size(); ++k) {
-    const double r = branches[k].info.radius, z_ref = branches[k].rows.front()->sinkage;
-    for (const PlatePoint* p : branches[k].rows) {
-      const double w = relative_noise ? std::max(p->force, 0.01 * plate_max[r]) : 1.0;
-      A(i, 0) = kPi * r * r * (p->sinkage - z_ref) / w;
-      A(i, 1 + static_cast<int>(k)) = 1.0 / w;
-      y[i] = p->force / w;
-      ++i;
-    }
-  }
+  Eigen::MatrixXd A;
+  Eigen::VectorXd y;
+  whitened_design(plate, branches, relative_noise, A, y);
+  const int n = static_cast<int>(A.rows()), cols = static_cast<int>(A.cols());
   // Unit column norms first: Ke multiplies ~1e-3 m^3 where an intercept multiplies 1, and the
   // rank decision of the pivoting QR needs comparable columns.
   const Eigen::VectorXd scale = A.colwise().norm().transpose().cwiseMax(1e-300);

@@ -182,51 +182,10 @@ struct PriorResidual {
   }
 };
 
-void polish(const CalibrationProblem& pb, PointEstimate& est) {
-  Scale scale;
-  for (int i = 0; i < kNumParams; ++i) {
-    const Prior& pr = pb.priors()[i];
-    // |MAP|, but never far below the prior's width: a parameter whose optimum sits near 0 (Kc
-    // often does) would otherwise get a vanishing column and lose its variance to the SVD cut.
-    scale[i] = std::max({std::abs(est.map[i]), 1e-4 * (pr.upper - pr.lower), 1e-12});
-  }
-  double u[kNumParams];
-  for (int i = 0; i < kNumParams; ++i) u[i] = est.map[i] / scale[i];
-  ceres::Problem problem;
-  std::vector<ceres::ResidualBlockId> data_blocks;
-  for (int t = 0; t < pb.num_types(); ++t) {
-    auto* cost = new ceres::DynamicAutoDiffCostFunction<TypeResiduals, 8>(
-        new TypeResiduals{&pb, t, std::sqrt(est.noise_var[t]), scale});
-    cost->AddParameterBlock(kNumParams);
-    cost->SetNumResiduals(static_cast<int>(pb.set(t).size()));
-    data_blocks.push_back(problem.AddResidualBlock(cost, nullptr, u));
-  }
-  for (int i : pb.free_indices()) {
-    const Prior& pr = pb.priors()[i];
-    if (pr.kind == Prior::Kind::kNormal || pr.kind == Prior::Kind::kLogNormal)
-      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PriorResidual, 1, kNumParams>(new PriorResidual{i, pr, scale[i]}),
-                               nullptr, u);
-    problem.SetParameterLowerBound(u, i, pr.lower / scale[i]);
-    problem.SetParameterUpperBound(u, i, pr.upper / scale[i]);
-  }
-  std::vector<int> fixed;
-  for (int i = 0; i < kNumParams; ++i)
-    if (pb.priors()[i].fixed()) fixed.push_back(i);
-  if (!fixed.empty()) problem.SetManifold(u, new ceres::SubsetManifold(kNumParams, fixed));
-
-  ceres::Solver::Options options;
-  options.linear_solver_type = ceres::DENSE_QR;
-  options.max_num_iterations = 200;
-  options.function_tolerance = 1e-12;
-  options.parameter_tolerance = 1e-12;
-  options.num_threads = 1;  // deterministic
-  ceres::Solver::Summary summary;
-  ceres::Solve(options, &problem, &summary);
-  est.ceres_report = summary.BriefReport();
-  const auto candidate = unscale(u, scale);
-  // Keep the polished point only if it is feasible and no worse (Ceres cannot see Kc/r + Kphi > 0).
-  if (pb.feasible(candidate) && profile_objective(pb, candidate) <= profile_objective(pb, est.map) + 1e-9) est.map = candidate;
-
+// The covariance of the free parameters at the polished point, from the Jacobian of `problem` (whose
+// parameter block is `u`, the parameters over `scale`), made positive definite.
+void estimate_covariance(const CalibrationProblem& pb, ceres::Problem& problem, const std::vector<ceres::ResidualBlockId>& data_blocks,
+                         const Scale& scale, double* u, PointEstimate& est) {
   // Covariance of the free parameters: DENSE_SVD tolerates a rank-deficient Jacobian.
   ceres::Covariance::Options copt;
   copt.algorithm_type = ceres::DENSE_SVD;
@@ -272,6 +231,54 @@ void polish(const CalibrationProblem& pb, PointEstimate& est) {
   est.covariance = Eigen::MatrixXd(d, d);
   for (int a = 0; a < d; ++a)
     for (int b = 0; b < d; ++b) est.covariance(a, b) = cov_u(a, b) * scale[pb.free_indices()[a]] * scale[pb.free_indices()[b]];
+}
+
+void polish(const CalibrationProblem& pb, PointEstimate& est) {
+  Scale scale;
+  for (int i = 0; i < kNumParams; ++i) {
+    const Prior& pr = pb.priors()[i];
+    // |MAP|, but never far below the prior's width: a parameter whose optimum sits near 0 (Kc
+    // often does) would otherwise get a vanishing column and lose its variance to the SVD cut.
+    scale[i] = std::max({std::abs(est.map[i]), 1e-4 * (pr.upper - pr.lower), 1e-12});
+  }
+  double u[kNumParams];
+  for (int i = 0; i < kNumParams; ++i) u[i] = est.map[i] / scale[i];
+  ceres::Problem problem;
+  std::vector<ceres::ResidualBlockId> data_blocks;
+  for (int t = 0; t < pb.num_types(); ++t) {
+    auto* cost = new ceres::DynamicAutoDiffCostFunction<TypeResiduals, 8>(
+        new TypeResiduals{&pb, t, std::sqrt(est.noise_var[t]), scale});
+    cost->AddParameterBlock(kNumParams);
+    cost->SetNumResiduals(static_cast<int>(pb.set(t).size()));
+    data_blocks.push_back(problem.AddResidualBlock(cost, nullptr, u));
+  }
+  for (int i : pb.free_indices()) {
+    const Prior& pr = pb.priors()[i];
+    if (pr.kind == Prior::Kind::kNormal || pr.kind == Prior::Kind::kLogNormal)
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PriorResidual, 1, kNumParams>(new PriorResidual{i, pr, scale[i]}),
+                               nullptr, u);
+    problem.SetParameterLowerBound(u, i, pr.lower / scale[i]);
+    problem.SetParameterUpperBound(u, i, pr.upper / scale[i]);
+  }
+  std::vector<int> fixed;
+  for (int i = 0; i < kNumParams; ++i)
+    if (pb.priors()[i].fixed()) fixed.push_back(i);
+  if (!fixed.empty()) problem.SetManifold(u, new ceres::SubsetManifold(kNumParams, fixed));
+
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::DENSE_QR;
+  options.max_num_iterations = 200;
+  options.function_tolerance = 1e-12;
+  options.parameter_tolerance = 1e-12;
+  options.num_threads = 1;  // deterministic
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &problem, &summary);
+  est.ceres_report = summary.BriefReport();
+  const auto candidate = unscale(u, scale);
+  // Keep the polished point only if it is feasible and no worse (Ceres cannot see Kc/r + Kphi > 0).
+  if (pb.feasible(candidate) && profile_objective(pb, candidate) <= profile_objective(pb, est.map) + 1e-9) est.map = candidate;
+
+  estimate_covariance(pb, problem, data_blocks, scale, u, est);
 }
 
 void update_noise(const CalibrationProblem& pb, PointEstimate& est) {

@@ -151,6 +151,48 @@ void write_crm_snapshot(const fs::path& file, const CrmSolver& solver) {
   write_vtu_points(bfile, bxyz, {body}, solver.time());
 }
 
+namespace {
+// Restores the solver from the checkpoint of the same scene and device (InputError otherwise) and
+// returns the rows of bodies.csv up to the checkpoint's time.
+std::vector<std::string> resume_run(CrmSolver& solver, const fs::path& ckpt, const std::string& fingerprint, const fs::path& bodies_csv) {
+  CrmCheckpoint c = read_crm_checkpoint(ckpt);
+  if (c.fingerprint != fingerprint)
+    throw InputError(fmt::format("--resume: {} belongs to a different scene or device (fingerprint {} != {})", ckpt.string(),
+                                 c.fingerprint, fingerprint));
+  solver.restore(c.soil, c.bodies, c.time, c.steps);
+  std::vector<std::string> rows;
+  std::ifstream in(bodies_csv);
+  std::string line;
+  std::getline(in, line);
+  while (std::getline(in, line))
+    if (std::stod(line.substr(0, line.find(','))) <= c.time + 0.5 * solver.time_step()) rows.push_back(line);
+  spdlog::info("resumed from {} at t = {} s, step {}", ckpt.string(), c.time, c.steps);
+  return rows;
+}
+
+void fill_summary(const CrmSolver& solver, long first_step, double wall_seconds, CrmRunSummary& sum) {
+  sum.particles = solver.engine().soil_count();
+  sum.markers = solver.engine().marker_count();
+  sum.steps = solver.steps() - first_step;
+  sum.time_step = solver.time_step();
+  sum.simulated = solver.time();
+  sum.wall_seconds = wall_seconds;
+  sum.particle_steps_per_second = sum.wall_seconds > 0 ? double(sum.steps) * double(sum.particles) / sum.wall_seconds : 0;
+  sum.lost = solver.stats().lost;
+  sum.device = solver.engine().description();
+  if (sum.lost > 0) spdlog::warn("{} particles left the domain and were removed from the simulation", sum.lost);
+}
+
+void write_summary_json(const fs::path& path, const CrmRunSummary& sum, std::size_t device_bytes) {
+  nlohmann::ordered_json j = {{"particles", sum.particles}, {"markers", sum.markers}, {"steps", sum.steps},
+                              {"time_step_s", sum.time_step}, {"simulated_s", sum.simulated},
+                              {"wall_s", sum.wall_seconds}, {"particle_steps_per_second", sum.particle_steps_per_second},
+                              {"lost_particles", sum.lost}, {"bed_from_cache", sum.bed_from_cache}, {"device", sum.device},
+                              {"device_bytes_per_particle", double(device_bytes) / double(std::max<std::size_t>(1, sum.particles))}};
+  write_text_atomically(path.string(), j.dump(2) + "\n");
+}
+}  // namespace
+
 CrmRunSummary run_crm_scene(const CrmScene& scene, const CrmRunOptions& o) {
   fs::create_directories(o.out);
   CrmRunSummary sum;
@@ -161,19 +203,7 @@ CrmRunSummary run_crm_scene(const CrmScene& scene, const CrmRunOptions& o) {
   std::vector<std::string> rows;
   std::vector<std::pair<double, std::string>> snapshots;
   const std::string header = "time_s,body,fx_N,fy_N,fz_N,tx_Nm,ty_Nm,tz_Nm,x_m,y_m,z_m,vx_mps,vy_mps,vz_mps";
-  if (o.resume) {
-    CrmCheckpoint c = read_crm_checkpoint(ckpt);
-    if (c.fingerprint != fingerprint)
-      throw InputError(fmt::format("--resume: {} belongs to a different scene or device (fingerprint {} != {})", ckpt.string(),
-                                   c.fingerprint, fingerprint));
-    solver.restore(c.soil, c.bodies, c.time, c.steps);
-    std::ifstream in(o.out / "bodies.csv");
-    std::string line;
-    std::getline(in, line);
-    while (std::getline(in, line))
-      if (std::stod(line.substr(0, line.find(','))) <= c.time + 0.5 * solver.time_step()) rows.push_back(line);
-    spdlog::info("resumed from {} at t = {} s, step {}", ckpt.string(), c.time, c.steps);
-  }
+  if (o.resume) rows = resume_run(solver, ckpt, fingerprint, o.out / "bodies.csv");
   auto write_rows = [&] {
     std::string text = header + "\n";
     for (const auto& r : rows) text += r + "\n";
@@ -219,22 +249,8 @@ CrmRunSummary run_crm_scene(const CrmScene& scene, const CrmRunOptions& o) {
   check_finite(solver, "run");
   progress.maybe(solver, true);
   checkpoint();
-  sum.particles = solver.engine().soil_count();
-  sum.markers = solver.engine().marker_count();
-  sum.steps = solver.steps() - first;
-  sum.time_step = solver.time_step();
-  sum.simulated = solver.time();
-  sum.wall_seconds = progress.wall();
-  sum.particle_steps_per_second = sum.wall_seconds > 0 ? double(sum.steps) * double(sum.particles) / sum.wall_seconds : 0;
-  sum.lost = solver.stats().lost;
-  sum.device = solver.engine().description();
-  if (sum.lost > 0) spdlog::warn("{} particles left the domain and were removed from the simulation", sum.lost);
-  nlohmann::ordered_json j = {{"particles", sum.particles}, {"markers", sum.markers}, {"steps", sum.steps},
-                              {"time_step_s", sum.time_step}, {"simulated_s", sum.simulated},
-                              {"wall_s", sum.wall_seconds}, {"particle_steps_per_second", sum.particle_steps_per_second},
-                              {"lost_particles", sum.lost}, {"bed_from_cache", sum.bed_from_cache}, {"device", sum.device},
-                              {"device_bytes_per_particle", double(solver.engine().device_bytes()) / double(std::max<std::size_t>(1, sum.particles))}};
-  write_text_atomically((o.out / "summary.json").string(), j.dump(2) + "\n");
+  fill_summary(solver, first, progress.wall(), sum);
+  write_summary_json(o.out / "summary.json", sum, solver.engine().device_bytes());
   return sum;
 }
 
