@@ -4,12 +4,12 @@
 #include <memory>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
+#include <nlohmann/json.hpp>
 
+#include "apps/bevameter_options.hpp"
 #include "apps/cli_checks.hpp"
 #include "apps/commands.hpp"
-#include "apps/bevameter_options.hpp"
 #include "apps/report_plots.hpp"
 #include "apps/soil_choice.hpp"
 #include "core/atomic_file.hpp"
@@ -32,7 +32,8 @@ struct BevameterArgs {
 }  // namespace
 
 Command add_bevameter(CLI::App& app) {
-  auto* sub = app.add_subcommand("bevameter", "Virtual bevameter (plate sinkage, annulus shear) on CRM or SCM; writes plate.csv and shear.csv");
+  auto* sub = app.add_subcommand(
+      "bevameter", "Virtual bevameter (plate sinkage, annulus shear) on CRM or SCM; writes plate.csv and shear.csv");
   auto a = std::make_shared<BevameterArgs>();
   const std::map<std::string, SoilModel> solvers{{"crm", SoilModel::kCrm}, {"scm", SoilModel::kScm}};
   add_choice(sub, "--solver", a->solver, solvers, "soil model: crm or scm")->required()->default_str("");
@@ -54,11 +55,14 @@ Command add_bevameter(CLI::App& app) {
     const BevameterCurves c = run_bevameter(soil, a->terrain, plan, plate, shear);
     if (plate) rigs::write_plate_csv(a->out + "/plate.csv", c.plate);
     if (shear) rigs::write_shear_csv(a->out + "/shear.csv", c.shear);
-    nlohmann::json run = {{"solver", soil_model_name(a->solver)}, {"terrain", c.site}, {"plate_wall_seconds", c.plate_wall}, {"shear_wall_seconds", c.shear_wall}};
+    nlohmann::json run = {{"solver", soil_model_name(a->solver)},
+                          {"terrain", c.site},
+                          {"plate_wall_seconds", c.plate_wall},
+                          {"shear_wall_seconds", c.shear_wall}};
     write_text_atomically(a->out + "/run.json", run.dump(2) + "\n");
     if (a->plots) plot_bevameter(a->out, c, nullptr);
-    fmt::print("bevameter ({}): {} plate rows in {:.3g} s, {} shear rows in {:.3g} s; written to {}\n", soil_model_name(a->solver), c.plate.size(),
-               c.plate_wall, c.shear.size(), c.shear_wall, a->out);
+    fmt::print("bevameter ({}): {} plate rows in {:.3g} s, {} shear rows in {:.3g} s; written to {}\n",
+               soil_model_name(a->solver), c.plate.size(), c.plate_wall, c.shear.size(), c.shear_wall, a->out);
     return 0;
   };
 }

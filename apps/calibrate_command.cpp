@@ -15,22 +15,33 @@ struct CalibrateArgs {
 }  // namespace
 
 Command add_calibrate(CLI::App& app) {
-  auto* sub = app.add_subcommand("calibrate", "Fit SCM (Bekker-Wong-Janosi) parameters and their posterior to bevameter curves");
+  auto* sub = app.add_subcommand("calibrate",
+                                 "Fit SCM (Bekker-Wong-Janosi) parameters and their posterior to bevameter curves");
   auto a = std::make_shared<CalibrateArgs>();
   CalibrationFiles& f = a->files;
   CalibrationSettings& s = a->settings;
-  sub->add_option("--plate", f.plate_csv, "plate-sinkage curves: plate_radius_m,sinkage_m,force_N[,phase]")->required()->check(CLI::ExistingFile);
-  sub->add_option("--shear", f.shear_csv, "annulus-shear curves: inner_radius_m,outer_radius_m,normal_load_N,angle_rad,torque_Nm")
+  sub->add_option("--plate", f.plate_csv, "plate-sinkage curves: plate_radius_m,sinkage_m,force_N[,phase]")
+      ->required()
       ->check(CLI::ExistingFile);
-  sub->add_option("--out", s.out_dir, "output folder (scm_params.json, posterior.h5, summary.txt, PNG plots)")->required();
+  sub->add_option("--shear", f.shear_csv,
+                  "annulus-shear curves: inner_radius_m,outer_radius_m,normal_load_N,angle_rad,torque_Nm")
+      ->check(CLI::ExistingFile);
+  sub->add_option("--out", s.out_dir, "output folder (scm_params.json, posterior.h5, summary.txt, PNG plots)")
+      ->required();
   sub->add_option("--seed", s.seed, "random seed: the same seed gives byte-identical outputs")->capture_default_str();
   sub->add_option("--chains", s.chains, "independent MCMC chains, 4 to 256")->capture_default_str();
-  sub->add_option("--min-ess", s.min_ess, "bulk effective sample size required for every parameter (> 0)")->capture_default_str();
-  sub->add_option("--max-draws", s.max_draws, "draw cap per chain (>= 10); reaching it is reported as not converged")->capture_default_str();
-  sub->add_option("--priors", f.priors_json, "priors file (JSON): bounds, normal/lognormal priors, fixed parameters")->check(CLI::ExistingFile);
-  const std::map<std::string, bayes::SamplerKind> samplers{{"dram", bayes::SamplerKind::kDram}, {"ensemble", bayes::SamplerKind::kEnsemble}};
-  add_choice(sub, "--sampler", s.sampler, samplers, "dram (delayed-rejection adaptive Metropolis) or ensemble (affine-invariant)");
-  const std::map<std::string, bayes::NoiseModel> noises{{"relative", bayes::NoiseModel::kRelative}, {"absolute", bayes::NoiseModel::kAbsolute}};
+  sub->add_option("--min-ess", s.min_ess, "bulk effective sample size required for every parameter (> 0)")
+      ->capture_default_str();
+  sub->add_option("--max-draws", s.max_draws, "draw cap per chain (>= 10); reaching it is reported as not converged")
+      ->capture_default_str();
+  sub->add_option("--priors", f.priors_json, "priors file (JSON): bounds, normal/lognormal priors, fixed parameters")
+      ->check(CLI::ExistingFile);
+  const std::map<std::string, bayes::SamplerKind> samplers{{"dram", bayes::SamplerKind::kDram},
+                                                           {"ensemble", bayes::SamplerKind::kEnsemble}};
+  add_choice(sub, "--sampler", s.sampler, samplers,
+             "dram (delayed-rejection adaptive Metropolis) or ensemble (affine-invariant)");
+  const std::map<std::string, bayes::NoiseModel> noises{{"relative", bayes::NoiseModel::kRelative},
+                                                        {"absolute", bayes::NoiseModel::kAbsolute}};
   add_choice(sub, "--noise", s.noise, noises, "noise model: relative (sd grows with the signal) or absolute");
   sub->add_flag("!--no-plots", s.plots, "skip the PNG plots");
   return [a] { return run_calibration(read_calibration_files(a->files), a->settings).converged ? 0 : 1; };

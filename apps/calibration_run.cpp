@@ -23,23 +23,25 @@ namespace {
 // Every number the calibration sees, in full precision: two runs with the same text saw the same data.
 std::string data_text(const CalibrationData& d) {
   std::string s;
-  for (const auto& p : d.plate.points) s += fmt::format("{:.17g},{:.17g},{:.17g},{};", p.radius, p.sinkage, p.force, int(p.phase));
+  for (const auto& p : d.plate.points)
+    s += fmt::format("{:.17g},{:.17g},{:.17g},{};", p.radius, p.sinkage, p.force, int(p.phase));
   s += "|";
   if (d.shear)
     for (const auto& p : d.shear->points)
-      s += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{};", p.inner_radius, p.outer_radius, p.normal_load, p.angle,
-                       p.torque, p.developed);
+      s += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{};", p.inner_radius, p.outer_radius, p.normal_load,
+                       p.angle, p.torque, p.developed);
   s += "|";
   for (const Prior& p : d.priors)
-    s += fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g};", int(p.kind), p.lower, p.upper, p.mean, p.sd, p.value);
+    s += fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g};", int(p.kind), p.lower, p.upper, p.mean, p.sd,
+                     p.value);
   return s;
 }
 
 // FNV-1a: a stable 64-bit fingerprint of the data and options, so that a checkpoint is resumed only
 // by the very same calibration.
 std::string fingerprint(const CalibrationData& d, const CalibrationSettings& s) {
-  const std::string text = fmt::format("{}|{}|{}|{}|{}|{}|{}|{}", TERRACAL_VERSION, data_text(d), s.seed, s.chains, s.min_ess,
-                                       s.max_draws, sampler_name(s.sampler), noise_name(s.noise));
+  const std::string text = fmt::format("{}|{}|{}|{}|{}|{}|{}|{}", TERRACAL_VERSION, data_text(d), s.seed, s.chains,
+                                       s.min_ess, s.max_draws, sampler_name(s.sampler), noise_name(s.noise));
   std::uint64_t h = 1469598103934665603ull;
   for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
   return fmt::format("{:016x}", h);
@@ -48,7 +50,8 @@ std::string fingerprint(const CalibrationData& d, const CalibrationSettings& s) 
 void validate(const CalibrationSettings& s) {
   // At least 4 independent chains, so that split R-hat compares 8 half-chains from dispersed starts.
   if (s.chains < 4 || s.chains > 256) throw InputError(fmt::format("--chains {}: expected 4 to 256 chains", s.chains));
-  if (s.max_draws < 10) throw InputError(fmt::format("--max-draws {}: expected at least 10 draws per chain", s.max_draws));
+  if (s.max_draws < 10)
+    throw InputError(fmt::format("--max-draws {}: expected at least 10 draws per chain", s.max_draws));
   if (!(s.min_ess > 0)) throw InputError(fmt::format("--min-ess {}: expected a positive number", s.min_ess));
   if (s.out_dir.empty()) throw InputError("--out: an output folder is required");
   if (fs::exists(s.out_dir) && !fs::is_directory(s.out_dir))
@@ -65,16 +68,19 @@ CalibrationOptions sampler_options(const CalibrationData& data, const Calibratio
   opt.checkpoint_path = s.out_dir + "/.checkpoint.cbor";
   opt.fingerprint = fingerprint(data, s);
   opt.progress = [](const CalibrationProgress& p) {
-    if (p.stage == "warm-up") spdlog::info("warm-up done; sampling until R-hat and ESS targets are met");
-    else spdlog::info("{} draws per chain: max R-hat {:.4f}, min bulk ESS {:.0f}", p.draws_per_chain, p.max_rhat, p.min_ess);
+    if (p.stage == "warm-up")
+      spdlog::info("warm-up done; sampling until R-hat and ESS targets are met");
+    else
+      spdlog::info("{} draws per chain: max R-hat {:.4f}, min bulk ESS {:.0f}", p.draws_per_chain, p.max_rhat,
+                   p.min_ess);
   };
   return opt;
 }
 
 // Files of an earlier run in the same folder go first: the folder never mixes two runs' outputs.
 void remove_earlier_outputs(const std::string& dir) {
-  for (const char* old : {"scm_params.json", "posterior.h5", "summary.txt", "plate_fit.png", "shear_fit.png", "shear_developed.png",
-                          "pairs.png"})
+  for (const char* old : {"scm_params.json", "posterior.h5", "summary.txt", "plate_fit.png", "shear_fit.png",
+                          "shear_developed.png", "pairs.png"})
     fs::remove(fs::path(dir) / old);
 }
 
@@ -93,16 +99,20 @@ CalibrationData read_calibration_files(const CalibrationFiles& files) {
 CalibrationData calibration_data(const BevameterCurves& curves, const std::string& dir) {
   // Row i of the curves is line i + 2 of the file the pipeline wrote them to (after its header).
   auto locator = [](const std::string& file) {
-    return [file](std::size_t i, const std::string& column) { return fmt::format("{}:{}, column '{}'", file, i + 2, column); };
+    return [file](std::size_t i, const std::string& column) {
+      return fmt::format("{}:{}, column '{}'", file, i + 2, column);
+    };
   };
   std::vector<PlatePoint> plate;
   for (std::size_t i = 0; i < curves.plate.size(); ++i) {
     const rigs::PlateRow& r = curves.plate[i];
     const auto phase = parse_plate_phase(r.phase);
-    if (!phase) throw RunError(fmt::format("plate rig row {}: phase '{}' is not load, unload or reload", i + 1, r.phase));
+    if (!phase)
+      throw RunError(fmt::format("plate rig row {}: phase '{}' is not load, unload or reload", i + 1, r.phase));
     plate.push_back({r.radius, r.sinkage, r.force, *phase, int(i) + 2});
   }
-  CalibrationData d{make_plate_data(std::move(plate), dir + "/plate.csv", locator(dir + "/plate.csv")), std::nullopt, default_priors()};
+  CalibrationData d{make_plate_data(std::move(plate), dir + "/plate.csv", locator(dir + "/plate.csv")), std::nullopt,
+                    default_priors()};
   if (!curves.shear.empty()) {
     std::vector<ShearPoint> shear;
     for (std::size_t i = 0; i < curves.shear.size(); ++i) {
@@ -140,13 +150,16 @@ CalibrationOutcome run_calibration(const CalibrationData& data, const Calibratio
   const std::string report = summary_report(problem, res, ctx);
   write_text_atomically(s.out_dir + "/summary.txt", report);
   if (s.plots) {
-    if (gnuplot_available()) write_plots(s.out_dir, problem, res, idata);
-    else spdlog::warn("gnuplot not found: no plots written (install gnuplot-nox; scripts/setup.sh does)");
+    if (gnuplot_available())
+      write_plots(s.out_dir, problem, res, idata);
+    else
+      spdlog::warn("gnuplot not found: no plots written (install gnuplot-nox; scripts/setup.sh does)");
   }
   fs::remove(opt.checkpoint_path);
   std::fputs(report.c_str(), stdout);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  spdlog::info("wrote {}/scm_params.json, posterior.h5, summary.txt{} in {:.2f} s", s.out_dir, s.plots ? ", plots" : "", seconds);
+  spdlog::info("wrote {}/scm_params.json, posterior.h5, summary.txt{} in {:.2f} s", s.out_dir, s.plots ? ", plots" : "",
+               seconds);
   if (!res.converged)
     spdlog::error("sampling did not converge ({}); the outputs are written but should not be trusted", res.termination);
   return out;

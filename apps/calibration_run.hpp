@@ -47,8 +47,8 @@ CalibrationData calibration_data(const BevameterCurves& curves, const std::strin
 
 struct CalibrationOutcome {
   bool converged = false;
-  lowfi::ScmSoil fitted;           // the MAP set, validated as an SCM soil
-  nlohmann::ordered_json params;   // scm_params.json as written
+  lowfi::ScmSoil fitted;          // the MAP set, validated as an SCM soil
+  nlohmann::ordered_json params;  // scm_params.json as written
 };
 
 // Validates the settings before anything is written (bad input: InputError, no output files), then

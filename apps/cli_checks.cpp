@@ -28,14 +28,21 @@ std::string check_number(const std::string& text, Accept&& accept, const std::st
 
 CLI::Validator in_range(const Range& r) {
   const std::string expected = r.text();
-  return CLI::Validator([r, expected](std::string& s) { return check_number(s, [&](double v) { return r.contains(v); }, expected); },
-                        expected);
+  return CLI::Validator(
+      [r, expected](std::string& s) {
+        return check_number(
+            s, [&](double v) { return r.contains(v); }, expected);
+      },
+      expected);
 }
 
 CLI::Validator off_or_in_range(const Range& r) {
   const std::string expected = "0 (off) or " + r.text();
   return CLI::Validator(
-      [r, expected](std::string& s) { return check_number(s, [&](double v) { return v == 0 || r.contains(v); }, expected); },
+      [r, expected](std::string& s) {
+        return check_number(
+            s, [&](double v) { return v == 0 || r.contains(v); }, expected);
+      },
       expected);
 }
 

@@ -22,7 +22,8 @@ struct CrmArgs {
 }  // namespace
 
 Command add_crm(CLI::App& app) {
-  auto* sub = app.add_subcommand("crm", "Run a CRM (SPH) scene: bodies on a settled soil bed; writes bodies.csv, VTU snapshots, checkpoints");
+  auto* sub = app.add_subcommand(
+      "crm", "Run a CRM (SPH) scene: bodies on a settled soil bed; writes bodies.csv, VTU snapshots, checkpoints");
   auto a = std::make_shared<CrmArgs>();
   sub->add_option("--scene", a->scene, "scene file (JSON, see docs/crm_scene.md)")->required();
   sub->add_option("--out", a->out, "output folder")->required();
@@ -41,8 +42,8 @@ Command add_crm(CLI::App& app) {
     o.resume = a->resume;
     o.record_every = a->record_every;
     const CrmRunSummary s = run_crm_scene(scene, o);
-    fmt::print("{} particles, {} steps of {:.4g} s in {:.3g} s wall: {:.3g} particle-steps/s on {}; lost {}\n", s.particles,
-               s.steps, s.time_step, s.wall_seconds, s.particle_steps_per_second, s.device, s.lost);
+    fmt::print("{} particles, {} steps of {:.4g} s in {:.3g} s wall: {:.3g} particle-steps/s on {}; lost {}\n",
+               s.particles, s.steps, s.time_step, s.wall_seconds, s.particle_steps_per_second, s.device, s.lost);
     return 0;
   };
 }

@@ -39,7 +39,8 @@ int calibrate_embedded(const DemoArgs& a) {
 }  // namespace
 
 Command add_demo(CLI::App& app) {
-  auto* sub = app.add_subcommand("demo", "The whole pipeline on the embedded default soil at a coarse resolution (minutes on 2 cores)");
+  auto* sub = app.add_subcommand(
+      "demo", "The whole pipeline on the embedded default soil at a coarse resolution (minutes on 2 cores)");
   auto a = std::make_shared<DemoArgs>();
   sub->add_option("--out", a->out, "output folder")->capture_default_str();
   sub->add_option("--seed", a->seed, "random seed")->capture_default_str();

@@ -5,9 +5,9 @@
 #include <exception>
 #include <map>
 
-#include <CLI/CLI.hpp>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
+#include <CLI/CLI.hpp>
 
 #include "apps/commands.hpp"
 #include "core/errors.hpp"

@@ -22,8 +22,8 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 // 1. The CRM bevameter: plates and annulus; the curves go to OUT/bevameter/.
 BevameterCurves bevameter_stage(const PipelinePlan& plan, const SoilChoice& crm, StageTimes& wall) {
   const BevameterPlan& b = plan.bevameter;
-  spdlog::info("pipeline 1/4: CRM bevameter (plates {} m to {} m, annulus {}-{} m at {} loads)", fmt::join(b.plates, ", "), b.max_sinkage,
-               b.inner_radius, b.outer_radius, b.shear_loads.size());
+  spdlog::info("pipeline 1/4: CRM bevameter (plates {} m to {} m, annulus {}-{} m at {} loads)",
+               fmt::join(b.plates, ", "), b.max_sinkage, b.inner_radius, b.outer_radius, b.shear_loads.size());
   const auto t = Clock::now();
   BevameterCurves bev = run_bevameter(crm, plan.terrain, b, true, true);
   wall.bevameter = since(t);
@@ -48,7 +48,8 @@ CalibrationOutcome calibration_stage(const PipelinePlan& plan, const Calibration
   CalibrationOutcome outcome = run_calibration(data, calibration_settings(plan, "calibration"));
   wall.calibration = since(t);
   if (!outcome.converged)
-    spdlog::warn("the calibration did not converge; the pipeline goes on with its MAP point (see calibration/summary.txt)");
+    spdlog::warn(
+        "the calibration did not converge; the pipeline goes on with its MAP point (see calibration/summary.txt)");
   return outcome;
 }
 
@@ -71,42 +72,53 @@ TerrainOptions scm_options(const PipelinePlan& plan) {
 // (Kc/b + Kphi < 0) for the wheel's narrower contact patch, where SCM has no strength: then the set
 // is calibrated again with Kc fixed at 0 (Bekker's law without the width term) into
 // OUT/calibration_kc0/, and the report says so.
-std::vector<rigs::WheelResult> scm_wheel_stage(const PipelinePlan& plan, const CalibrationData& data, PipelineResults& r) {
+std::vector<rigs::WheelResult> scm_wheel_stage(const PipelinePlan& plan, const CalibrationData& data,
+                                               PipelineResults& r) {
   SoilChoice scm = scm_choice(plan, r.calibration.fitted);
   r.wheel_set = r.calibration.fitted;
   try {
-    return run_wheel_sweep(SoilModel::kScm, scm, scm_options(plan), plan.wheel, plan.slips, plan.scm_wheel_run, &r.scm_wheel_site);
+    return run_wheel_sweep(SoilModel::kScm, scm, scm_options(plan), plan.wheel, plan.slips, plan.scm_wheel_run,
+                           &r.scm_wheel_site);
   } catch (const lowfi::NoBekkerStrength& e) {
     spdlog::warn("{}", e.what());
     spdlog::warn("recalibrating with Kc fixed at 0 for the SCM wheel (calibration_kc0/)");
-    r.scm_note = fmt::format("The calibrated set (free Kc) could not drive the SCM wheel: {} The SCM wheel uses the set "
-                             "calibrated with Kc fixed at 0 (calibration_kc0/).", e.what());
+    r.scm_note = fmt::format(
+        "The calibrated set (free Kc) could not drive the SCM wheel: {} The SCM wheel uses the set "
+        "calibrated with Kc fixed at 0 (calibration_kc0/).",
+        e.what());
     CalibrationData kc0 = data;
     kc0.priors[bayes::kKc] = bayes::fixed_prior(0);
     r.wheel_set = run_calibration(kc0, calibration_settings(plan, "calibration_kc0")).fitted;
     scm.scm = r.wheel_set;
-    return run_wheel_sweep(SoilModel::kScm, scm, scm_options(plan), plan.wheel, plan.slips, plan.scm_wheel_run, &r.scm_wheel_site);
+    return run_wheel_sweep(SoilModel::kScm, scm, scm_options(plan), plan.wheel, plan.slips, plan.scm_wheel_run,
+                           &r.scm_wheel_site);
   }
 }
 
 // 3. The wheel sweeps: CRM, SCM on the calibrated set, and Wong-Reece on the set the SCM wheel used;
 // the curves go to OUT/wheel_<model>/.
 void wheel_stage(const PipelinePlan& plan, const SoilChoice& crm, const CalibrationData& data, PipelineResults& r) {
-  spdlog::info("pipeline 3/4: single wheel, slips {}: CRM, SCM (calibrated) and Wong-Reece", fmt::join(plan.slips, ", "));
+  spdlog::info("pipeline 3/4: single wheel, slips {}: CRM, SCM (calibrated) and Wong-Reece",
+               fmt::join(plan.slips, ", "));
   auto t = Clock::now();
-  r.wheel_crm = run_wheel_sweep(SoilModel::kCrm, crm, plan.terrain, plan.wheel, plan.slips, plan.crm_wheel_run, &r.crm_wheel_site);
+  r.wheel_crm = run_wheel_sweep(SoilModel::kCrm, crm, plan.terrain, plan.wheel, plan.slips, plan.crm_wheel_run,
+                                &r.crm_wheel_site);
   r.wall.crm_wheel = since(t);
   t = Clock::now();
   r.wheel_scm = scm_wheel_stage(plan, data, r);
   r.wall.scm_wheel = since(t);
-  r.wheel_wong_reece = run_wheel_sweep(SoilModel::kWongReece, scm_choice(plan, r.wheel_set), scm_options(plan), plan.wheel, plan.slips, plan.scm_wheel_run);
-  for (const auto& [name, res] : {std::pair{"crm", &r.wheel_crm}, std::pair{"scm", &r.wheel_scm}, std::pair{"wong_reece", &r.wheel_wong_reece}}) {
+  r.wheel_wong_reece = run_wheel_sweep(SoilModel::kWongReece, scm_choice(plan, r.wheel_set), scm_options(plan),
+                                       plan.wheel, plan.slips, plan.scm_wheel_run);
+  for (const auto& [name, res] :
+       {std::pair{"crm", &r.wheel_crm}, std::pair{"scm", &r.wheel_scm}, std::pair{"wong_reece", &r.wheel_wong_reece}}) {
     const std::string dir = plan.out + "/wheel_" + name;
     std::filesystem::create_directories(dir);
     rigs::write_wheel_csv(dir + "/wheel.csv", *res);
     if (std::string(name) != "wong_reece") rigs::write_wheel_series_csv(dir + "/wheel_series.csv", *res);
   }
-  plot_wheel_models(plan.out, {{"CRM", r.wheel_crm}, {"SCM (calibrated)", r.wheel_scm}, {"Wong-Reece (calibrated)", r.wheel_wong_reece}});
+  plot_wheel_models(
+      plan.out,
+      {{"CRM", r.wheel_crm}, {"SCM (calibrated)", r.wheel_scm}, {"Wong-Reece (calibrated)", r.wheel_wong_reece}});
 }
 }  // namespace
 
@@ -119,7 +131,8 @@ std::vector<std::string> parse_check_rigs(const std::string& text) {
     const std::size_t comma = std::min(text.find(',', from), text.size());
     const std::string rig = text.substr(from, comma - from);
     if (rig != "plate" && rig != "annulus" && rig != "wheel")
-      throw InputError(fmt::format("--checks '{}': '{}' is not a rig (expected all, or a comma list of plate, annulus, wheel)", text, rig));
+      throw InputError(fmt::format(
+          "--checks '{}': '{}' is not a rig (expected all, or a comma list of plate, annulus, wheel)", text, rig));
     rigs.push_back(rig);
     from = comma + 1;
   }
@@ -155,11 +168,13 @@ void replot_pipeline(const std::string& dir) {
   BevameterCurves c;
   const CsvTable plate = CsvTable::read(dir + "/bevameter/plate.csv");
   for (std::size_t i = 0; i < plate.rows(); ++i)
-    c.plate.push_back({plate.number(i, "plate_radius_m"), plate.number(i, "sinkage_m"), plate.number(i, "force_N"), plate.text(i, "phase")});
+    c.plate.push_back({plate.number(i, "plate_radius_m"), plate.number(i, "sinkage_m"), plate.number(i, "force_N"),
+                       plate.text(i, "phase")});
   const CsvTable shear = CsvTable::read(dir + "/bevameter/shear.csv");
   for (std::size_t i = 0; i < shear.rows(); ++i)
-    c.shear.push_back({shear.number(i, "inner_radius_m"), shear.number(i, "outer_radius_m"), shear.number(i, "normal_load_N"),
-                       shear.number(i, "angle_rad"), shear.number(i, "torque_Nm"), 0});
+    c.shear.push_back({shear.number(i, "inner_radius_m"), shear.number(i, "outer_radius_m"),
+                       shear.number(i, "normal_load_N"), shear.number(i, "angle_rad"), shear.number(i, "torque_Nm"),
+                       0});
   const lowfi::ScmSoil fit = lowfi::read_scm_json(dir + "/calibration/scm_params.json");
   plot_bevameter(dir, c, &fit);
   auto wheel = [&](const std::string& name) {
@@ -175,7 +190,9 @@ void replot_pipeline(const std::string& dir) {
     }
     return out;
   };
-  plot_wheel_models(dir, {{"CRM", wheel("wheel_crm")}, {"SCM (calibrated)", wheel("wheel_scm")}, {"Wong-Reece (calibrated)", wheel("wheel_wong_reece")}});
+  plot_wheel_models(dir, {{"CRM", wheel("wheel_crm")},
+                          {"SCM (calibrated)", wheel("wheel_scm")},
+                          {"Wong-Reece (calibrated)", wheel("wheel_wong_reece")}});
 }
 
 }  // namespace terracal::app

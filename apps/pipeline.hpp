@@ -13,10 +13,10 @@ namespace terracal::app {
 struct PipelinePlan {
   CrmSoil soil;
   std::string soil_name = "soil";
-  TerrainOptions terrain;              // CRM spacing, device, cache; SCM grid and effects
+  TerrainOptions terrain;  // CRM spacing, device, cache; SCM grid and effects
   BevameterPlan bevameter;
   rigs::WheelSpec wheel;
-  std::vector<double> slips{0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8};
+  std::vector<double> slips;  // of the wheel sweeps (the commands default to kDefaultSlips)
   rigs::WheelRun crm_wheel_run, scm_wheel_run;
   double scm_grid = 0.01;
   std::uint64_t seed = 1;

@@ -46,7 +46,8 @@ std::string realisations_note(int n) { return n > 1 ? fmt::format(" (means of {}
 // set by the sinkage, so a longer run is a slower one); its loading leg (Bekker's law), force
 // against sinkage. A rate-independent soil should not see the speed; the CRM bed does, because it
 // softens with time (results/plate_bin_check, sixth study).
-void check_plate(const PipelinePlan& plan, const SoilChoice& crm, const BevameterCurves& base, std::vector<PipelineCheck>& out) {
+void check_plate(const PipelinePlan& plan, const SoilChoice& crm, const BevameterCurves& base,
+                 std::vector<PipelineCheck>& out) {
   BevameterPlan p = plan.bevameter;
   p.plates = {*std::max_element(p.plates.begin(), p.plates.end())};
   auto loading_leg = [&](const std::vector<rigs::PlateRow>& rows) {
@@ -63,8 +64,10 @@ void check_plate(const PipelinePlan& plan, const SoilChoice& crm, const Bevamete
   slower.plate_speed /= 1.5;
   const auto longer = run_bevameter(crm, plan.terrain, slower, true, false);
   rigs::write_plate_csv(checks_dir(plan) + "/plate_slower.csv", longer.plate);
-  out.push_back({"plate", fmt::format("r = {} m, loading leg: run 1.5x longer (plate at {:.3g} m/s)", p.plates[0], slower.plate_speed),
-                 rigs::curve_change(loading_leg(base.plate), loading_leg(longer.plate))});
+  out.push_back(
+      {"plate",
+       fmt::format("r = {} m, loading leg: run 1.5x longer (plate at {:.3g} m/s)", p.plates[0], slower.plate_speed),
+       rigs::curve_change(loading_leg(base.plate), loading_leg(longer.plate))});
 }
 
 // Annulus: the heaviest load, in a 1.5x bin, then turned at 2/3 the rate over the same angle (a
@@ -73,10 +76,11 @@ void check_plate(const PipelinePlan& plan, const SoilChoice& crm, const Bevamete
 // the same simulation. Whether the torque has stopped rising by the end of the turn is reported
 // beside the checks: under the heavier loads the ring keeps sinking as it turns (slip sinkage), so
 // its torque keeps rising too (results/plate_bin_check, eleventh study).
-void check_annulus(const PipelinePlan& plan, const SoilChoice& crm, const BevameterCurves& base, std::vector<PipelineCheck>& out) {
+void check_annulus(const PipelinePlan& plan, const SoilChoice& crm, const BevameterCurves& base,
+                   std::vector<PipelineCheck>& out) {
   BevameterPlan s = plan.bevameter;
   s.shear_loads = {*std::max_element(s.shear_loads.begin(), s.shear_loads.end())};
-  auto curve = [&](const BevameterCurves& c, double rigs::ShearRow::* f) {  // torque or sinkage against angle
+  auto curve = [&](const BevameterCurves& c, double rigs::ShearRow::*f) {  // torque or sinkage against angle
     rigs::Curve t;
     for (const auto& r : c.shear)
       if (r.normal_load == s.shear_loads[0]) t.x.push_back(r.angle), t.y.push_back(r.*f);
@@ -94,16 +98,21 @@ void check_annulus(const PipelinePlan& plan, const SoilChoice& crm, const Bevame
     rigs::write_shear_csv(checks_dir(plan) + "/shear_bin_1.5x" + realisation_suffix(k) + ".csv", big.shear);
     big_bin.push_back(curve(big, &rigs::ShearRow::torque));
   }
-  out.push_back({"annulus", fmt::format("{:.4g} N: bin 1.5x larger and deeper{}", s.shear_loads[0], realisations_note(n)),
+  out.push_back({"annulus",
+                 fmt::format("{:.4g} N: bin 1.5x larger and deeper{}", s.shear_loads[0], realisations_note(n)),
                  rigs::curve_change(rigs::mean_curve(rigs_bin), rigs::mean_curve(big_bin))});
   if (n > 1)
-    out.push_back({"annulus", fmt::format("{:.4g} N: single realisations against each other (largest pair within either bin)", s.shear_loads[0]),
+    out.push_back({"annulus",
+                   fmt::format("{:.4g} N: single realisations against each other (largest pair within either bin)",
+                               s.shear_loads[0]),
                    std::max(rigs::realisation_scatter(rigs_bin), rigs::realisation_scatter(big_bin)), false});
   BevameterPlan slower = s;
   slower.shear_rate /= 1.5;
   const auto longer = run_bevameter(crm, plan.terrain, slower, false, true);
   rigs::write_shear_csv(checks_dir(plan) + "/shear_slower.csv", longer.shear);
-  out.push_back({"annulus", fmt::format("{:.4g} N: run 1.5x longer (turned at {:.3g} rad/s over the same angle)", s.shear_loads[0], slower.shear_rate),
+  out.push_back({"annulus",
+                 fmt::format("{:.4g} N: run 1.5x longer (turned at {:.3g} rad/s over the same angle)", s.shear_loads[0],
+                             slower.shear_rate),
                  rigs::curve_change(curve(base, &rigs::ShearRow::torque), curve(longer, &rigs::ShearRow::torque))});
   // The torque's rise over the turn's second half: the mean of its last fifth against its middle fifth.
   const rigs::Curve torque = curve(base, &rigs::ShearRow::torque), sinkage = curve(base, &rigs::ShearRow::sinkage);
@@ -116,14 +125,16 @@ void check_annulus(const PipelinePlan& plan, const SoilChoice& crm, const Bevame
   if (torque.y.size() >= 5) {
     const double mid = fifth_mean(torque.y, 2), last = fifth_mean(torque.y, 4);
     out.push_back({"annulus",
-                   fmt::format("{:.4g} N: torque still rising at the end of the turn (last fifth against the middle one; the ring sinks {:.3g} -> {:.3g} m)",
+                   fmt::format("{:.4g} N: torque still rising at the end of the turn (last fifth against the middle "
+                               "one; the ring sinks {:.3g} -> {:.3g} m)",
                                s.shear_loads[0], sinkage.y.front(), sinkage.y.back()),
                    (last - mid) / std::max(std::abs(last), 1e-12), false});
   }
 }
 
 // Wheel: the middle slip of the sweep in a 1.5x bin, and run 1.5x longer.
-void check_wheel(const PipelinePlan& plan, const SoilChoice& crm, const std::vector<rigs::WheelResult>& base_sweep, std::vector<PipelineCheck>& out) {
+void check_wheel(const PipelinePlan& plan, const SoilChoice& crm, const std::vector<rigs::WheelResult>& base_sweep,
+                 std::vector<PipelineCheck>& out) {
   const double slip = plan.slips[plan.slips.size() / 2];
   const rigs::WheelResult* base = nullptr;
   for (const auto& r : base_sweep)
@@ -133,11 +144,13 @@ void check_wheel(const PipelinePlan& plan, const SoilChoice& crm, const std::vec
   std::vector<rigs::WheelResult> rigs_bin{*base}, big_bin;
   for (int k = 0; k < n; ++k) {
     if (k > 0) {
-      const auto again = run_wheel_sweep(SoilModel::kCrm, crm, realisation(plan.terrain, k), plan.wheel, {slip}, plan.crm_wheel_run);
+      const auto again =
+          run_wheel_sweep(SoilModel::kCrm, crm, realisation(plan.terrain, k), plan.wheel, {slip}, plan.crm_wheel_run);
       rigs::write_wheel_series_csv(checks_dir(plan) + "/wheel" + realisation_suffix(k) + "_series.csv", again);
       rigs_bin.push_back(again[0]);
     }
-    const auto big = run_wheel_sweep(SoilModel::kCrm, crm, realisation(larger_bin(plan.terrain), k), plan.wheel, {slip}, plan.crm_wheel_run);
+    const auto big = run_wheel_sweep(SoilModel::kCrm, crm, realisation(larger_bin(plan.terrain), k), plan.wheel, {slip},
+                                     plan.crm_wheel_run);
     rigs::write_wheel_series_csv(checks_dir(plan) + "/wheel_bin_1.5x" + realisation_suffix(k) + "_series.csv", big);
     big_bin.push_back(big[0]);
   }
@@ -163,21 +176,26 @@ void check_wheel(const PipelinePlan& plan, const SoilChoice& crm, const std::vec
   auto scatter = [&](const std::vector<rigs::WheelResult>& runs) {
     double largest = 0;
     for (std::size_t a = 0; a < runs.size(); ++a)
-      for (std::size_t b = a + 1; b < runs.size(); ++b) largest = std::max({largest, change(runs[a], runs[b]), change(runs[b], runs[a])});
+      for (std::size_t b = a + 1; b < runs.size(); ++b)
+        largest = std::max({largest, change(runs[a], runs[b]), change(runs[b], runs[a])});
     return largest;
   };
-  out.push_back({"wheel", fmt::format("slip {}: bin 1.5x larger (largest of DBP/thrust, torque, sinkage){}", slip, realisations_note(n)),
-                 change(mean(rigs_bin), mean(big_bin))});
+  out.push_back(
+      {"wheel",
+       fmt::format("slip {}: bin 1.5x larger (largest of DBP/thrust, torque, sinkage){}", slip, realisations_note(n)),
+       change(mean(rigs_bin), mean(big_bin))});
   if (n > 1)
-    out.push_back({"wheel", fmt::format("slip {}: single realisations against each other (largest pair within either bin)", slip),
-                   std::max(scatter(rigs_bin), scatter(big_bin)), false});
-  out.push_back({"wheel", fmt::format("slip {}: run 1.5x longer (largest of DBP/thrust, torque, sinkage)", slip), change(*base, longer[0])});
+    out.push_back(
+        {"wheel", fmt::format("slip {}: single realisations against each other (largest pair within either bin)", slip),
+         std::max(scatter(rigs_bin), scatter(big_bin)), false});
+  out.push_back({"wheel", fmt::format("slip {}: run 1.5x longer (largest of DBP/thrust, torque, sinkage)", slip),
+                 change(*base, longer[0])});
 }
 
 }  // namespace
 
 std::vector<PipelineCheck> run_checks(const PipelinePlan& plan, const SoilChoice& crm, const BevameterCurves& base_bev,
-                              const std::vector<rigs::WheelResult>& base_wheel) {
+                                      const std::vector<rigs::WheelResult>& base_wheel) {
   std::vector<PipelineCheck> out;
   for (const std::string& rig : plan.checks) {
     if (rig == "plate") check_plate(plan, crm, base_bev, out);

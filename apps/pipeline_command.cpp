@@ -4,16 +4,16 @@
 
 #include <fmt/format.h>
 
+#include "apps/bevameter_options.hpp"
 #include "apps/commands.hpp"
 #include "apps/pipeline.hpp"
-#include "apps/bevameter_options.hpp"
 #include "core/errors.hpp"
 
 namespace terracal::app {
 
 namespace {
 struct PipelineArgs {
-  std::string out, wheel, slips = "0,0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8";
+  std::string out, wheel, slips = kDefaultSlips;
   double wheel_duration = 3.0;
   std::uint64_t seed = 1;
   std::string checks;  // "" = none, "all", or a comma list of plate, annulus, wheel
@@ -27,7 +27,9 @@ struct PipelineArgs {
 }  // namespace
 
 Command add_pipeline(CLI::App& app) {
-  auto* sub = app.add_subcommand("pipeline", "Soil -> CRM bevameter -> calibrated SCM set -> single-wheel validation (CRM, SCM, Wong-Reece) -> report");
+  auto* sub = app.add_subcommand(
+      "pipeline",
+      "Soil -> CRM bevameter -> calibrated SCM set -> single-wheel validation (CRM, SCM, Wong-Reece) -> report");
   auto a = std::make_shared<PipelineArgs>();
   auto* soil = add_crm_terrain_options(sub, a->terrain);
   add_scm_grid_option(sub, a->terrain);
@@ -40,10 +42,9 @@ Command add_pipeline(CLI::App& app) {
   sub->add_option("--wheel-duration", a->wheel_duration, "simulated seconds per slip")->capture_default_str();
   sub->add_option("--seed", a->seed, "calibration seed")->capture_default_str();
   sub->add_flag("--checks{all}", a->checks,
-                "rerun each rig in a 1.5x bin and 1.5x longer (bin-size and run-length checks); --checks=annulus,wheel for some rigs only");
+                "rerun the rigs (all, or a list such as annulus,wheel) in a 1.5x bin and 1.5x longer; default off");
   sub->add_option("--check-realisations", a->check_realisations,
-                  "bin checks of the annulus and the wheel: compare the means of this many runs per bin (the base run, and runs whose "
-                  "bed settled from a start jittered by 0.1 spacings with seeds --settle-seed + 1, + 2, ...); 1 ... 16")
+                  "beds per bin whose means the annulus and wheel bin checks compare, 1 ... 16 (docs/decisions.md)")
       ->capture_default_str();
   add_bevameter_options(sub, a->plan, a->lists);
   return [a] {
@@ -64,8 +65,9 @@ Command add_pipeline(CLI::App& app) {
       throw InputError(fmt::format("--check-realisations {}: expected an integer in [1, 16]", a->check_realisations));
     p.check_realisations = a->check_realisations;
     if (a->terrain.settle_seed > (1L << 62) - (a->check_realisations - 1))
-      throw InputError(fmt::format("--settle-seed {}: the realisations use seeds up to {} more; expected at most 2^62 - {}", a->terrain.settle_seed,
-                                   a->check_realisations - 1, a->check_realisations - 1));
+      throw InputError(
+          fmt::format("--settle-seed {}: the realisations use seeds up to {} more; expected at most 2^62 - {}",
+                      a->terrain.settle_seed, a->check_realisations - 1, a->check_realisations - 1));
     p.scm_grid = a->terrain.grid;
     p.slips = parse_list(a->slips, "--slips");
     apply_bevameter_lists(a->lists, p.bevameter);

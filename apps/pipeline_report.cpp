@@ -28,9 +28,11 @@ double spread(const std::vector<rigs::WheelResult>& ref, Field f) {
 std::string soil_section(const PipelinePlan& plan, const PipelineResults& r) {
   const CrmSoil& s = plan.soil;
   std::string md = fmt::format("# terracal pipeline: {}\n\n", plan.soil_name);
-  md += fmt::format("CRM soil: density {} kg/m^3, E {} Pa, nu {}, mu_s {}, mu_2 {}, I0 {}, cohesion {} Pa, gravity {} m/s^2.\n\n", s.density,
-                    s.young_modulus, s.poisson_ratio, s.mu_s, s.mu_2, s.I0, s.cohesion, norm(s.gravity));
-  md += fmt::format("- CRM bevameter: {}\n- CRM wheel: {}\n- SCM wheel: {}\n\n", r.bevameter.site, r.crm_wheel_site, r.scm_wheel_site);
+  md += fmt::format(
+      "CRM soil: density {} kg/m^3, E {} Pa, nu {}, mu_s {}, mu_2 {}, I0 {}, cohesion {} Pa, gravity {} m/s^2.\n\n",
+      s.density, s.young_modulus, s.poisson_ratio, s.mu_s, s.mu_2, s.I0, s.cohesion, norm(s.gravity));
+  md += fmt::format("- CRM bevameter: {}\n- CRM wheel: {}\n- SCM wheel: {}\n\n", r.bevameter.site, r.crm_wheel_site,
+                    r.scm_wheel_site);
   return md;
 }
 
@@ -39,13 +41,16 @@ std::string calibration_section(const PipelineResults& r) {
   std::string md = "## Bevameter (CRM) and the calibrated SCM set\n\n![bevameter](bevameter.png)\n\n";
   md += "| parameter | MAP | posterior sd | 5 % | 95 % |\n|---|---|---|---|---|\n";
   for (const auto& [key, value] : params["Soil parameters"].items()) {
-    const auto& post = params.contains("Posterior") && params["Posterior"].contains(key) ? params["Posterior"][key] : nlohmann::ordered_json();
+    const auto& post = params.contains("Posterior") && params["Posterior"].contains(key) ? params["Posterior"][key]
+                                                                                         : nlohmann::ordered_json();
     auto num = [&](const char* k) {
-      return post.is_object() && post.contains(k) && post[k].is_number() ? fmt::format("{:.4g}", post[k].get<double>()) : std::string("-");
+      return post.is_object() && post.contains(k) && post[k].is_number() ? fmt::format("{:.4g}", post[k].get<double>())
+                                                                         : std::string("-");
     };
     md += fmt::format("| {} | {:.4g} | {} | {} | {} |\n", key, value.get<double>(), num("sd"), num("q05"), num("q95"));
   }
-  md += fmt::format("\nCalibration: {} (calibration/summary.txt).\n\n", r.calibration.converged ? "converged" : "NOT converged");
+  md += fmt::format("\nCalibration: {} (calibration/summary.txt).\n\n",
+                    r.calibration.converged ? "converged" : "NOT converged");
   if (!r.scm_note.empty()) md += "**Note.** " + r.scm_note + "\n\n";
   return md;
 }
@@ -58,28 +63,39 @@ std::string crm_setup_notes(const PipelinePlan& plan) {
   const double walls = plan.bevameter.plate_wall_radii * plan.bevameter.bin_scale * plan.terrain.bin_scale;
   const double depth = plan.bevameter.plate_depth_scale * plan.bevameter.bin_scale * plan.terrain.depth_scale();
   if (walls < checked.plate_wall_radii - 1e-9 || depth < checked.plate_depth_scale - 1e-9)
-    md += fmt::format("**Note.** The CRM plate bin (walls {:.3g} plate radii away, soil {:.3g} x (max sinkage + 2.5 radii)) is smaller than "
-                      "the checked bin ({:.3g} radii, {:.3g}x): the plate curves read high (4-8 % at 9 radii and 2x, 20-40 % at 3 radii and "
-                      "1x; results/plate_bin_check).\n\n",
-                      walls, depth, checked.plate_wall_radii, checked.plate_depth_scale);
+    md += fmt::format(
+        "**Note.** The CRM plate bin (walls {:.3g} plate radii away, soil {:.3g} x (max sinkage + 2.5 radii)) is "
+        "smaller than "
+        "the checked bin ({:.3g} radii, {:.3g}x): the plate curves read high (4-8 % at 9 radii and 2x, 20-40 % at 3 "
+        "radii and "
+        "1x; results/plate_bin_check).\n\n",
+        walls, depth, checked.plate_wall_radii, checked.plate_depth_scale);
   if (plan.terrain.hourglass_damping <= 0)
-    md += "**Note.** The CRM effect hourglass_damping is off: the lattice's checkerboard mode softens the bed, so the CRM curves read "
-          "lower at finer spacing and in larger bins (results/plate_bin_check).\n\n";
+    md +=
+        "**Note.** The CRM effect hourglass_damping is off: the lattice's checkerboard mode softens the bed, so the "
+        "CRM curves read "
+        "lower at finer spacing and in larger bins (results/plate_bin_check).\n\n";
   if (plan.terrain.hourglass_stiffness <= 0)
-    md += "**Note.** The CRM effect hourglass_stiffness is off: soil escapes from under the plates through the checkerboard mode, so "
-          "the plate curves read low and fall with a slower or longer test (results/plate_bin_check).\n\n";
+    md +=
+        "**Note.** The CRM effect hourglass_stiffness is off: soil escapes from under the plates through the "
+        "checkerboard mode, so "
+        "the plate curves read low and fall with a slower or longer test (results/plate_bin_check).\n\n";
   return md;
 }
 
 std::string wheel_section(const PipelinePlan& plan, const PipelineResults& r) {
   const auto &crm = r.wheel_crm, &scm = r.wheel_scm, &wr = r.wheel_wong_reece;
-  std::string md = fmt::format("## Single wheel (radius {} m, width {} m, mass {} kg, omega {} rad/s)\n\n![wheel](wheel.png)\n\n",
-                               plan.wheel.radius, plan.wheel.width, plan.wheel.mass, plan.wheel.angular_velocity);
-  md += "| slip | DBP CRM [N] | DBP SCM | DBP W-R | torque CRM [N m] | torque SCM | torque W-R | sinkage CRM [m] | sinkage SCM | sinkage W-R |\n";
+  std::string md =
+      fmt::format("## Single wheel (radius {} m, width {} m, mass {} kg, omega {} rad/s)\n\n![wheel](wheel.png)\n\n",
+                  plan.wheel.radius, plan.wheel.width, plan.wheel.mass, plan.wheel.angular_velocity);
+  md +=
+      "| slip | DBP CRM [N] | DBP SCM | DBP W-R | torque CRM [N m] | torque SCM | torque W-R | sinkage CRM [m] | "
+      "sinkage SCM | sinkage W-R |\n";
   md += "|---|---|---|---|---|---|---|---|---|---|\n";
   for (std::size_t i = 0; i < plan.slips.size(); ++i)
-    md += fmt::format("| {} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} |\n", plan.slips[i], crm[i].dbp,
-                      scm[i].dbp, wr[i].dbp, crm[i].torque, scm[i].torque, wr[i].torque, crm[i].sinkage, scm[i].sinkage, wr[i].sinkage);
+    md += fmt::format("| {} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} |\n",
+                      plan.slips[i], crm[i].dbp, scm[i].dbp, wr[i].dbp, crm[i].torque, scm[i].torque, wr[i].torque,
+                      crm[i].sinkage, scm[i].sinkage, wr[i].sinkage);
   md += "\n" + rigs::steadiness_summary("CRM", crm) + " " + rigs::steadiness_summary("SCM", scm) + "\n";
   md += "\n## Error against CRM (RMSE over the slips; in brackets, relative to CRM's range over the slips)\n\n";
   md += "| model | DBP [N] | torque [N m] | sinkage [m] |\n|---|---|---|---|\n";
@@ -100,12 +116,15 @@ std::string checks_and_cost_section(const PipelineResults& r) {
     md += "\n## Bin size and run length\n\n| rig | check | largest change of the curve |\n|---|---|---|\n";
     for (const auto& c : r.checks)
       md += fmt::format("| {} | {} | {:.2f} % {} |\n", c.rig, c.what, 100 * c.change,
-                        !c.bounded ? "(a measurement, no bound)" : c.change < 0.05 ? "" : "(above 5 %)");
+                        !c.bounded        ? "(a measurement, no bound)"
+                        : c.change < 0.05 ? ""
+                                          : "(above 5 %)");
   }
   const StageTimes& w = r.wall;
-  md += fmt::format("\n## Cost\n\n| stage | wall time [s] |\n|---|---|\n| CRM bevameter | {:.1f} |\n| calibration | {:.1f} |\n"
-                    "| CRM wheel sweep | {:.1f} |\n| SCM wheel sweep | {:.2f} |\n| total | {:.1f} |\n",
-                    w.bevameter, w.calibration, w.crm_wheel, w.scm_wheel, w.total);
+  md += fmt::format(
+      "\n## Cost\n\n| stage | wall time [s] |\n|---|---|\n| CRM bevameter | {:.1f} |\n| calibration | {:.1f} |\n"
+      "| CRM wheel sweep | {:.1f} |\n| SCM wheel sweep | {:.2f} |\n| total | {:.1f} |\n",
+      w.bevameter, w.calibration, w.crm_wheel, w.scm_wheel, w.total);
   return md;
 }
 
@@ -117,16 +136,20 @@ nlohmann::json errors_json(const std::vector<rigs::WheelResult>& model, const st
 
 nlohmann::json summary_json(const PipelinePlan& plan, const PipelineResults& r) {
   const StageTimes& w = r.wall;
-  nlohmann::json summary = {
-      {"soil", plan.soil_name},
-      {"calibration_converged", r.calibration.converged},
-      {"note", r.scm_note},
-      {"wall_seconds",
-       {{"bevameter", w.bevameter}, {"calibration", w.calibration}, {"crm_wheel", w.crm_wheel}, {"scm_wheel", w.scm_wheel}, {"total", w.total}}},
-      {"rmse_scm_vs_crm", errors_json(r.wheel_scm, r.wheel_crm)},
-      {"rmse_wong_reece_vs_crm", errors_json(r.wheel_wong_reece, r.wheel_crm)}};
+  nlohmann::json summary = {{"soil", plan.soil_name},
+                            {"calibration_converged", r.calibration.converged},
+                            {"note", r.scm_note},
+                            {"wall_seconds",
+                             {{"bevameter", w.bevameter},
+                              {"calibration", w.calibration},
+                              {"crm_wheel", w.crm_wheel},
+                              {"scm_wheel", w.scm_wheel},
+                              {"total", w.total}}},
+                            {"rmse_scm_vs_crm", errors_json(r.wheel_scm, r.wheel_crm)},
+                            {"rmse_wong_reece_vs_crm", errors_json(r.wheel_wong_reece, r.wheel_crm)}};
   nlohmann::json checks = nlohmann::json::array();
-  for (const auto& c : r.checks) checks.push_back({{"rig", c.rig}, {"check", c.what}, {"relative_change", c.change}, {"bounded", c.bounded}});
+  for (const auto& c : r.checks)
+    checks.push_back({{"rig", c.rig}, {"check", c.what}, {"relative_change", c.change}, {"bounded", c.bounded}});
   summary["checks"] = checks;
   return summary;
 }
@@ -134,8 +157,8 @@ nlohmann::json summary_json(const PipelinePlan& plan, const PipelineResults& r) 
 }  // namespace
 
 void write_pipeline_report(const PipelinePlan& plan, const PipelineResults& r) {
-  const std::string md = soil_section(plan, r) + calibration_section(r) + crm_setup_notes(plan) + wheel_section(plan, r) +
-                         checks_and_cost_section(r);
+  const std::string md = soil_section(plan, r) + calibration_section(r) + crm_setup_notes(plan) +
+                         wheel_section(plan, r) + checks_and_cost_section(r);
   write_text_atomically(plan.out + "/report.md", md);
   write_text_atomically(plan.out + "/summary.json", summary_json(plan, r).dump(2) + "\n");
 }

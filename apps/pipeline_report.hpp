@@ -18,9 +18,9 @@ struct StageTimes {
 
 struct PipelineResults {
   BevameterCurves bevameter;
-  CalibrationOutcome calibration;      // on the CRM curves, Kc free
-  lowfi::ScmSoil wheel_set;            // the set the SCM and Wong-Reece wheels ran on
-  std::string scm_note;                // why that is not the calibrated set, if it is not
+  CalibrationOutcome calibration;  // on the CRM curves, Kc free
+  lowfi::ScmSoil wheel_set;        // the set the SCM and Wong-Reece wheels ran on
+  std::string scm_note;            // why that is not the calibrated set, if it is not
   std::vector<rigs::WheelResult> wheel_crm, wheel_scm, wheel_wong_reece;
   std::string crm_wheel_site, scm_wheel_site;
   std::vector<PipelineCheck> checks;

@@ -27,7 +27,8 @@ void render(const std::string& dir, const std::string& script, const std::string
     spdlog::warn("{} not drawn: {}", what, e.what());
   }
 }
-const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f", "#17becf"};
+const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd",
+                          "#8c564b", "#e377c2", "#7f7f7f", "#17becf"};
 }  // namespace
 
 void plot_bevameter(const std::string& dir, const BevameterCurves& c, const lowfi::ScmSoil* fit) {
@@ -59,8 +60,8 @@ void plot_bevameter(const std::string& dir, const BevameterCurves& c, const lowf
         for (int i = 1; i <= 100; ++i) {
           const double a = a_max * i / 100;
           shear_fit += fmt::format("{} {} {}\n", n, a,
-                                   bayes::annulus_torque(c.shear[0].inner_radius, c.shear[0].outer_radius, n, a, fit->cohesion,
-                                                         fit->friction_deg, fit->janosi_k));
+                                   bayes::annulus_torque(c.shear[0].inner_radius, c.shear[0].outer_radius, n, a,
+                                                         fit->cohesion, fit->friction_deg, fit->janosi_k));
         }
         shear_fit += "\n\n";
       }
@@ -71,25 +72,37 @@ void plot_bevameter(const std::string& dir, const BevameterCurves& c, const lowf
   write_text_atomically(work + "/shear_fit.dat", shear_fit);
   const int panels = (c.plate.empty() ? 0 : 1) + (c.shear.empty() ? 0 : 1);
   if (panels == 0) return;
-  std::string s = fmt::format("set terminal pngcairo noenhanced size {},520 font 'Sans,11'\nset output 'bevameter.png'\nset multiplot layout 1,{}\nset grid\nset key top left\n",
-                              600 * panels, panels);
+  std::string s = fmt::format(
+      "set terminal pngcairo noenhanced size {},520 font 'Sans,11'\nset output 'bevameter.png'\nset multiplot layout "
+      "1,{}\nset grid\nset key top left\n",
+      600 * panels, panels);
   if (!c.plate.empty()) {
-    s += "set title 'Plate sinkage: points = rig, lines = SCM set'\nset xlabel 'sinkage [m]'\nset ylabel 'force [N]'\nplot ";
+    s += "set title 'Plate sinkage: points = rig, lines = SCM set'\nset xlabel 'sinkage [m]'\nset ylabel 'force "
+         "[N]'\nplot ";
     int k = 0;
     for (double r : radii) {
-      s += fmt::format("'plate.dat' using ($1=={0} ? $2 : 1/0):3 with points pt 7 ps 0.4 lc rgb '{1}' title 'r = {0} m', ", r, kColours[k % 9]);
-      if (fit) s += fmt::format("'plate_fit.dat' using ($1=={} ? $2 : 1/0):3 with lines lw 2 lc rgb '{}' notitle, ", r, kColours[k % 9]);
+      s += fmt::format(
+          "'plate.dat' using ($1=={0} ? $2 : 1/0):3 with points pt 7 ps 0.4 lc rgb '{1}' title 'r = {0} m', ", r,
+          kColours[k % 9]);
+      if (fit)
+        s += fmt::format("'plate_fit.dat' using ($1=={} ? $2 : 1/0):3 with lines lw 2 lc rgb '{}' notitle, ", r,
+                         kColours[k % 9]);
       ++k;
     }
     s.resize(s.size() - 2);
     s += "\n";
   }
   if (!c.shear.empty()) {
-    s += "set title 'Annulus shear: points = rig, lines = SCM set'\nset xlabel 'angle [rad]'\nset ylabel 'torque [N m]'\nplot ";
+    s += "set title 'Annulus shear: points = rig, lines = SCM set'\nset xlabel 'angle [rad]'\nset ylabel 'torque [N "
+         "m]'\nplot ";
     int k = 0;
     for (double n : loads) {
-      s += fmt::format("'shear.dat' using ($1=={0} ? $2 : 1/0):3 with points pt 7 ps 0.4 lc rgb '{1}' title '{0:.4g} N', ", n, kColours[k % 9]);
-      if (fit) s += fmt::format("'shear_fit.dat' using ($1=={} ? $2 : 1/0):3 with lines lw 2 lc rgb '{}' notitle, ", n, kColours[k % 9]);
+      s += fmt::format(
+          "'shear.dat' using ($1=={0} ? $2 : 1/0):3 with points pt 7 ps 0.4 lc rgb '{1}' title '{0:.4g} N', ", n,
+          kColours[k % 9]);
+      if (fit)
+        s += fmt::format("'shear_fit.dat' using ($1=={} ? $2 : 1/0):3 with lines lw 2 lc rgb '{}' notitle, ", n,
+                         kColours[k % 9]);
       ++k;
     }
     s.resize(s.size() - 2);
@@ -98,14 +111,18 @@ void plot_bevameter(const std::string& dir, const BevameterCurves& c, const lowf
   s += "unset multiplot\n";
   render(work, s, "bevameter.png");
   std::error_code ec;
-  if (std::filesystem::exists(work + "/bevameter.png")) std::filesystem::rename(work + "/bevameter.png", dir + "/bevameter.png", ec);
+  if (std::filesystem::exists(work + "/bevameter.png"))
+    std::filesystem::rename(work + "/bevameter.png", dir + "/bevameter.png", ec);
   std::filesystem::remove_all(work, ec);
 }
 
-void plot_wheel_models(const std::string& dir, const std::vector<std::pair<std::string, std::vector<rigs::WheelResult>>>& models) {
+void plot_wheel_models(const std::string& dir,
+                       const std::vector<std::pair<std::string, std::vector<rigs::WheelResult>>>& models) {
   const std::string work = dir + "/.plot_wheel";
   std::filesystem::create_directories(work);
-  std::string s = "set terminal pngcairo noenhanced size 1500,480 font 'Sans,11'\nset output 'wheel.png'\nset multiplot layout 1,3\nset grid\nset key top left\nset xlabel 'slip'\n";
+  std::string s =
+      "set terminal pngcairo noenhanced size 1500,480 font 'Sans,11'\nset output 'wheel.png'\nset multiplot layout "
+      "1,3\nset grid\nset key top left\nset xlabel 'slip'\n";
   const char* columns[3][2] = {{"2", "drawbar pull [N]"}, {"3", "torque [N m]"}, {"4", "sinkage [m]"}};
   for (std::size_t m = 0; m < models.size(); ++m) {
     std::string d;
@@ -115,14 +132,16 @@ void plot_wheel_models(const std::string& dir, const std::vector<std::pair<std::
   for (const auto& col : columns) {
     s += fmt::format("set ylabel '{}'\nset title '{}'\nplot ", col[1], col[1]);
     for (std::size_t m = 0; m < models.size(); ++m)
-      s += fmt::format("'m{}.dat' using 1:{} with linespoints lw 2 pt 7 lc rgb '{}' title '{}', ", m, col[0], kColours[m % 9], models[m].first);
+      s += fmt::format("'m{}.dat' using 1:{} with linespoints lw 2 pt 7 lc rgb '{}' title '{}', ", m, col[0],
+                       kColours[m % 9], models[m].first);
     s.resize(s.size() - 2);
     s += "\n";
   }
   s += "unset multiplot\n";
   render(work, s, "wheel.png");
   std::error_code ec;
-  if (std::filesystem::exists(work + "/wheel.png")) std::filesystem::rename(work + "/wheel.png", dir + "/wheel.png", ec);
+  if (std::filesystem::exists(work + "/wheel.png"))
+    std::filesystem::rename(work + "/wheel.png", dir + "/wheel.png", ec);
   std::filesystem::remove_all(work, ec);
 }
 

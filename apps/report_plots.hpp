@@ -14,6 +14,7 @@ namespace terracal::app {
 void plot_bevameter(const std::string& dir, const BevameterCurves& curves, const lowfi::ScmSoil* fit);
 
 // DIR/wheel.png: DBP, torque and sinkage against slip, one line per named model.
-void plot_wheel_models(const std::string& dir, const std::vector<std::pair<std::string, std::vector<rigs::WheelResult>>>& models);
+void plot_wheel_models(const std::string& dir,
+                       const std::vector<std::pair<std::string, std::vector<rigs::WheelResult>>>& models);
 
 }  // namespace terracal::app

@@ -17,7 +17,8 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-std::unique_ptr<TerrainSite> site_for(const SoilChoice& soil, const TerrainOptions& o, double half_length, double half_width, double depth) {
+std::unique_ptr<TerrainSite> site_for(const SoilChoice& soil, const TerrainOptions& o, double half_length,
+                                      double half_width, double depth) {
   if (soil.solver == SoilModel::kCrm) {
     if (!soil.crm) throw InputError("--solver crm needs a CRM soil (--soil SOIL.json)");
     return crm_site(*soil.crm, o, o.bin_scale * half_length, o.bin_scale * half_width, o.depth_scale() * depth);
@@ -29,7 +30,8 @@ std::unique_ptr<TerrainSite> site_for(const SoilChoice& soil, const TerrainOptio
   throw InputError(fmt::format("solver '{}': the rigs' sites are crm or scm", soil_model_name(soil.solver)));
 }
 
-std::vector<rigs::WheelResult> wong_reece_sweep(const SoilChoice& soil, const rigs::WheelSpec& wheel, const std::vector<double>& slips) {
+std::vector<rigs::WheelResult> wong_reece_sweep(const SoilChoice& soil, const rigs::WheelSpec& wheel,
+                                                const std::vector<double>& slips) {
   if (!soil.scm) throw InputError("--terrain wong-reece needs an SCM parameter set (--scm SCM.json)");
   std::vector<rigs::WheelResult> out;
   for (double s : slips) {
@@ -74,11 +76,13 @@ rigs::RigProgress progress_logger() {
     if (seconds_since(*last) < 5 && t < t_end) return;
     *last = Clock::now();
     const double wall = seconds_since(*start);
-    spdlog::info("{}: {:.3g} / {:.3g} s simulated, {:.3g} s wall ({:.3g}x real time)", what, t, t_end, wall, wall > 0 ? t / wall : 0);
+    spdlog::info("{}: {:.3g} / {:.3g} s simulated, {:.3g} s wall ({:.3g}x real time)", what, t, t_end, wall,
+                 wall > 0 ? t / wall : 0);
   };
 }
 
-BevameterCurves run_bevameter(const SoilChoice& soil, const TerrainOptions& o, const BevameterPlan& plan, bool plate, bool shear) {
+BevameterCurves run_bevameter(const SoilChoice& soil, const TerrainOptions& o, const BevameterPlan& plan, bool plate,
+                              bool shear) {
   BevameterCurves c;
   rigs::check_range("bevameter bin scale", plan.bin_scale, 0.5, 10, "");
   // Before any run: a bad value must not wait for the plates to finish.
@@ -99,7 +103,8 @@ BevameterCurves run_bevameter(const SoilChoice& soil, const TerrainOptions& o, c
       // Each plate in a bin sized by its own radius (see BevameterPlan::plate_wall_radii).
       const double half = k * plan.plate_wall_radii * r + po.spacing;
       auto site = site_for(soil, po, half, half, k * plan.plate_depth_scale * (plan.max_sinkage + 2.5 * r));
-      if (c.site.find(site->description()) == std::string::npos) c.site += (c.site.empty() ? "" : "; ") + site->description();
+      if (c.site.find(site->description()) == std::string::npos)
+        c.site += (c.site.empty() ? "" : "; ") + site->description();
       rigs::PlateTest t;
       t.radius = r;
       t.max_sinkage = plan.max_sinkage;
@@ -107,7 +112,8 @@ BevameterCurves run_bevameter(const SoilChoice& soil, const TerrainOptions& o, c
       t.thickness = std::max(0.02, 2 * po.spacing);
       const auto rows = rigs::run_plate(*site, t, progress);
       c.plate.insert(c.plate.end(), rows.begin(), rows.end());
-      spdlog::info("plate r = {} m: {} rows, force {:.4g} N at {:.3g} m", r, rows.size(), rows.back().force, rows.back().sinkage);
+      spdlog::info("plate r = {} m: {} rows, force {:.4g} N at {:.3g} m", r, rows.size(), rows.back().force,
+                   rows.back().sinkage);
     }
     c.plate_wall = seconds_since(t0);
   }
@@ -116,8 +122,9 @@ BevameterCurves run_bevameter(const SoilChoice& soil, const TerrainOptions& o, c
     const auto t0 = Clock::now();
     const double r = plan.outer_radius;
     // A thin ring under a heavy load sinks a long way (in CRM 0.19 m for 200 kg on the 0.15-0.20 m
-    // annulus): the bed is at least 0.5 m deep, the walls 3 radii away (2 radii: a 1.5x bin moved the torque by 14 %). A thin ring driven into the soil also needs a smaller
-    // CRM step than the CFL limit (it fell through the bed at the CFL step; --shear-step).
+    // annulus): the bed is at least 0.5 m deep, the walls 3 radii away (2 radii: a 1.5x bin moved the torque by 14 %).
+    // A thin ring driven into the soil also needs a smaller CRM step than the CFL limit (it fell through the bed at the
+    // CFL step; --shear-step).
     TerrainOptions so = o;
     if (plan.shear_step > 0) so.step = plan.shear_step;
     auto site = site_for(soil, so, k * 3 * r + o.spacing, k * 3 * r + o.spacing, k * std::max(0.5, 2.5 * r));
@@ -138,8 +145,8 @@ BevameterCurves run_bevameter(const SoilChoice& soil, const TerrainOptions& o, c
 }
 
 std::vector<rigs::WheelResult> run_wheel_sweep(SoilModel solver, const SoilChoice& soil, const TerrainOptions& o,
-                                               const rigs::WheelSpec& wheel, const std::vector<double>& slips, const rigs::WheelRun& run,
-                                               std::string* site_description) {
+                                               const rigs::WheelSpec& wheel, const std::vector<double>& slips,
+                                               const rigs::WheelRun& run, std::string* site_description) {
   rigs::validate(wheel);
   rigs::validate(run);
   for (double s : slips)
@@ -152,7 +159,8 @@ std::vector<rigs::WheelResult> run_wheel_sweep(SoilModel solver, const SoilChoic
   s.solver = solver;
   // The bin: the run's travel at the lowest slip plus two outer radii of soil before and after.
   double travel = 0;
-  for (double slip : slips) travel = std::max(travel, wheel.angular_velocity * wheel.radius * (1 - slip) * run.duration);
+  for (double slip : slips)
+    travel = std::max(travel, wheel.angular_velocity * wheel.radius * (1 - slip) * run.duration);
   const double outer = wheel.radius + wheel.grouser_height;
   auto site = site_for(s, o, 0.5 * travel + 2 * outer + o.spacing, 2 * rigs::wheel_reach_y(wheel) + o.spacing,
                        std::max(0.2, 0.5 * wheel.radius));
@@ -162,8 +170,8 @@ std::vector<rigs::WheelResult> run_wheel_sweep(SoilModel solver, const SoilChoic
   for (double slip : slips) {
     out.push_back(rigs::run_wheel(*site, wheel, slip, run, progress));
     const auto& r = out.back();
-    spdlog::info("{} wheel at slip {}: DBP {:.4g} N, torque {:.4g} N m, sinkage {:.4g} m ({:.3g} s wall)", soil_model_name(solver), slip, r.dbp, r.torque,
-                 r.sinkage, r.wall_seconds);
+    spdlog::info("{} wheel at slip {}: DBP {:.4g} N, torque {:.4g} N m, sinkage {:.4g} m ({:.3g} s wall)",
+                 soil_model_name(solver), slip, r.dbp, r.torque, r.sinkage, r.wall_seconds);
     if (const std::string why = rigs::unsteady_reason(r); !why.empty())
       spdlog::warn("{} {} (wheel_series.csv has the time series)", soil_model_name(solver), why);
   }

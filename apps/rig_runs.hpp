@@ -34,13 +34,13 @@ struct BevameterPlan {
   std::vector<double> plates{0.2, 0.3};
   double max_sinkage = 0.2, plate_speed = 0.1;
   double inner_radius = 0.15, outer_radius = 0.20;
-  std::vector<double> shear_loads;     // [N]
+  std::vector<double> shear_loads;  // [N]
   double shear_rate = 1.0, shear_angle = 1.0, shear_settle = 1.0;
   // The annulus's load grows from zero over this fraction of shear_settle, then holds; 0: dropped at
   // once. A dropped ring is still moving when it starts to turn, and how it moves depends on the bin:
   // the start of its torque curve moved 7 % with a 1.5x bin (results/plate_bin_check, twelfth study).
   double shear_load_ramp = 0.5;
-  double shear_step = 0;               // CRM time step of the annulus runs; 0 = the terrain's (--step)
+  double shear_step = 0;  // CRM time step of the annulus runs; 0 = the terrain's (--step)
   // CRM particle spacing of the plate runs; 0 = the terrain's (--spacing). The plate's checked bin is
   // 3.4x the particles of the annulus's and wheel's per spacing: a coarser plate spacing keeps a
   // pipeline with large plates within one GPU run (with hourglass_damping the plate curve moves
@@ -63,14 +63,18 @@ struct BevameterCurves {
   std::string site;  // description of the terrain(s)
 };
 
+// The slips of a wheel sweep when the user names none (`wheel`, `pipeline`).
+inline constexpr const char* kDefaultSlips = "0,0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8";
+
 // Logs "what: t / t_end s simulated, x real time" every few wall seconds.
 rigs::RigProgress progress_logger();
 
-BevameterCurves run_bevameter(const SoilChoice& soil, const TerrainOptions& o, const BevameterPlan& plan, bool plate, bool shear);
+BevameterCurves run_bevameter(const SoilChoice& soil, const TerrainOptions& o, const BevameterPlan& plan, bool plate,
+                              bool shear);
 
 // A slip sweep on CRM or SCM, or the analytic Wong-Reece model (which needs soil.scm).
 std::vector<rigs::WheelResult> run_wheel_sweep(SoilModel solver, const SoilChoice& soil, const TerrainOptions& o,
-                                               const rigs::WheelSpec& wheel, const std::vector<double>& slips, const rigs::WheelRun& run,
-                                               std::string* site_description = nullptr);
+                                               const rigs::WheelSpec& wheel, const std::vector<double>& slips,
+                                               const rigs::WheelRun& run, std::string* site_description = nullptr);
 
 }  // namespace terracal::app

@@ -27,17 +27,25 @@ void check_positive(const char* key, double v) {
 }  // namespace
 
 Command add_synthesize(CLI::App& app) {
-  auto* sub = app.add_subcommand("synthesize", "Write synthetic plate and shear curves (CSV) from known SCM parameters");
+  auto* sub =
+      app.add_subcommand("synthesize", "Write synthetic plate and shear curves (CSV) from known SCM parameters");
   auto a = std::make_shared<SynthesizeArgs>();
   auto& d = a->design;
-  sub->add_option("--truth", a->truth, "SCM parameter file (Chrono JSON with 'Soil parameters')")->required()->check(CLI::ExistingFile);
+  sub->add_option("--truth", a->truth, "SCM parameter file (Chrono JSON with 'Soil parameters')")
+      ->required()
+      ->check(CLI::ExistingFile);
   sub->add_option("--out", a->out, "output folder: plate.csv, shear.csv")->required();
   sub->add_option("--seed", a->seed, "noise seed")->capture_default_str();
   sub->add_option("--plates", d.plate_radii, "plate radii [m]")->delimiter(',')->capture_default_str();
   sub->add_option("--max-sinkage", d.max_sinkage, "deepest sinkage [m]")->capture_default_str();
   sub->add_option("--plate-points", d.plate_points, "samples per plate")->capture_default_str();
-  sub->add_option("--annulus", a->annulus, "annulus inner,outer radius [m]")->delimiter(',')->expected(2)->capture_default_str();
-  sub->add_option("--pressures", d.shear_pressures, "normal pressures of the shear tests [Pa]")->delimiter(',')->capture_default_str();
+  sub->add_option("--annulus", a->annulus, "annulus inner,outer radius [m]")
+      ->delimiter(',')
+      ->expected(2)
+      ->capture_default_str();
+  sub->add_option("--pressures", d.shear_pressures, "normal pressures of the shear tests [Pa]")
+      ->delimiter(',')
+      ->capture_default_str();
   sub->add_option("--max-angle", d.max_angle, "largest shear angle [rad]")->capture_default_str();
   sub->add_option("--shear-points", d.shear_points, "samples per shear test")->capture_default_str();
   sub->add_option("--noise", d.relative_noise, "relative noise sd (0.02 = 2 %)")->capture_default_str();
@@ -47,7 +55,8 @@ Command add_synthesize(CLI::App& app) {
     for (double p : d.shear_pressures) check_positive("--pressures", p);
     check_positive("--max-sinkage", d.max_sinkage);
     check_positive("--max-angle", d.max_angle);
-    if (d.plate_points < 1 || d.shear_points < 1) throw InputError("--plate-points/--shear-points: expected at least 1");
+    if (d.plate_points < 1 || d.shear_points < 1)
+      throw InputError("--plate-points/--shear-points: expected at least 1");
     if (!(a->annulus[1] > a->annulus[0] && a->annulus[0] >= 0))
       throw InputError(fmt::format("--annulus {},{}: expected 0 <= inner < outer", a->annulus[0], a->annulus[1]));
     if (d.relative_noise < 0) throw InputError(fmt::format("--noise {}: expected >= 0", d.relative_noise));

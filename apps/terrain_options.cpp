@@ -37,7 +37,8 @@ void add_crm_settling_options(CLI::App* sub, TerrainOptions& o) {
                   "CRM settling starts up to this fraction of the spacing off the lattice (0: the exact lattice)")
       ->check(in_range(CrmRanges::kSettleJitter))
       ->capture_default_str();
-  sub->add_option("--settle-seed", o.settle_seed, "seed of --settle-jitter: another seed, another realisation of the bed")
+  sub->add_option("--settle-seed", o.settle_seed,
+                  "seed of --settle-jitter: another seed, another realisation of the bed")
       ->check(CLI::Range(0L, CrmRanges::kMaxSettleSeed))
       ->capture_default_str();
   const auto damping = HourglassDamping::settings()[0];
@@ -59,21 +60,26 @@ void add_crm_settling_options(CLI::App* sub, TerrainOptions& o) {
 
 CLI::Option* add_crm_terrain_options(CLI::App* sub, TerrainOptions& o) {
   auto* soil = sub->add_option("--soil", o.soil_json, "CRM soil material (JSON, docs/formats.md 'CRM soil')");
-  sub->add_option("--spacing", o.spacing, "CRM particle spacing [m]")->check(in_range(RigRanges::kSpacing))->capture_default_str();
+  sub->add_option("--spacing", o.spacing, "CRM particle spacing [m]")
+      ->check(in_range(RigRanges::kSpacing))
+      ->capture_default_str();
   add_device_option(sub, o.device);
   sub->add_option("--cache", o.cache, "folder of settled CRM beds ('' = no cache)")->capture_default_str();
   add_crm_settling_options(sub, o);
   sub->add_option("--bin-scale", o.bin_scale, "CRM bins (and bed depth) scaled by this factor: the bin-size check")
       ->check(in_range(RigRanges::kBinScale))
       ->capture_default_str();
-  sub->add_option("--bin-depth-scale", o.bin_depth_scale, "CRM bed depth scaled by this factor instead (0: as --bin-scale)")
+  sub->add_option("--bin-depth-scale", o.bin_depth_scale,
+                  "CRM bed depth scaled by this factor instead (0: as --bin-scale)")
       ->check(off_or_in_range(RigRanges::kBinScale))
       ->capture_default_str();
   return soil;
 }
 
 void add_scm_grid_option(CLI::App* sub, TerrainOptions& o) {
-  sub->add_option("--grid", o.grid, "SCM grid spacing [m]")->check(in_range(RigRanges::kScmGrid))->capture_default_str();
+  sub->add_option("--grid", o.grid, "SCM grid spacing [m]")
+      ->check(in_range(RigRanges::kScmGrid))
+      ->capture_default_str();
 }
 
 void add_step_option(CLI::App* sub, TerrainOptions& o) {
@@ -144,7 +150,8 @@ std::unique_ptr<TerrainSite> crm_site(const CrmSoil& soil, const TerrainOptions&
   return std::make_unique<CrmSite>(sc, resolve_device(o.device), o.cache);
 }
 
-std::unique_ptr<TerrainSite> scm_site(const lowfi::ScmSoil& soil, const TerrainOptions& o, const Vec3<double>& gravity) {
+std::unique_ptr<TerrainSite> scm_site(const lowfi::ScmSoil& soil, const TerrainOptions& o,
+                                      const Vec3<double>& gravity) {
   lowfi::ScmSettings s;
   s.grid = o.grid;
   s.time_step = o.step > 0 ? o.step : 1e-3;
@@ -168,7 +175,8 @@ std::vector<double> parse_list(const std::string& text, const std::string& optio
       if (used != item.size() || !std::isfinite(v)) throw std::invalid_argument(item);
       out.push_back(v);
     } catch (const std::exception&) {
-      throw InputError(fmt::format("{} '{}': '{}' is not a number (expected a comma-separated list such as 0,0.2,0.4)", option, text, item));
+      throw InputError(fmt::format("{} '{}': '{}' is not a number (expected a comma-separated list such as 0,0.2,0.4)",
+                                   option, text, item));
     }
   }
   if (out.empty()) throw InputError(fmt::format("{} '{}': empty list", option, text));

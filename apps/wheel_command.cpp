@@ -4,8 +4,8 @@
 #include <memory>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
+#include <nlohmann/json.hpp>
 
 #include "apps/cli_checks.hpp"
 #include "apps/commands.hpp"
@@ -19,7 +19,7 @@ namespace terracal::app {
 namespace {
 struct WheelArgs {
   SoilModel terrain = SoilModel::kCrm;
-  std::string wheel, slips = "0,0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8", out;
+  std::string wheel, slips = kDefaultSlips, out;
   double duration = 4.0, average_from = 0.5;
   bool plots = true, with_wong_reece = false;
   TerrainOptions options;
@@ -29,17 +29,22 @@ struct WheelArgs {
 Command add_wheel(CLI::App& app) {
   auto* sub = app.add_subcommand("wheel", "Single-wheel slip sweep on CRM, SCM or Wong-Reece; writes wheel.csv");
   auto a = std::make_shared<WheelArgs>();
-  add_choice(sub, "--terrain", a->terrain, soil_model_names(), "soil model: crm, scm or wong-reece")->required()->default_str("");
+  add_choice(sub, "--terrain", a->terrain, soil_model_names(), "soil model: crm, scm or wong-reece")
+      ->required()
+      ->default_str("");
   sub->add_option("--wheel", a->wheel, "wheel file (JSON, docs/formats.md 'Wheel')")->required();
   sub->add_option("--slips", a->slips, "slips, comma-separated, each in (-1, 1)")->capture_default_str();
   sub->add_option("--out", a->out, "output folder")->required();
   sub->add_option("--duration", a->duration, "simulated seconds per slip")->capture_default_str();
-  sub->add_option("--average-from", a->average_from, "steady means over t >= this fraction of the run")->capture_default_str();
+  sub->add_option("--average-from", a->average_from, "steady means over t >= this fraction of the run")
+      ->capture_default_str();
   sub->add_flag("!--no-plots", a->plots, "skip the PNG plot");
-  sub->add_flag("--with-wong-reece", a->with_wong_reece, "with --terrain scm: also the Wong-Reece model of the same set (wheel_wong_reece.csv, comparison.md)");
+  sub->add_flag("--with-wong-reece", a->with_wong_reece,
+                "with --terrain scm: also the Wong-Reece model of the same set (wheel_wong_reece.csv, comparison.md)");
   add_terrain_options(sub, a->options, true, true);
   return [a] {
-    if (a->with_wong_reece && a->terrain != SoilModel::kScm) throw InputError("--with-wong-reece: only with --terrain scm");
+    if (a->with_wong_reece && a->terrain != SoilModel::kScm)
+      throw InputError("--with-wong-reece: only with --terrain scm");
     const rigs::WheelSpec wheel = rigs::read_wheel_json(a->wheel);
     const auto slips = parse_list(a->slips, "--slips");
     rigs::WheelRun run;
@@ -53,23 +58,31 @@ Command add_wheel(CLI::App& app) {
     if (a->terrain != SoilModel::kWongReece) rigs::write_wheel_series_csv(a->out + "/wheel_series.csv", results);
     double wall = 0;
     for (const auto& r : results) wall += r.wall_seconds;
-    nlohmann::json j = {{"terrain", soil_model_name(a->terrain)}, {"site", site}, {"wall_seconds", wall}, {"simulated_seconds_per_slip", run.duration}};
+    nlohmann::json j = {{"terrain", soil_model_name(a->terrain)},
+                        {"site", site},
+                        {"wall_seconds", wall},
+                        {"simulated_seconds_per_slip", run.duration}};
     write_text_atomically(a->out + "/run.json", j.dump(2) + "\n");
-    std::vector<std::pair<std::string, std::vector<rigs::WheelResult>>> models = {{soil_model_name(a->terrain), results}};
+    std::vector<std::pair<std::string, std::vector<rigs::WheelResult>>> models = {
+        {soil_model_name(a->terrain), results}};
     if (a->with_wong_reece) {
       const auto wr = run_wheel_sweep(SoilModel::kWongReece, soil, a->options, wheel, slips, run);
       rigs::write_wheel_csv(a->out + "/wheel_wong_reece.csv", wr);
-      std::string md = "| slip | DBP SCM [N] | DBP W-R [N] | torque SCM [N m] | torque W-R [N m] | sinkage SCM [m] | sinkage W-R [m] | sinkage SCM / W-R |\n";
+      std::string md =
+          "| slip | DBP SCM [N] | DBP W-R [N] | torque SCM [N m] | torque W-R [N m] | sinkage SCM [m] | sinkage W-R "
+          "[m] | sinkage SCM / W-R |\n";
       md += "|---|---|---|---|---|---|---|---|\n";
       for (std::size_t i = 0; i < wr.size(); ++i)
-        md += fmt::format("| {} | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {:.4f} | {:.4f} | {:.2f} |\n", slips[i], results[i].dbp, wr[i].dbp,
-                          results[i].torque, wr[i].torque, results[i].sinkage, wr[i].sinkage, results[i].sinkage / wr[i].sinkage);
+        md += fmt::format("| {} | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {:.4f} | {:.4f} | {:.2f} |\n", slips[i],
+                          results[i].dbp, wr[i].dbp, results[i].torque, wr[i].torque, results[i].sinkage, wr[i].sinkage,
+                          results[i].sinkage / wr[i].sinkage);
       md += "\n" + rigs::steadiness_summary("SCM", results) + "\n";
       write_text_atomically(a->out + "/comparison.md", md);
       models.push_back({"Wong-Reece", wr});
     }
     if (a->plots) plot_wheel_models(a->out, models);
-    fmt::print("wheel ({}): {} slips in {:.3g} s wall; written to {}/wheel.csv\n", soil_model_name(a->terrain), results.size(), wall, a->out);
+    fmt::print("wheel ({}): {} slips in {:.3g} s wall; written to {}/wheel.csv\n", soil_model_name(a->terrain),
+               results.size(), wall, a->out);
     return 0;
   };
 }

@@ -40,7 +40,8 @@ std::vector<std::size_t> thinned_draws(long draws, int keep) {
   return idx;
 }
 
-Variable chain_draw_variable(const std::string& name, const std::string& units, const std::vector<std::vector<double>>& per_chain) {
+Variable chain_draw_variable(const std::string& name, const std::string& units,
+                             const std::vector<std::vector<double>>& per_chain) {
   Variable v{name, {"chain", "draw"}, {per_chain.size(), per_chain.empty() ? 0 : per_chain[0].size()}, {}, units};
   for (const auto& c : per_chain) v.data.insert(v.data.end(), c.begin(), c.end());
   return v;
@@ -53,10 +54,23 @@ constexpr const char* kElasticMethod = "weighted linear least squares on unload/
 // Not fitted, it reads like a fixed parameter (value, sd 0, R-hat 1, ESS 0, "fixed": true).
 ordered_json elastic_posterior(const ElasticFit& e) {
   if (!e.fitted)
-    return {{"mean", e.ke}, {"sd", 0.0}, {"q05", e.ke}, {"q50", e.ke}, {"q95", e.ke}, {"rhat", 1.0}, {"ess_bulk", 0.0},
-            {"fixed", true}, {"method", "Chrono default: not fitted (no usable unload rows; see Fit.notes)"}};
-  return {{"mean", e.ke}, {"sd", e.sd}, {"q05", e.quantile(0.05)}, {"q50", e.quantile(0.5)}, {"q95", e.quantile(0.95)},
-          {"rhat", nullptr}, {"ess_bulk", nullptr}, {"method", std::string(kElasticMethod) + " (normal approximation)"}};
+    return {{"mean", e.ke},
+            {"sd", 0.0},
+            {"q05", e.ke},
+            {"q50", e.ke},
+            {"q95", e.ke},
+            {"rhat", 1.0},
+            {"ess_bulk", 0.0},
+            {"fixed", true},
+            {"method", "Chrono default: not fitted (no usable unload rows; see Fit.notes)"}};
+  return {{"mean", e.ke},
+          {"sd", e.sd},
+          {"q05", e.quantile(0.05)},
+          {"q50", e.quantile(0.5)},
+          {"q95", e.quantile(0.95)},
+          {"rhat", nullptr},
+          {"ess_bulk", nullptr},
+          {"method", std::string(kElasticMethod) + " (normal approximation)"}};
 }
 
 ordered_json elastic_fit_block(const ElasticFit& e) {
@@ -70,15 +84,19 @@ ordered_json elastic_fit_block(const ElasticFit& e) {
   b["lift_off_rows_excluded"] = e.lift_off_rows;
   ordered_json branches = ordered_json::array();
   for (const auto& br : e.branches)
-    branches.push_back({{"plate_radius_m", br.radius}, {"phase", br.phase == PlatePhase::kUnload ? "unload" : "reload"},
-                        {"first_line", br.first_line}, {"rows", br.rows}, {"plastic_sinkage_m", br.plastic_sinkage}});
+    branches.push_back({{"plate_radius_m", br.radius},
+                        {"phase", br.phase == PlatePhase::kUnload ? "unload" : "reload"},
+                        {"first_line", br.first_line},
+                        {"rows", br.rows},
+                        {"plastic_sinkage_m", br.plastic_sinkage}});
   b["branches"] = branches;
   return b;
 }
 
 }  // namespace
 
-nlohmann::ordered_json scm_params_json(const CalibrationProblem& pb, const CalibrationResult& res, const OutputContext& ctx) {
+nlohmann::ordered_json scm_params_json(const CalibrationProblem& pb, const CalibrationResult& res,
+                                       const OutputContext& ctx) {
   ordered_json j;
   j["Type"] = "SCM";
   ordered_json soil;
@@ -91,13 +109,13 @@ nlohmann::ordered_json scm_params_json(const CalibrationProblem& pb, const Calib
     const int v = free_slot(pb, i);
     if (v < 0) {
       const double x = pb.fixed_values()[i];
-      post[std::string(kChronoNames[i])] = {{"mean", x}, {"sd", 0.0}, {"q05", x}, {"q50", x}, {"q95", x},
-                                            {"rhat", 1.0}, {"ess_bulk", 0.0}, {"fixed", true}};
+      post[std::string(kChronoNames[i])] = {{"mean", x}, {"sd", 0.0},   {"q05", x},        {"q50", x},
+                                            {"q95", x},  {"rhat", 1.0}, {"ess_bulk", 0.0}, {"fixed", true}};
       continue;
     }
     const auto& s = res.summary[v];
-    post[std::string(kChronoNames[i])] = {{"mean", s.mean}, {"sd", s.sd}, {"q05", s.q05}, {"q50", s.q50}, {"q95", s.q95},
-                                          {"rhat", s.rhat}, {"ess_bulk", s.ess_bulk}};
+    post[std::string(kChronoNames[i])] = {{"mean", s.mean}, {"sd", s.sd},     {"q05", s.q05},          {"q50", s.q50},
+                                          {"q95", s.q95},   {"rhat", s.rhat}, {"ess_bulk", s.ess_bulk}};
   }
   post["Elastic stiffness"] = elastic_posterior(pb.elastic());
   j["Posterior"] = post;
@@ -148,9 +166,11 @@ InferenceData make_inference_data(const CalibrationProblem& pb, const Calibratio
   std::vector<std::vector<double>> rate(res.accepted.size());
   for (std::size_t c = 0; c < res.accepted.size(); ++c) {
     double s = 0;
-    for (std::size_t d = 0; d < res.accepted[c].size(); ++d) rate[c].push_back((s += res.accepted[c][d]) / double(d + 1));
+    for (std::size_t d = 0; d < res.accepted[c].size(); ++d)
+      rate[c].push_back((s += res.accepted[c][d]) / double(d + 1));
   }
-  id.groups.push_back({"sample_stats", {chain_draw_variable("lp", "1", res.lp), chain_draw_variable("acceptance_rate", "1", rate)}});
+  id.groups.push_back(
+      {"sample_stats", {chain_draw_variable("lp", "1", res.lp), chain_draw_variable("acceptance_rate", "1", rate)}});
 
   Group observed{"observed_data", {}}, constant{"constant_data", {}}, predictive{"posterior_predictive", {}};
   Rng rng = Rng::for_stream(seed, 7);
@@ -168,7 +188,8 @@ InferenceData make_inference_data(const CalibrationProblem& pb, const Calibratio
       constant.variables.push_back({"shear_angle", {obs_dim}, {s.size()}, s.x_axis, "rad"});
     }
     // y_rep = f(theta) + s_t w_i eps for thinned posterior draws.
-    Variable rep{yname, {"chain", "draw", obs_dim}, {static_cast<std::size_t>(res.chains), keep.size(), s.size()}, {}, s.unit};
+    Variable rep{
+        yname, {"chain", "draw", obs_dim}, {static_cast<std::size_t>(res.chains), keep.size(), s.size()}, {}, s.unit};
     const int sigma_slot = res.num_params + t;
     const std::size_t nv = res.names.size();
     for (int c = 0; c < res.chains; ++c)
@@ -190,7 +211,8 @@ InferenceData make_inference_data(const CalibrationProblem& pb, const Calibratio
 std::vector<std::string> write_plots(const std::string& dir, const CalibrationProblem& pb, const CalibrationResult& res,
                                      const InferenceData& idata) {
   std::vector<std::string> written;
-  const Group& pred = *std::find_if(idata.groups.begin(), idata.groups.end(), [](const Group& g) { return g.name == "posterior_predictive"; });
+  const Group& pred = *std::find_if(idata.groups.begin(), idata.groups.end(),
+                                    [](const Group& g) { return g.name == "posterior_predictive"; });
   for (int t = 0; t < pb.num_types(); ++t) {
     const ObservationSet& s = pb.set(t);
     const Variable& rep = pred.variables[t];
@@ -214,9 +236,11 @@ std::vector<std::string> write_plots(const std::string& dir, const CalibrationPr
     std::erase_if(curves, [](const FitSeries& f) { return f.x.empty(); });
     const std::string png = dir + "/" + s.name + "_fit.png";
     if (s.name == "plate") {
-      plot_fit(png, "Plate sinkage: data, MAP fit and 95 % posterior-predictive band", "sinkage z [m]", "force F [N]", curves);
+      plot_fit(png, "Plate sinkage: data, MAP fit and 95 % posterior-predictive band", "sinkage z [m]", "force F [N]",
+               curves);
     } else if (!curves.empty()) {
-      plot_fit(png, "Annulus shear: data, MAP fit and 95 % posterior-predictive band", "shear angle [rad]", "torque [N m]", curves);
+      plot_fit(png, "Annulus shear: data, MAP fit and 95 % posterior-predictive band", "shear angle [rad]",
+               "torque [N m]", curves);
     }
     if (!curves.empty()) written.push_back(png);
     if (!developed[0].x.empty()) {
@@ -227,11 +251,13 @@ std::vector<std::string> write_plots(const std::string& dir, const CalibrationPr
   }
   // Pairwise marginals: one row per draw (all chains), one column per free parameter.
   std::vector<std::string> names;
-  for (int v = 0; v < res.num_params; ++v) names.push_back(fmt::format("{} [{}]", res.names[v], kUnits[pb.free_indices()[v]]));
+  for (int v = 0; v < res.num_params; ++v)
+    names.push_back(fmt::format("{} [{}]", res.names[v], kUnits[pb.free_indices()[v]]));
   std::vector<std::vector<double>> draws;
   const std::size_t nv = res.names.size();
   for (const auto& chain : res.values)
-    for (long d = 0; d < res.draws; ++d) draws.emplace_back(chain.begin() + d * nv, chain.begin() + d * nv + res.num_params);
+    for (long d = 0; d < res.draws; ++d)
+      draws.emplace_back(chain.begin() + d * nv, chain.begin() + d * nv + res.num_params);
   plot_pairs(dir + "/pairs.png", names, draws);
   written.push_back(dir + "/pairs.png");
   return written;
@@ -240,35 +266,45 @@ std::vector<std::string> write_plots(const std::string& dir, const CalibrationPr
 std::string summary_report(const CalibrationProblem& pb, const CalibrationResult& res, const OutputContext& ctx) {
   std::string r = "terracal calibrate: summary\n";
   for (int t = 0; t < pb.num_types(); ++t)
-    r += fmt::format("  data        {:<6} {} points in {} curves, noise model {}\n", pb.set(t).name, pb.set(t).size(),
-                     pb.set(t).curve_labels.size(), pb.noise_model() == NoiseModel::kRelative ? "relative" : "absolute");
+    r +=
+        fmt::format("  data        {:<6} {} points in {} curves, noise model {}\n", pb.set(t).name, pb.set(t).size(),
+                    pb.set(t).curve_labels.size(), pb.noise_model() == NoiseModel::kRelative ? "relative" : "absolute");
   r += fmt::format("  stage 1     global search (NLopt CRS2 + BOBYQA): {} evaluations\n", res.point.global_evaluations);
   r += fmt::format("  stage 2     least squares (Ceres): {}\n", res.point.ceres_report);
-  r += fmt::format("              covariance (DENSE_SVD): {}\n", res.point.covariance_ok ? "ok"
-                   : fmt::format("{} direction(s) not constrained by the data, given a floor variance", res.point.unconstrained_directions));
+  r += fmt::format("              covariance (DENSE_SVD): {}\n",
+                   res.point.covariance_ok
+                       ? "ok"
+                       : fmt::format("{} direction(s) not constrained by the data, given a floor variance",
+                                     res.point.unconstrained_directions));
   // (Whether the run resumed from a checkpoint is logged, not written: a resumed run's files are
   // byte-identical to an uninterrupted one's.)
-  r += fmt::format("  stage 3     MCMC {}: {} chains x {} draws after {} warm-up, acceptance {:.3f}, failed evaluations {}\n",
-                   ctx.sampler, res.chains, res.draws, ctx.warmup, res.acceptance_rate, res.failed_evaluations);
+  r += fmt::format(
+      "  stage 3     MCMC {}: {} chains x {} draws after {} warm-up, acceptance {:.3f}, failed evaluations {}\n",
+      ctx.sampler, res.chains, res.draws, ctx.warmup, res.acceptance_rate, res.failed_evaluations);
   r += fmt::format("  termination {}\n", res.termination);
   const ElasticFit& ke = pb.elastic();
-  r += ke.fitted ? fmt::format("  elastic     Ke by weighted linear least squares (Eigen QR) on {} unload/reload rows in {} branches, "
-                               "{} dof:\n              a separate linear problem (one nuisance intercept, the plastic sinkage, per branch), "
-                               "not sampled;\n              quantiles from the normal approximation\n\n",
-                               ke.rows, ke.branches.size(), ke.dof)
-                 : "  elastic     Ke not fitted (no usable unload rows): Chrono's default\n\n";
-  r += fmt::format("  {:<10} {:>13} {:>13} {:>12} {:>13} {:>13} {:>13} {:>7} {:>8}\n", "parameter", "MAP", "mean", "sd", "5 %", "50 %",
-                   "95 %", "R-hat", "ESS");
+  r +=
+      ke.fitted
+          ? fmt::format(
+                "  elastic     Ke by weighted linear least squares (Eigen QR) on {} unload/reload rows in {} branches, "
+                "{} dof:\n              a separate linear problem (one nuisance intercept, the plastic sinkage, per "
+                "branch), "
+                "not sampled;\n              quantiles from the normal approximation\n\n",
+                ke.rows, ke.branches.size(), ke.dof)
+          : "  elastic     Ke not fitted (no usable unload rows): Chrono's default\n\n";
+  r += fmt::format("  {:<10} {:>13} {:>13} {:>12} {:>13} {:>13} {:>13} {:>7} {:>8}\n", "parameter", "MAP", "mean", "sd",
+                   "5 %", "50 %", "95 %", "R-hat", "ESS");
   for (std::size_t v = 0; v < res.names.size(); ++v) {
-    if (v == static_cast<std::size_t>(res.num_params) && ke.fitted)  // after the SCM parameters; no R-hat/ESS: not sampled
-      r += fmt::format("  {:<10} {:13.6g} {:13.6g} {:12.4g} {:13.6g} {:13.6g} {:13.6g} {:>7} {:>8}\n", "Ke", ke.ke, ke.ke, ke.sd,
-                       ke.quantile(0.05), ke.quantile(0.5), ke.quantile(0.95), "-", "-");
+    if (v == static_cast<std::size_t>(res.num_params) &&
+        ke.fitted)  // after the SCM parameters; no R-hat/ESS: not sampled
+      r += fmt::format("  {:<10} {:13.6g} {:13.6g} {:12.4g} {:13.6g} {:13.6g} {:13.6g} {:>7} {:>8}\n", "Ke", ke.ke,
+                       ke.ke, ke.sd, ke.quantile(0.05), ke.quantile(0.5), ke.quantile(0.95), "-", "-");
     const auto& s = res.summary[v];
     const bool param = v < static_cast<std::size_t>(res.num_params);
     const std::string map = param ? fmt::format("{:13.6g}", res.point.map[pb.free_indices()[v]])
                                   : fmt::format("{:13.6g}", res.point.noise_var[v - res.num_params]);
-    r += fmt::format("  {:<10} {} {:13.6g} {:12.4g} {:13.6g} {:13.6g} {:13.6g} {:7.4f} {:8.0f}\n", res.names[v], map, s.mean, s.sd,
-                     s.q05, s.q50, s.q95, s.rhat, s.ess_bulk);
+    r += fmt::format("  {:<10} {} {:13.6g} {:12.4g} {:13.6g} {:13.6g} {:13.6g} {:7.4f} {:8.0f}\n", res.names[v], map,
+                     s.mean, s.sd, s.q05, s.q50, s.q95, s.rhat, s.ess_bulk);
   }
   for (int i = 0; i < kNumParams; ++i)
     if (free_slot(pb, i) < 0) r += fmt::format("  {:<10} fixed at {:g}\n", kShortNames[i], pb.fixed_values()[i]);

@@ -18,13 +18,14 @@ namespace terracal::bayes {
 inline constexpr double kDefaultDamping = 3e4;  // Pa s/m
 
 struct OutputContext {
-  std::string sampler;       // "dram" or "ensemble", as scm_params.json names it
+  std::string sampler;  // "dram" or "ensemble", as scm_params.json names it
   std::uint64_t seed = 0;
   int warmup = 0;
 };
 
 // scm_params.json's content: the "Soil parameters" block at the MAP point, "Posterior", "Fit".
-nlohmann::ordered_json scm_params_json(const CalibrationProblem& pb, const CalibrationResult& res, const OutputContext& ctx);
+nlohmann::ordered_json scm_params_json(const CalibrationProblem& pb, const CalibrationResult& res,
+                                       const OutputContext& ctx);
 void write_scm_params_json(const std::string& path, const nlohmann::ordered_json& params);
 
 // posterior, sample_stats, observed_data, constant_data, posterior_predictive (at most

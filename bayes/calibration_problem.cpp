@@ -24,20 +24,26 @@ CalibrationProblem::CalibrationProblem(const PlateData& plate, const std::option
   radii_ = plate.radii;
   // One plate size: Kc/r + Kphi is known at a single r only, so Kc and Kphi cannot be separated.
   if (radii_.size() < 2 && !priors_[kKc].fixed() && !priors_[kKc].user_given && !priors_[kKphi].user_given)
-    fix(kKc, 0.0, fmt::format("{}: only one plate radius ({} m): Kc and Kphi cannot be separated; Kc is fixed at 0 "
-                              "(give a prior for Kc or Kphi, or a second plate size, to change this)",
-                              plate.path, radii_.front()));
+    fix(kKc, 0.0,
+        fmt::format("{}: only one plate radius ({} m): Kc and Kphi cannot be separated; Kc is fixed at 0 "
+                    "(give a prior for Kc or Kphi, or a second plate size, to change this)",
+                    plate.path, radii_.front()));
 
   if (shear) {
     add_shear(*shear);
-    const bool any_transient = std::any_of(shear->points.begin(), shear->points.end(), [](const ShearPoint& p) { return !p.developed; });
+    const bool any_transient =
+        std::any_of(shear->points.begin(), shear->points.end(), [](const ShearPoint& p) { return !p.developed; });
     if (!any_transient && !priors_[kJanosi].fixed())
       fix(kJanosi, kDefaultJanosi,
-          fmt::format("{}: only fully developed torques (no angle): the Janosi k is not identified; fixed at {} m", shear->path, kDefaultJanosi));
+          fmt::format("{}: only fully developed torques (no angle): the Janosi k is not identified; fixed at {} m",
+                      shear->path, kDefaultJanosi));
   } else {
-    if (!priors_[kCohesion].fixed()) fix(kCohesion, kDefaultCohesion, fmt::format("no shear data: cohesion fixed at {} Pa", kDefaultCohesion));
-    if (!priors_[kFriction].fixed()) fix(kFriction, kDefaultFriction, fmt::format("no shear data: friction angle fixed at {} deg", kDefaultFriction));
-    if (!priors_[kJanosi].fixed()) fix(kJanosi, kDefaultJanosi, fmt::format("no shear data: Janosi k fixed at {} m", kDefaultJanosi));
+    if (!priors_[kCohesion].fixed())
+      fix(kCohesion, kDefaultCohesion, fmt::format("no shear data: cohesion fixed at {} Pa", kDefaultCohesion));
+    if (!priors_[kFriction].fixed())
+      fix(kFriction, kDefaultFriction, fmt::format("no shear data: friction angle fixed at {} deg", kDefaultFriction));
+    if (!priors_[kJanosi].fixed())
+      fix(kJanosi, kDefaultJanosi, fmt::format("no shear data: Janosi k fixed at {} m", kDefaultJanosi));
   }
   for (int i = 0; i < kNumParams; ++i)
     if (!priors_[i].fixed()) free_.push_back(i);
@@ -104,7 +110,7 @@ void CalibrationProblem::index_kernels(ObservationSet& s) {
   std::map<std::tuple<double, double, double>, int> index;
   for (std::size_t i = 0; i < s.size(); ++i) {
     const auto key = s.kind == ObservationSet::Kind::kPlate ? std::make_tuple(s.log_z[i], 0.0, 0.0)
-                                                             : std::make_tuple(s.r_in[i], s.r_out[i], s.angle[i]);
+                                                            : std::make_tuple(s.r_in[i], s.r_out[i], s.angle[i]);
     auto [it, inserted] = index.try_emplace(key, static_cast<int>(index.size()));
     if (inserted) {
       if (s.kind == ObservationSet::Kind::kPlate) {

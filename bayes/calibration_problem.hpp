@@ -29,13 +29,13 @@ enum class NoiseModel { kRelative, kAbsolute };
 struct ObservationSet {
   enum class Kind { kPlate, kShear };
   Kind kind = Kind::kPlate;
-  std::string name;               // "plate" or "shear"
-  std::string unit;               // "N" or "N m"
-  std::vector<double> y, w;       // observed value, noise weight
+  std::string name;          // "plate" or "shear"
+  std::string unit;          // "N" or "N m"
+  std::vector<double> y, w;  // observed value, noise weight
   // Plate rows: radius, log sinkage. Shear rows: radii, load, angle (developed rows: angle < 0).
   std::vector<double> r, log_z, r_in, r_out, load, angle;
-  std::vector<double> x_axis;     // sinkage or angle, for plots
-  std::vector<int> curve;         // which curve (plate radius / shear load) a row belongs to
+  std::vector<double> x_axis;  // sinkage or angle, for plots
+  std::vector<int> curve;      // which curve (plate radius / shear load) a row belongs to
   std::vector<std::string> curve_labels;
   // Rows share kernels: plates repeat sinkages (z^n), shear tests repeat angles (the development
   // integral). kernel[i] indexes the distinct kernels; kernel_log_z / kernel_r_in, kernel_r_out,
@@ -82,8 +82,9 @@ class CalibrationProblem {
       return;
     }
     for (std::size_t k = 0; k < kern.size(); ++k)
-      kern[k] = s.kernel_angle[k] < 0 ? T(annulus_development_full(s.kernel_r_in[k], s.kernel_r_out[k]))
-                                      : annulus_development(s.kernel_r_in[k], s.kernel_r_out[k], s.kernel_angle[k], p[kJanosi]);
+      kern[k] = s.kernel_angle[k] < 0
+                    ? T(annulus_development_full(s.kernel_r_in[k], s.kernel_r_out[k]))
+                    : annulus_development(s.kernel_r_in[k], s.kernel_r_out[k], s.kernel_angle[k], p[kJanosi]);
     const T tan_phi = tan_degrees(p[kFriction]);
     for (std::size_t i = 0; i < s.size(); ++i)
       out[i] = annulus_shear_strength(s.r_in[i], s.r_out[i], s.load[i], p[kCohesion], tan_phi) * kern[s.kernel[i]];

@@ -82,8 +82,10 @@ class DramChains : public MultiChain {
 
 class Ensemble : public MultiChain {
  public:
-  Ensemble(const Target& target, const std::vector<Eigen::VectorXd>& starts, const Eigen::VectorXd& noise0, std::uint64_t seed)
-      : sampler_(target, EnsembleOptions{}, starts, std::vector<Eigen::VectorXd>(starts.size(), noise0), Rng::for_stream(seed, 99)) {}
+  Ensemble(const Target& target, const std::vector<Eigen::VectorXd>& starts, const Eigen::VectorXd& noise0,
+           std::uint64_t seed)
+      : sampler_(target, EnsembleOptions{}, starts, std::vector<Eigen::VectorXd>(starts.size(), noise0),
+                 Rng::for_stream(seed, 99)) {}
   int chains() const override { return static_cast<int>(sampler_.size()); }
   void advance(int iterations, bool, std::vector<ChainRecord>* record) override {
     for (int i = 0; i < iterations; ++i) {
@@ -111,8 +113,8 @@ class Ensemble : public MultiChain {
 // Starting points dispersed around the MAP: MAP + 2 L z (L the Cholesky factor of the Laplace
 // covariance), redrawn until inside the support, so that R-hat can detect chains that disagree.
 // A start that cannot be dispersed is reported: identical chains would make R-hat meaningless.
-std::vector<Eigen::VectorXd> dispersed_starts(const CalibrationProblem& pb, const PointEstimate& est, int count, std::uint64_t seed,
-                                              std::vector<std::string>& notes) {
+std::vector<Eigen::VectorXd> dispersed_starts(const CalibrationProblem& pb, const PointEstimate& est, int count,
+                                              std::uint64_t seed, std::vector<std::string>& notes) {
   Rng rng = Rng::for_stream(seed, 1);
   const Eigen::MatrixXd L = est.covariance.llt().matrixL();  // positive definite by construction (point_estimate)
   std::vector<Eigen::VectorXd> starts;
@@ -133,8 +135,10 @@ std::vector<Eigen::VectorXd> dispersed_starts(const CalibrationProblem& pb, cons
     starts.push_back(x);
   }
   if (undispersed > 0)
-    notes.push_back(fmt::format("{} of {} chains could not be started away from the MAP point (every dispersed start fell outside "
-                                "the prior support); they start at the MAP", undispersed, count));
+    notes.push_back(
+        fmt::format("{} of {} chains could not be started away from the MAP point (every dispersed start fell outside "
+                    "the prior support); they start at the MAP",
+                    undispersed, count));
   return starts;
 }
 
@@ -161,7 +165,8 @@ void write_checkpoint(const std::string& path, const std::string& fingerprint, c
   j["warmup_done"] = cp.warmup_done;
   j["sampler"] = cp.sampler;
   j["records"] = nlohmann::json::array();
-  for (const auto& r : cp.records) j["records"].push_back({{"values", r.values}, {"lp", r.lp}, {"accepted", r.accepted}});
+  for (const auto& r : cp.records)
+    j["records"].push_back({{"values", r.values}, {"lp", r.lp}, {"accepted", r.accepted}});
   const std::vector<std::uint8_t> bytes = nlohmann::json::to_cbor(j);
   write_text_atomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
@@ -172,7 +177,8 @@ bool read_checkpoint(const std::string& path, const std::string& fingerprint, Ch
   if (!in) return false;
   const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const nlohmann::json j = nlohmann::json::from_cbor(bytes, true, false);
-  if (j.is_discarded() || j.value("format", "") != "terracal-mcmc-checkpoint-1" || j.value("fingerprint", "") != fingerprint)
+  if (j.is_discarded() || j.value("format", "") != "terracal-mcmc-checkpoint-1" ||
+      j.value("fingerprint", "") != fingerprint)
     return false;
   cp.warmup_done = j.at("warmup_done").get<bool>();
   cp.sampler = j.at("sampler");
@@ -212,12 +218,15 @@ bool sampling_done(const CalibrationOptions& opt, const Checkpoint& cp, Calibrat
   if (opt.progress) opt.progress({"sampling", res.draws, max_rhat, min_ess});
   if (max_rhat < opt.max_rhat && min_ess >= opt.min_ess) {
     res.converged = true;
-    res.termination = fmt::format("converged: max R-hat {:.4f} < {}, min bulk ESS {:.0f} >= {}", max_rhat, opt.max_rhat, min_ess, opt.min_ess);
+    res.termination = fmt::format("converged: max R-hat {:.4f} < {}, min bulk ESS {:.0f} >= {}", max_rhat, opt.max_rhat,
+                                  min_ess, opt.min_ess);
     return true;
   }
   if (res.draws >= opt.max_draws) {
-    res.termination = fmt::format("NOT converged: draw cap {} per chain reached with max R-hat {:.4f} (target < {}) "
-                                  "and min bulk ESS {:.0f} (target >= {})", opt.max_draws, max_rhat, opt.max_rhat, min_ess, opt.min_ess);
+    res.termination = fmt::format(
+        "NOT converged: draw cap {} per chain reached with max R-hat {:.4f} (target < {}) "
+        "and min bulk ESS {:.0f} (target >= {})",
+        opt.max_draws, max_rhat, opt.max_rhat, min_ess, opt.min_ess);
     return true;
   }
   return false;
@@ -249,11 +258,14 @@ CalibrationResult calibrate(const CalibrationProblem& pb, const CalibrationOptio
 
   const Target target = pb.target();
   int count = opt.chains;
-  if (opt.sampler == SamplerKind::kEnsemble) count = std::max(opt.chains, 2 * pb.dim() + 2) + std::max(opt.chains, 2 * pb.dim() + 2) % 2;
+  if (opt.sampler == SamplerKind::kEnsemble)
+    count = std::max(opt.chains, 2 * pb.dim() + 2) + std::max(opt.chains, 2 * pb.dim() + 2) % 2;
   if (res.point.unconstrained_directions > 0)
-    res.notes.push_back(fmt::format("the data do not constrain {} combination(s) of the free parameters (the least-squares "
-                                    "covariance is singular): the posterior there is set by the priors and sampling may not "
-                                    "converge; fix a parameter or give an informative prior", res.point.unconstrained_directions));
+    res.notes.push_back(
+        fmt::format("the data do not constrain {} combination(s) of the free parameters (the least-squares "
+                    "covariance is singular): the posterior there is set by the priors and sampling may not "
+                    "converge; fix a parameter or give an informative prior",
+                    res.point.unconstrained_directions));
   const auto starts = dispersed_starts(pb, res.point, count, opt.seed, res.notes);
   std::unique_ptr<MultiChain> sampler;
   if (opt.sampler == SamplerKind::kDram)

@@ -22,32 +22,32 @@ namespace terracal::bayes {
 enum class SamplerKind { kDram, kEnsemble };
 
 struct CalibrationProgress {
-  std::string stage;          // "warm-up" or "sampling"
+  std::string stage;  // "warm-up" or "sampling"
   long draws_per_chain = 0;
   double max_rhat = 0, min_ess = 0;
 };
 
 struct CalibrationOptions {
   std::uint64_t seed = 1;
-  int chains = 4;                 // DRAM chains; the ensemble uses max(chains, 2 dim + 2) walkers (even)
+  int chains = 4;  // DRAM chains; the ensemble uses max(chains, 2 dim + 2) walkers (even)
   SamplerKind sampler = SamplerKind::kDram;
-  double min_ess = 1000;          // bulk ESS per parameter
-  double max_rhat = 1.01;         // rank-normalised split R-hat per parameter
-  int warmup = 1000;              // iterations per chain with adaptation, discarded
-  int block = 500;                // iterations per chain between convergence checks / checkpoints
-  long max_draws = 100000;        // per chain; reaching it ends the run as not converged
-  std::string checkpoint_path;    // empty: no checkpoint
-  std::string fingerprint;        // identifies data + options; a checkpoint with another is ignored
+  double min_ess = 1000;        // bulk ESS per parameter
+  double max_rhat = 1.01;       // rank-normalised split R-hat per parameter
+  int warmup = 1000;            // iterations per chain with adaptation, discarded
+  int block = 500;              // iterations per chain between convergence checks / checkpoints
+  long max_draws = 100000;      // per chain; reaching it ends the run as not converged
+  std::string checkpoint_path;  // empty: no checkpoint
+  std::string fingerprint;      // identifies data + options; a checkpoint with another is ignored
   int global_evaluations = 20000;
   std::function<void(const CalibrationProgress&)> progress;  // called after warm-up and each block
 };
 
 struct CalibrationResult {
   PointEstimate point;
-  std::vector<std::string> names;      // free parameters (short names), then "sigma2_<type>"
-  int num_params = 0;                  // how many of `names` are SCM parameters
+  std::vector<std::string> names;  // free parameters (short names), then "sigma2_<type>"
+  int num_params = 0;              // how many of `names` are SCM parameters
   int chains = 0;
-  long draws = 0;                      // per chain, after warm-up
+  long draws = 0;  // per chain, after warm-up
   // draws[c][d * names.size() + v]; lp[c][d]; accepted[c][d] (0/1: did the step move)
   std::vector<std::vector<double>> values, lp, accepted;
   std::vector<VariableSummary> summary;  // per name
@@ -55,8 +55,8 @@ struct CalibrationResult {
   bool resumed = false;
   long failed_evaluations = 0;
   double acceptance_rate = 0;
-  std::string termination;             // why sampling stopped, in words
-  std::vector<std::string> notes;      // what the user should know about this run
+  std::string termination;         // why sampling stopped, in words
+  std::vector<std::string> notes;  // what the user should know about this run
 
   // All draws of variable v, per chain (for diagnostics and plots).
   Chains chains_of(int v) const;

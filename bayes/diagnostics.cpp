@@ -161,7 +161,7 @@ double ess_of(const Chains& chains) {
   }
   const long max_t = t - 2;
   if (even > 0.0) rho_hat[max_t + 1] = even;  // the last positive even lag still carries information
-  for (t = 1; t <= max_t - 2; t += 2) {        // initial monotone sequence
+  for (t = 1; t <= max_t - 2; t += 2) {       // initial monotone sequence
     if (rho_hat[t + 1] + rho_hat[t + 2] > rho_hat[t - 1] + rho_hat[t]) {
       rho_hat[t + 1] = 0.5 * (rho_hat[t - 1] + rho_hat[t]);
       rho_hat[t + 2] = rho_hat[t + 1];

@@ -28,9 +28,7 @@ std::optional<Eigen::MatrixXd> cholesky(const Eigen::MatrixXd& cov) {
 
 // log(1 - exp(a)) for a <= 0, accurate near both ends (Maechler 2012): 1 - alpha underflows to
 // 0 in plain arithmetic when the first-stage alpha is within rounding of 1.
-double log1m_exp(double a) {
-  return a > -std::numbers::ln2 ? std::log(-std::expm1(a)) : std::log1p(-std::exp(a));
-}
+double log1m_exp(double a) { return a > -std::numbers::ln2 ? std::log(-std::expm1(a)) : std::log1p(-std::exp(a)); }
 
 // log of the first-stage acceptance probability alpha1(from -> to) = min(1, pi(to) / pi(from)).
 double log_alpha1(double lp_to, double lp_from) { return std::min(0.0, log_density_ratio(lp_to, lp_from)); }
@@ -98,8 +96,8 @@ bool DramChain::second_stage(const Eigen::VectorXd& z1, double lp1) {
   const double lp2 = safe_log_density(*target_, y2, nuisance_, stats_);
   const double log_q_ratio = -0.5 * (z1 - root * z2).squaredNorm() + 0.5 * z1.squaredNorm();
   // alpha1(x -> y1) < 1 here (stage 1 rejected), so the denominator's log1m_exp is finite.
-  const double log_ratio = log_density_ratio(lp2, logp_) + log_q_ratio + log1m_exp(log_alpha1(lp1, lp2)) -
-                           log1m_exp(log_alpha1(lp1, logp_));
+  const double log_ratio =
+      log_density_ratio(lp2, logp_) + log_q_ratio + log1m_exp(log_alpha1(lp1, lp2)) - log1m_exp(log_alpha1(lp1, logp_));
   if (!accept(log_ratio, rng_)) return false;
   move_to(y2, lp2);
   return true;

@@ -4,8 +4,8 @@
 // Adaptation (AM, Haario et al. 2001) learns the posterior covariance, which matters here because
 // the soil parameters differ by eight orders of magnitude and are strongly correlated; delayed
 // rejection (Mira 2001) rescues the many rejections of an early, badly scaled proposal.
-#include <nlohmann/json.hpp>
 #include <Eigen/Dense>
+#include <nlohmann/json.hpp>
 
 #include "bayes/running_covariance.hpp"
 #include "bayes/target.hpp"

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <map>
 
-#include <Eigen/Dense>
 #include <fmt/format.h>
 #include <gsl/gsl_cdf.h>
+#include <Eigen/Dense>
 
 #include "bayes/forward_models.hpp"
 
@@ -38,8 +38,10 @@ std::vector<Branch> find_branches(const PlateData& plate, int& lift_off_rows) {
       if (!prev || !is_elastic(*prev) || prev->radius != p.radius || prev->phase != p.phase)
         out.push_back({ElasticBranch{p.radius, p.phase, p.line, 0, 0.0}, {}});
       // Below its plastic sinkage the plate has left the soil: F = 0 there, not Ke (z - z_p) < 0.
-      if (p.force > 0) out.back().rows.push_back(&p);
-      else ++lift_off_rows;
+      if (p.force > 0)
+        out.back().rows.push_back(&p);
+      else
+        ++lift_off_rows;
     }
     prev = &p;
   }
@@ -54,16 +56,17 @@ std::vector<Branch> usable_branches(std::vector<Branch> found, const PlateData& 
       branches.push_back(std::move(b));
       continue;
     }
-    fit.notes.push_back(fmt::format("{}:{}: the {} branch of the plate r = {:g} m has {} row(s) with force > 0; a slope needs "
-                                    "at least 2: branch ignored for the elastic stiffness",
-                                    plate.path, b.info.first_line, phase_name(b.info.phase), b.info.radius, b.rows.size()));
+    fit.notes.push_back(
+        fmt::format("{}:{}: the {} branch of the plate r = {:g} m has {} row(s) with force > 0; a slope needs "
+                    "at least 2: branch ignored for the elastic stiffness",
+                    plate.path, b.info.first_line, phase_name(b.info.phase), b.info.radius, b.rows.size()));
   }
   return branches;
 }
 
 // The least-squares problem A [Ke, c_1 ... c_k] = y of the branches: one slope, one intercept per branch.
-void whitened_design(const PlateData& plate, const std::vector<Branch>& branches, bool relative_noise, Eigen::MatrixXd& A,
-                     Eigen::VectorXd& y) {
+void whitened_design(const PlateData& plate, const std::vector<Branch>& branches, bool relative_noise,
+                     Eigen::MatrixXd& A, Eigen::VectorXd& y) {
   std::map<double, double> plate_max;  // largest force per plate: the floor of the relative weights
   for (const auto& p : plate.points) plate_max[p.radius] = std::max(plate_max[p.radius], p.force);
   int n = 0;
@@ -93,7 +96,8 @@ double ElasticFit::quantile(double p) const { return fitted ? ke + sd * gsl_cdf_
 
 ElasticFit fit_elastic_stiffness(const PlateData& plate, bool relative_noise) {
   ElasticFit fit;
-  const std::string keep_default = fmt::format("Elastic stiffness not fitted: Chrono's default {:g} Pa/m is used", kDefaultElasticStiffness);
+  const std::string keep_default =
+      fmt::format("Elastic stiffness not fitted: Chrono's default {:g} Pa/m is used", kDefaultElasticStiffness);
   std::vector<Branch> found = find_branches(plate, fit.lift_off_rows);
   if (found.empty()) {
     fit.notes.push_back(fmt::format("{}: no unload rows (phase = unload); {}", plate.path, keep_default));
@@ -101,7 +105,8 @@ ElasticFit fit_elastic_stiffness(const PlateData& plate, bool relative_noise) {
   }
   const std::vector<Branch> branches = usable_branches(std::move(found), plate, fit);
   if (branches.empty()) {
-    fit.notes.push_back(fmt::format("{}: no unload or reload branch with 2 or more rows of force > 0; {}", plate.path, keep_default));
+    fit.notes.push_back(
+        fmt::format("{}: no unload or reload branch with 2 or more rows of force > 0; {}", plate.path, keep_default));
     return fit;
   }
 
@@ -115,8 +120,9 @@ ElasticFit fit_elastic_stiffness(const PlateData& plate, bool relative_noise) {
   const Eigen::MatrixXd As = A * scale.cwiseInverse().asDiagonal();
   const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(As);
   if (qr.rank() < cols) {
-    fit.notes.push_back(fmt::format("{}: the unload/reload rows do not determine a slope (each branch has a single sinkage); {}",
-                                    plate.path, keep_default));
+    fit.notes.push_back(
+        fmt::format("{}: the unload/reload rows do not determine a slope (each branch has a single sinkage); {}",
+                    plate.path, keep_default));
     return fit;
   }
   const Eigen::VectorXd beta = qr.solve(y).cwiseQuotient(scale);
@@ -124,9 +130,10 @@ ElasticFit fit_elastic_stiffness(const PlateData& plate, bool relative_noise) {
   fit.rows = n;
   fit.dof = n - cols;
   if (fit.dof < 1) {
-    fit.notes.push_back(fmt::format("{}: {} unload/reload rows in {} branch(es) give Ke = {:.6g} Pa/m but leave no degree of "
-                                    "freedom for its standard error (add rows to a branch); {}",
-                                    plate.path, n, branches.size(), ke, keep_default));
+    fit.notes.push_back(
+        fmt::format("{}: {} unload/reload rows in {} branch(es) give Ke = {:.6g} Pa/m but leave no degree of "
+                    "freedom for its standard error (add rows to a branch); {}",
+                    plate.path, n, branches.size(), ke, keep_default));
     return fit;
   }
   // Var(beta) = s^2 (A^T A)^-1 with s^2 the weighted residual variance; from the QR factors,
@@ -138,9 +145,10 @@ ElasticFit fit_elastic_stiffness(const PlateData& plate, bool relative_noise) {
   const double sd = std::sqrt(s2 * cov(0, 0)) / scale[0];
   if (!(ke > 0) || !std::isfinite(sd)) {
     // Force rising as the plate rises means mislabelled phases or a sensor problem, not a soil.
-    fit.notes.push_back(fmt::format("{}: the unload/reload branches give a slope Ke = {:.6g} +- {:.3g} Pa/m, which is not positive: "
-                                    "the force does not fall as the plate rises (check the phase labels); {}",
-                                    plate.path, ke, sd, keep_default));
+    fit.notes.push_back(
+        fmt::format("{}: the unload/reload branches give a slope Ke = {:.6g} +- {:.3g} Pa/m, which is not positive: "
+                    "the force does not fall as the plate rises (check the phase labels); {}",
+                    plate.path, ke, sd, keep_default));
     return fit;
   }
   fit.fitted = true;

@@ -28,20 +28,20 @@ namespace terracal::bayes {
 inline constexpr double kDefaultElasticStiffness = 4e7;  // Pa/m
 
 struct ElasticBranch {
-  double radius = 0;            // m
+  double radius = 0;  // m
   PlatePhase phase = PlatePhase::kUnload;
-  int first_line = 0;           // line in the file of the branch's first row
-  int rows = 0;                 // rows used (force > 0)
-  double plastic_sinkage = 0;   // z_p [m] at the fitted Ke
+  int first_line = 0;          // line in the file of the branch's first row
+  int rows = 0;                // rows used (force > 0)
+  double plastic_sinkage = 0;  // z_p [m] at the fitted Ke
 };
 
 struct ElasticFit {
-  bool fitted = false;          // false: ke is the default and notes say why
+  bool fitted = false;                   // false: ke is the default and notes say why
   double ke = kDefaultElasticStiffness;  // Pa/m: the least-squares estimate, or the default
-  double sd = 0;                // standard error of ke [Pa/m] (0 when not fitted)
-  int rows = 0, dof = 0;        // rows used, residual degrees of freedom (rows - 1 - branches)
-  double noise_sd = 0;          // residual sd of the weighted fit (relative, or N for absolute noise)
-  int lift_off_rows = 0;        // elastic rows with zero force (plate off the soil): not used
+  double sd = 0;                         // standard error of ke [Pa/m] (0 when not fitted)
+  int rows = 0, dof = 0;                 // rows used, residual degrees of freedom (rows - 1 - branches)
+  double noise_sd = 0;                   // residual sd of the weighted fit (relative, or N for absolute noise)
+  int lift_off_rows = 0;                 // elastic rows with zero force (plate off the soil): not used
   std::vector<ElasticBranch> branches;
   std::vector<std::string> notes;  // what the user must know: ignored branches, why not fitted
 

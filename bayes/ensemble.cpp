@@ -34,10 +34,12 @@ double stretch_factor(double a, Rng& rng) {
 
 }  // namespace
 
-EnsembleSampler::EnsembleSampler(const Target& target, const EnsembleOptions& opt,
-                                 std::vector<Eigen::VectorXd> walkers, std::vector<Eigen::VectorXd> nuisances,
-                                 Rng rng)
-    : target_(&target), opt_(opt), walkers_(std::move(walkers)), nuisances_(std::move(nuisances)),
+EnsembleSampler::EnsembleSampler(const Target& target, const EnsembleOptions& opt, std::vector<Eigen::VectorXd> walkers,
+                                 std::vector<Eigen::VectorXd> nuisances, Rng rng)
+    : target_(&target),
+      opt_(opt),
+      walkers_(std::move(walkers)),
+      nuisances_(std::move(nuisances)),
       rng_(std::move(rng)) {
   check_walkers(target, opt_, walkers_, nuisances_);
   for (std::size_t k = 0; k < walkers_.size(); ++k)

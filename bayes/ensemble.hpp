@@ -6,8 +6,8 @@
 // Invariance to affine maps means the 1e-2 vs 1e6 parameter scales need no tuning.
 #include <vector>
 
-#include <nlohmann/json.hpp>
 #include <Eigen/Dense>
+#include <nlohmann/json.hpp>
 
 #include "bayes/target.hpp"
 #include "core/rng.hpp"

@@ -42,7 +42,7 @@ TERRACAL_HD T shear_development(const T& x) {
   using std::exp;
   if (x < 1.0) {
     // H(x) = sum_{k>=1} (-1)^{k+1} x^k / (k! (k+3)); at x < 1 at most 18 terms reach 1e-16.
-    T term = x;   // x^k / k!
+    T term = x;  // x^k / k!
     T sum = term / 4.0;
     for (int k = 2; k <= 20; ++k) {
       term = term * x / double(k);
@@ -74,7 +74,8 @@ TERRACAL_HD T tan_degrees(const T& phi_deg) {
 template <typename T>
 TERRACAL_HD T annulus_development(double r_in, double r_out, double theta, const T& k) {
   const T a = theta / k;  // 1/m
-  return 2.0 * kPi * (r_out * r_out * r_out * shear_development(a * r_out) - r_in * r_in * r_in * shear_development(a * r_in));
+  return 2.0 * kPi *
+         (r_out * r_out * r_out * shear_development(a * r_out) - r_in * r_in * r_in * shear_development(a * r_in));
 }
 // The fully developed limit (theta -> infinity): 2 pi (r_out^3 - r_in^3) / 3.
 inline TERRACAL_HD double annulus_development_full(double r_in, double r_out) {
@@ -82,12 +83,15 @@ inline TERRACAL_HD double annulus_development_full(double r_in, double r_out) {
 }
 
 template <typename T>
-TERRACAL_HD T annulus_torque(double r_in, double r_out, double normal_load, double theta, const T& c, const T& phi_deg, const T& k) {
-  return annulus_shear_strength(r_in, r_out, normal_load, c, tan_degrees(phi_deg)) * annulus_development(r_in, r_out, theta, k);
+TERRACAL_HD T annulus_torque(double r_in, double r_out, double normal_load, double theta, const T& c, const T& phi_deg,
+                             const T& k) {
+  return annulus_shear_strength(r_in, r_out, normal_load, c, tan_degrees(phi_deg)) *
+         annulus_development(r_in, r_out, theta, k);
 }
 template <typename T>
 TERRACAL_HD T annulus_torque_developed(double r_in, double r_out, double normal_load, const T& c, const T& phi_deg) {
-  return annulus_shear_strength(r_in, r_out, normal_load, c, tan_degrees(phi_deg)) * annulus_development_full(r_in, r_out);
+  return annulus_shear_strength(r_in, r_out, normal_load, c, tan_degrees(phi_deg)) *
+         annulus_development_full(r_in, r_out);
 }
 
 }  // namespace terracal::bayes

@@ -10,14 +10,14 @@ namespace terracal::bayes {
 
 struct Variable {
   std::string name;
-  std::vector<std::string> dims;    // e.g. {"chain", "draw"} or {"chain", "draw", "plate_obs"}
-  std::vector<std::size_t> shape;   // same length as dims
-  std::vector<double> data;         // row-major, product(shape) values
-  std::string units;                // optional, written as the attribute "units"
+  std::vector<std::string> dims;   // e.g. {"chain", "draw"} or {"chain", "draw", "plate_obs"}
+  std::vector<std::size_t> shape;  // same length as dims
+  std::vector<double> data;        // row-major, product(shape) values
+  std::string units;               // optional, written as the attribute "units"
 };
 
 struct Group {
-  std::string name;                 // "posterior", "sample_stats", "observed_data", "posterior_predictive"
+  std::string name;  // "posterior", "sample_stats", "observed_data", "posterior_predictive"
   std::vector<Variable> variables;
 };
 

@@ -11,7 +11,7 @@
 
 namespace terracal::bayes {
 
-nlohmann::json encode_double(double v);         // a number, or "inf" / "-inf" / "nan"
+nlohmann::json encode_double(double v);  // a number, or "inf" / "-inf" / "nan"
 double decode_double(const nlohmann::json& j);
 
 nlohmann::json vector_to_json(const Eigen::VectorXd& v);

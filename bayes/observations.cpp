@@ -27,13 +27,14 @@ void require_positive(const std::string& where, double v) {
 
 void reject_millimetres(const std::string& where, const std::string& col, double v, double limit, const char* what) {
   if (v > limit)
-    throw InputError(fmt::format("{}: {} = {} m is implausible for a bevameter {} (expected at most {} m); "
-                                 "the file looks like it is in millimetres: convert to metres",
-                                 where, col, v, what, limit));
+    throw InputError(
+        fmt::format("{}: {} = {} m is implausible for a bevameter {} (expected at most {} m); "
+                    "the file looks like it is in millimetres: convert to metres",
+                    where, col, v, what, limit));
 }
 
 template <class Point>
-double largest_magnitude(const std::vector<Point>& points, double Point::* field) {
+double largest_magnitude(const std::vector<Point>& points, double Point::*field) {
   double m = 0;
   for (const auto& p : points) m = std::max(m, std::abs(p.*field));
   return m;
@@ -45,9 +46,11 @@ void check_plate_point(const PlatePoint& p, std::size_t i, const PointLocator& w
   if (p.sinkage < 0)
     throw InputError(fmt::format("{}: sinkage {} m is negative; expected >= 0", where(i, "sinkage_m"), p.sinkage));
   if (p.force < -force_noise)
-    throw InputError(fmt::format("{}: force {} N is negative; a plate pushed into soil meets a force >= 0 (values down to "
-                                 "-{} % of the largest force, {} N, pass as noise; remove the sensor offset, or check the "
-                                 "sign convention)", where(i, "force_N"), p.force, 100 * kZeroNoise, force_noise));
+    throw InputError(
+        fmt::format("{}: force {} N is negative; a plate pushed into soil meets a force >= 0 (values down to "
+                    "-{} % of the largest force, {} N, pass as noise; remove the sensor offset, or check the "
+                    "sign convention)",
+                    where(i, "force_N"), p.force, 100 * kZeroNoise, force_noise));
   reject_millimetres(where(i, "plate_radius_m"), "plate_radius_m", p.radius, kMaxPlausibleRadius, "plate radius");
   reject_millimetres(where(i, "sinkage_m"), "sinkage_m", p.sinkage, kMaxPlausibleSinkage, "plate sinkage");
 }
@@ -64,9 +67,10 @@ void mark_fitted(PlatePoint& p, std::size_t i, const PointLocator& where, PlateH
   // Unloading raises the plate: a deeper unload row contradicts its label, and the elastic
   // stiffness would be fitted to a virgin-loading point.
   if (p.phase == PlatePhase::kUnload && p.sinkage > h.deepest)
-    throw InputError(fmt::format("{}: unload row at sinkage {} m is deeper than the deepest sinkage so far of the plate "
-                                 "r = {} m ({} m); expected at most {} m (is the phase column right?)",
-                                 where(i, "sinkage_m"), p.sinkage, p.radius, h.deepest, h.deepest));
+    throw InputError(
+        fmt::format("{}: unload row at sinkage {} m is deeper than the deepest sinkage so far of the plate "
+                    "r = {} m ({} m); expected at most {} m (is the phase column right?)",
+                    where(i, "sinkage_m"), p.sinkage, p.radius, h.deepest, h.deepest));
   // A reload first climbs its elastic branch (in SCM up the unload line to the old deepest
   // point); it is back on the virgin curve once its force passes the largest force so far.
   // Once there it stays there until the next unload: a noisy force (a CRM curve) that dips below
@@ -86,15 +90,18 @@ void check_shear_point(const ShearPoint& p, std::size_t i, const PointLocator& w
   if (p.outer_radius <= p.inner_radius)
     throw InputError(fmt::format("{}: outer radius {} m must exceed the inner radius {} m", where(i, "outer_radius_m"),
                                  p.outer_radius, p.inner_radius));
-  reject_millimetres(where(i, "outer_radius_m"), "outer_radius_m", p.outer_radius, kMaxPlausibleRadius, "annulus radius");
+  reject_millimetres(where(i, "outer_radius_m"), "outer_radius_m", p.outer_radius, kMaxPlausibleRadius,
+                     "annulus radius");
   require_positive(where(i, "normal_load_N"), p.normal_load);
   if (p.torque < -torque_noise)
-    throw InputError(fmt::format("{}: torque {} N m is negative; expected >= 0 (values down to -{} % of the largest torque, "
-                                 "{} N m, pass as noise; check the sign convention)", where(i, "torque_Nm"), p.torque,
-                                 100 * kZeroNoise, torque_noise));
+    throw InputError(
+        fmt::format("{}: torque {} N m is negative; expected >= 0 (values down to -{} % of the largest torque, "
+                    "{} N m, pass as noise; check the sign convention)",
+                    where(i, "torque_Nm"), p.torque, 100 * kZeroNoise, torque_noise));
   if (p.angle < 0)
-    throw InputError(fmt::format("{}: shear angle {} rad is negative; expected >= 0 (or empty for the developed torque)",
-                                 where(i, "angle_rad"), p.angle));
+    throw InputError(
+        fmt::format("{}: shear angle {} rad is negative; expected >= 0 (or empty for the developed torque)",
+                    where(i, "angle_rad"), p.angle));
 }
 
 PointLocator csv_locator(const CsvTable& t) {
@@ -131,8 +138,10 @@ PlateData make_plate_data(std::vector<PlatePoint> points, const std::string& sou
     if (p.fitted) fitted_max_force[p.radius] = std::max(fitted_max_force[p.radius], p.force);
   for (const auto& [r, f] : fitted_max_force) {
     if (!(f > 0))
-      throw InputError(fmt::format("{}: every loading force of the plate of radius {} m is zero; the Bekker law needs a "
-                                   "positive force", source, r));
+      throw InputError(
+          fmt::format("{}: every loading force of the plate of radius {} m is zero; the Bekker law needs a "
+                      "positive force",
+                      source, r));
     d.radii.push_back(r);
   }
   if (d.fitted_count() == 0)
@@ -149,7 +158,8 @@ ShearData make_shear_data(std::vector<ShearPoint> points, const std::string& sou
     if (!points[i].developed && points[i].angle == 0) continue;  // zero displacement: the torque model is 0
     d.points.push_back(points[i]);
   }
-  if (d.points.empty()) throw InputError(fmt::format("{}: no rows with a shear angle > 0 or a developed torque", source));
+  if (d.points.empty())
+    throw InputError(fmt::format("{}: no rows with a shear angle > 0 or a developed torque", source));
   if (std::all_of(d.points.begin(), d.points.end(), [](const ShearPoint& p) { return p.torque == 0; }))
     throw InputError(fmt::format("{}: every torque is zero; nothing to fit the shear law to", source));
   return d;
@@ -168,8 +178,8 @@ PlateData load_plate_csv(const std::string& path) {
     if (t.has_column("phase")) {
       const auto phase = parse_plate_phase(t.text(i, "phase"));
       if (!phase)
-        throw InputError(fmt::format("{}: '{}' is not a phase; expected load, unload or reload (or empty)", t.where(i, "phase"),
-                                     t.text(i, "phase")));
+        throw InputError(fmt::format("{}: '{}' is not a phase; expected load, unload or reload (or empty)",
+                                     t.where(i, "phase"), t.text(i, "phase")));
       p.phase = *phase;
     }
     points.push_back(p);

@@ -13,14 +13,14 @@ enum class PlatePhase { kLoad, kUnload, kReload };
 struct PlatePoint {
   double radius = 0, sinkage = 0, force = 0;
   PlatePhase phase = PlatePhase::kLoad;
-  int line = 0;            // line in the file, for messages
-  bool fitted = false;     // used by the Bekker fit: loading beyond the previous maximum sinkage, z > 0
+  int line = 0;         // line in the file, for messages
+  bool fitted = false;  // used by the Bekker fit: loading beyond the previous maximum sinkage, z > 0
 };
 
 struct PlateData {
   std::string path;
   std::vector<PlatePoint> points;
-  std::vector<double> radii;   // the distinct plate radii, ascending
+  std::vector<double> radii;  // the distinct plate radii, ascending
   int fitted_count() const;
 };
 

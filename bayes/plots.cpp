@@ -93,8 +93,8 @@ void render(const std::string& png_path, const TempFolder& work, int width, int 
             const std::string& body) {
   const std::string tmp = fs::absolute(temporary_path_for(png_path)).string();
   std::ostringstream script;
-  script << "set terminal pngcairo noenhanced size " << width << "," << height << " font " << quoted(fmt::format("Sans,{}", font_size))
-         << " linewidth 1.2\n"
+  script << "set terminal pngcairo noenhanced size " << width << "," << height << " font "
+         << quoted(fmt::format("Sans,{}", font_size)) << " linewidth 1.2\n"
          << "set output " << quoted(tmp) << "\n"
          << "set datafile missing \"?\"\n"
          << body << "\nunset output\n";
@@ -251,9 +251,10 @@ void plot_fit(const std::string& png_path, const std::string& title, const std::
   std::vector<std::string> items;
   for (std::size_t i = 0; i < series.size(); ++i)
     if (!series[i].lo.empty())
-      items.push_back(fmt::format("'series{}.dat' using 1:4:5 with filledcurves fc rgb \"{}\" fs transparent solid 0.18 "
-                                  "noborder notitle",
-                                  i, kColours[i % kNumColours]));
+      items.push_back(
+          fmt::format("'series{}.dat' using 1:4:5 with filledcurves fc rgb \"{}\" fs transparent solid 0.18 "
+                      "noborder notitle",
+                      i, kColours[i % kNumColours]));
   for (std::size_t i = 0; i < series.size(); ++i)
     items.push_back(fmt::format("'series{}.dat' using 1:3 with lines lw 2.5 lc rgb \"{}\" title {}", i,
                                 kColours[i % kNumColours], quoted(series[i].label)));
@@ -263,8 +264,9 @@ void plot_fit(const std::string& png_path, const std::string& title, const std::
   items.push_back("keyentry with points pt 7 ps 1.1 lc rgb \"#666666\" title \"observed\"");
   items.push_back("keyentry with lines lw 2.5 lc rgb \"#666666\" title \"posterior fit\"");
   if (any_band)
-    items.push_back("keyentry with filledcurves fc rgb \"#666666\" fs transparent solid 0.18 noborder "
-                    "title \"95 % predictive band\"");
+    items.push_back(
+        "keyentry with filledcurves fc rgb \"#666666\" fs transparent solid 0.18 noborder "
+        "title \"95 % predictive band\"");
   gp << "plot ";
   for (std::size_t k = 0; k < items.size(); ++k) gp << (k ? ", \\\n     " : "") << items[k];
   gp << "\n";
@@ -279,8 +281,8 @@ void plot_pairs(const std::string& png_path, const std::vector<std::string>& nam
   if (draws.empty()) throw RunError("plotting '" + png_path + "': no draws to plot");
   for (std::size_t k = 0; k < draws.size(); ++k)
     if (draws[k].size() != P)
-      throw RunError(fmt::format("plotting '{}': draw {} has {} values for {} parameter names", png_path, k,
-                                 draws[k].size(), P));
+      throw RunError(
+          fmt::format("plotting '{}': draw {} has {} values for {} parameter names", png_path, k, draws[k].size(), P));
   std::vector<Range> range(P);
   for (std::size_t p = 0; p < P; ++p) range[p] = padded_range(draws, p, png_path, names[p]);
   check_target(png_path);
@@ -314,25 +316,29 @@ void plot_pairs(const std::string& png_path, const std::vector<std::string>& nam
      << "set grid lc rgb \"#e5e5e5\"\n"
      << "unset key\n";
   if (P > 1)  // the empty upper triangle holds the legend
-    gp << "set label 1 " << quoted(fmt::format("diagonal: histogram of each parameter ({} draws)\n"
-                                              "below: pairs of draws ({} of {} shown)",
-                                              draws.size(), shown, draws.size()))
+    gp << "set label 1 "
+       << quoted(fmt::format("diagonal: histogram of each parameter ({} draws)\n"
+                             "below: pairs of draws ({} of {} shown)",
+                             draws.size(), shown, draws.size()))
        << " at screen " << num(right) << ", screen " << num(top - 0.25 * h) << " right font \",13\"\n";
   for (std::size_t i = 0; i < P; ++i) {
     for (std::size_t j = 0; j <= i; ++j) {
       const double x0 = left + double(j) * w, y1 = top - double(i) * h;
       gp << fmt::format("set lmargin at screen {}\nset rmargin at screen {}\n", num(x0 + gap), num(x0 + w - gap))
          << fmt::format("set bmargin at screen {}\nset tmargin at screen {}\n", num(y1 - h + gap), num(y1 - gap))
-         << fmt::format("set xrange [{}:{}]\n", num(range[j].lo), num(range[j].hi)) << tics('x', range[j], w * kPairsSize, tick_font)
+         << fmt::format("set xrange [{}:{}]\n", num(range[j].lo), num(range[j].hi))
+         << tics('x', range[j], w * kPairsSize, tick_font)
          << (i + 1 == P ? "set format x \"%g\"\nset xlabel " + quoted(names[j]) + "\n"
                         : std::string("set format x \"\"\nunset xlabel\n"));
       if (i == j) {
         gp << "set yrange [0:*]\nunset ytics\nunset ylabel\n"
-           << fmt::format("plot 'hist{}.dat' using 1:2:3 with boxes fs solid 0.55 border lc rgb \"#ffffff\" "
-                          "lc rgb \"{}\"\n",
-                          j, kColours[0]);
+           << fmt::format(
+                  "plot 'hist{}.dat' using 1:2:3 with boxes fs solid 0.55 border lc rgb \"#ffffff\" "
+                  "lc rgb \"{}\"\n",
+                  j, kColours[0]);
       } else {
-        gp << fmt::format("set yrange [{}:{}]\n", num(range[i].lo), num(range[i].hi)) << tics('y', range[i], h * kPairsSize, tick_font)
+        gp << fmt::format("set yrange [{}:{}]\n", num(range[i].lo), num(range[i].hi))
+           << tics('y', range[i], h * kPairsSize, tick_font)
            << (j == 0 ? "set format y \"%g\"\nset ylabel " + quoted(names[i]) + "\n"
                       : std::string("set format y \"\"\nunset ylabel\n"))
            << fmt::format("plot 'draws.dat' using {}:{} with points pt 7 ps 0.35 lc rgb \"#99{}\"\n", j + 1, i + 1,

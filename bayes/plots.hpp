@@ -10,9 +10,9 @@ namespace terracal::bayes {
 
 // One measured curve with its fitted model curve, e.g. pressure against sinkage for one plate.
 struct FitSeries {
-  std::string label;                    // legend text, e.g. "plate 0.10 m"
+  std::string label;                     // legend text, e.g. "plate 0.10 m"
   std::vector<double> x, observed, fit;  // same length; rows are sorted by x before drawing
-  std::vector<double> lo, hi;           // 95 % posterior-predictive band; both empty -> no band
+  std::vector<double> lo, hi;            // 95 % posterior-predictive band; both empty -> no band
 };
 
 // Observed values as points, the fit as a line and the band as a transparent area, one colour

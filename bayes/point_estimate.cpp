@@ -30,13 +30,17 @@ class SearchSpace {
     r2_ = pb.plate_radii().back();
     kc_free_ = is_free(kKc);
     kphi_free_ = is_free(kKphi);
-    if (kc_free_ || kphi_free_) add(std::log(1.0), std::log(1e12));   // log K(r1)
+    if (kc_free_ || kphi_free_) add(std::log(1.0), std::log(1e12));  // log K(r1)
     if (kc_free_ && kphi_free_) {
-      if (r2_ > r1_) add(std::log(1.0), std::log(1e12));              // log K(r2)
-      else add(pr[kKc].lower, pr[kKc].upper);                          // one radius, Kc has a prior
+      if (r2_ > r1_)
+        add(std::log(1.0), std::log(1e12));  // log K(r2)
+      else
+        add(pr[kKc].lower, pr[kKc].upper);  // one radius, Kc has a prior
     }
     if (is_free(kN)) add(pr[kN].lower, pr[kN].upper);
-    if (is_free(kCohesion)) add(pr[kCohesion].lower, std::min(pr[kCohesion].upper, std::max(pr[kCohesion].lower + 1.0, 3.0 * max_shear_stress())));
+    if (is_free(kCohesion))
+      add(pr[kCohesion].lower,
+          std::min(pr[kCohesion].upper, std::max(pr[kCohesion].lower + 1.0, 3.0 * max_shear_stress())));
     if (is_free(kFriction)) add(pr[kFriction].lower, pr[kFriction].upper);
     if (is_free(kJanosi)) add(std::log(pr[kJanosi].lower), std::log(pr[kJanosi].upper));
   }
@@ -73,7 +77,10 @@ class SearchSpace {
   }
 
  private:
-  void add(double lo, double hi) { lo_.push_back(lo); hi_.push_back(hi); }
+  void add(double lo, double hi) {
+    lo_.push_back(lo);
+    hi_.push_back(hi);
+  }
   // The largest mean shear stress any shear row implies (torque over the developed-torque lever).
   double max_shear_stress() const {
     double m = 0;
@@ -127,15 +134,22 @@ ParamVector global_search(const CalibrationProblem& pb, const PointEstimateOptio
   crs.set_maxeval(opt.global_evaluations);
   crs.set_population(static_cast<unsigned>(30 * (space.dim() + 1)));
   crs.set_xtol_rel(1e-8);
-  try { crs.optimize(u, best); } catch (const std::exception&) { /* keep the best point found */ }
+  try {
+    crs.optimize(u, best);
+  } catch (const std::exception&) { /* keep the best point found */
+  }
   nlopt::opt local(nlopt::LN_BOBYQA, space.dim());
   local.set_lower_bounds(space.lower());
   local.set_upper_bounds(space.upper());
   local.set_min_objective(thunk, &f);
   local.set_maxeval(5000);
   local.set_xtol_rel(1e-10);
-  try { local.optimize(u, best); } catch (const std::exception&) {}
-  if (best >= kHuge) throw RunError("global search: no parameter set inside the priors explains the data (every evaluation failed)");
+  try {
+    local.optimize(u, best);
+  } catch (const std::exception&) {
+  }
+  if (best >= kHuge)
+    throw RunError("global search: no parameter set inside the priors explains the data (every evaluation failed)");
   return space.decode(u);
 }
 
@@ -184,8 +198,9 @@ struct PriorResidual {
 
 // The covariance of the free parameters at the polished point, from the Jacobian of `problem` (whose
 // parameter block is `u`, the parameters over `scale`), made positive definite.
-void estimate_covariance(const CalibrationProblem& pb, ceres::Problem& problem, const std::vector<ceres::ResidualBlockId>& data_blocks,
-                         const Scale& scale, double* u, PointEstimate& est) {
+void estimate_covariance(const CalibrationProblem& pb, ceres::Problem& problem,
+                         const std::vector<ceres::ResidualBlockId>& data_blocks, const Scale& scale, double* u,
+                         PointEstimate& est) {
   // Covariance of the free parameters: DENSE_SVD tolerates a rank-deficient Jacobian.
   ceres::Covariance::Options copt;
   copt.algorithm_type = ceres::DENSE_SVD;
@@ -217,7 +232,8 @@ void estimate_covariance(const CalibrationProblem& pb, ceres::Problem& problem, 
   // (unit ~ the parameter's size) give every direction at least a variance of (1e-3)^2 and tell
   // the user when that was needed because the data leave a combination of parameters open.
   constexpr double kMinScaledVariance = 1e-6;
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(computed ? cov_u : Eigen::MatrixXd::Identity(d, d) * kMinScaledVariance);
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(computed ? cov_u
+                                                              : Eigen::MatrixXd::Identity(d, d) * kMinScaledVariance);
   Eigen::VectorXd lambda = eig.eigenvalues();
   const double lambda_max = std::max(lambda.maxCoeff(), kMinScaledVariance);
   int unconstrained = 0;
@@ -230,7 +246,8 @@ void estimate_covariance(const CalibrationProblem& pb, ceres::Problem& problem, 
   est.unconstrained_directions = computed ? unconstrained : d;
   est.covariance = Eigen::MatrixXd(d, d);
   for (int a = 0; a < d; ++a)
-    for (int b = 0; b < d; ++b) est.covariance(a, b) = cov_u(a, b) * scale[pb.free_indices()[a]] * scale[pb.free_indices()[b]];
+    for (int b = 0; b < d; ++b)
+      est.covariance(a, b) = cov_u(a, b) * scale[pb.free_indices()[a]] * scale[pb.free_indices()[b]];
 }
 
 void polish(const CalibrationProblem& pb, PointEstimate& est) {
@@ -255,8 +272,9 @@ void polish(const CalibrationProblem& pb, PointEstimate& est) {
   for (int i : pb.free_indices()) {
     const Prior& pr = pb.priors()[i];
     if (pr.kind == Prior::Kind::kNormal || pr.kind == Prior::Kind::kLogNormal)
-      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PriorResidual, 1, kNumParams>(new PriorResidual{i, pr, scale[i]}),
-                               nullptr, u);
+      problem.AddResidualBlock(
+          new ceres::AutoDiffCostFunction<PriorResidual, 1, kNumParams>(new PriorResidual{i, pr, scale[i]}), nullptr,
+          u);
     problem.SetParameterLowerBound(u, i, pr.lower / scale[i]);
     problem.SetParameterUpperBound(u, i, pr.upper / scale[i]);
   }
@@ -276,7 +294,8 @@ void polish(const CalibrationProblem& pb, PointEstimate& est) {
   est.ceres_report = summary.BriefReport();
   const auto candidate = unscale(u, scale);
   // Keep the polished point only if it is feasible and no worse (Ceres cannot see Kc/r + Kphi > 0).
-  if (pb.feasible(candidate) && profile_objective(pb, candidate) <= profile_objective(pb, est.map) + 1e-9) est.map = candidate;
+  if (pb.feasible(candidate) && profile_objective(pb, candidate) <= profile_objective(pb, est.map) + 1e-9)
+    est.map = candidate;
 
   estimate_covariance(pb, problem, data_blocks, scale, u, est);
 }

@@ -18,15 +18,15 @@ struct PointEstimateOptions {
 };
 
 struct PointEstimate {
-  ParamVector map{};               // the maximum a posteriori point (all six parameters)
-  Eigen::VectorXd x;               // its free parameters
-  Eigen::MatrixXd covariance;      // of the free parameters (Laplace approximation)
-  bool covariance_ok = false;      // false: some direction is not constrained by the data (see below)
+  ParamVector map{};                 // the maximum a posteriori point (all six parameters)
+  Eigen::VectorXd x;                 // its free parameters
+  Eigen::MatrixXd covariance;        // of the free parameters (Laplace approximation)
+  bool covariance_ok = false;        // false: some direction is not constrained by the data (see below)
   int unconstrained_directions = 0;  // directions given a floor variance (the data leave them open)
-  Eigen::VectorXd noise_var;       // s_t^2 per test type at the optimum
-  double weighted_rss = 0;         // sum over types of sum ((y - f)/w)^2
+  Eigen::VectorXd noise_var;         // s_t^2 per test type at the optimum
+  double weighted_rss = 0;           // sum over types of sum ((y - f)/w)^2
   int global_evaluations = 0;
-  std::string ceres_report;        // Ceres' brief report of the last solve
+  std::string ceres_report;  // Ceres' brief report of the last solve
 };
 
 // Throws RunError if no feasible point is found.

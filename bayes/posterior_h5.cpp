@@ -126,8 +126,7 @@ DimList group_dimensions(const Group& g, const std::string& path) {
     for (std::size_t a = 0; a < v.dims.size(); ++a) {
       const std::string& d = v.dims[a];
       check_name(d, path, "dimension");
-      if (v.shape[a] == 0)
-        throw RunError(var_where + ": dimension '" + d + "' has length 0");
+      if (v.shape[a] == 0) throw RunError(var_where + ": dimension '" + d + "' has length 0");
       for (std::size_t b = 0; b < a; ++b)
         if (v.dims[b] == d)  // xarray cannot index a repeated dimension; use e.g. p_dim_0, p_dim_1
           throw RunError(var_where + ": dimension '" + d + "' is used twice");
@@ -136,8 +135,8 @@ DimList group_dimensions(const Group& g, const std::string& path) {
         dims.emplace_back(d, v.shape[a]);
         first_user[d] = v.name;
       } else if (it->second != v.shape[a]) {
-        throw RunError(var_where + ": dimension '" + d + "' has length " + std::to_string(v.shape[a]) +
-                       " but length " + std::to_string(it->second) + " in variable '" + first_user[d] + "'");
+        throw RunError(var_where + ": dimension '" + d + "' has length " + std::to_string(v.shape[a]) + " but length " +
+                       std::to_string(it->second) + " in variable '" + first_user[d] + "'");
       }
       count *= v.shape[a];
     }
@@ -179,8 +178,8 @@ void write_text_attribute(hid_t loc, const std::string& name, const std::string&
   check_rc(H5Tset_size(type.get(), value.empty() ? 1 : value.size()), path, "sizing " + what);
   check_rc(H5Tset_strpad(type.get(), H5T_STR_NULLTERM), path, "setting the padding of " + what);
   H5Handle space = make(H5Screate(H5S_SCALAR), H5Sclose, path, "creating the dataspace of " + what);
-  H5Handle attr = make(H5Acreate2(loc, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
-                       path, "creating " + what);
+  H5Handle attr = make(H5Acreate2(loc, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose, path,
+                       "creating " + what);
   std::string buffer = value;
   buffer.resize(value.empty() ? 1 : value.size(), '\0');
   check_rc(H5Awrite(attr.get(), type.get(), buffer.data()), path, "writing " + what);
@@ -196,20 +195,19 @@ void write_library_attributes(hid_t loc, const std::string& path) {
 
 H5Handle create_dataset(hid_t group, const std::string& name, hid_t file_type, const std::vector<hsize_t>& extent,
                         hid_t dcpl, const std::string& path, const std::string& what) {
-  H5Handle space = extent.empty()
-                       ? make(H5Screate(H5S_SCALAR), H5Sclose, path, "creating the dataspace of " + what)
-                       : make(H5Screate_simple(static_cast<int>(extent.size()), extent.data(), nullptr), H5Sclose,
-                              path, "creating the dataspace of " + what);
-  H5Handle ds = make(H5Dcreate2(group, name.c_str(), file_type, space.get(), H5P_DEFAULT, dcpl, H5P_DEFAULT),
-                     H5Dclose, path, "creating " + what);
+  H5Handle space = extent.empty() ? make(H5Screate(H5S_SCALAR), H5Sclose, path, "creating the dataspace of " + what)
+                                  : make(H5Screate_simple(static_cast<int>(extent.size()), extent.data(), nullptr),
+                                         H5Sclose, path, "creating the dataspace of " + what);
+  H5Handle ds = make(H5Dcreate2(group, name.c_str(), file_type, space.get(), H5P_DEFAULT, dcpl, H5P_DEFAULT), H5Dclose,
+                     path, "creating " + what);
   space.close(path, "a dataspace");
   return ds;
 }
 
 void write_group(hid_t file, const Group& g, const DimList& dims, hid_t gcpl, hid_t dcpl, const std::string& path) {
   const std::string gw = "group '" + g.name + "'";
-  H5Handle grp = make(H5Gcreate2(file, g.name.c_str(), H5P_DEFAULT, gcpl, H5P_DEFAULT), H5Gclose, path,
-                      "creating " + gw);
+  H5Handle grp =
+      make(H5Gcreate2(file, g.name.c_str(), H5P_DEFAULT, gcpl, H5P_DEFAULT), H5Gclose, path, "creating " + gw);
   write_library_attributes(grp.get(), path);
 
   // Dimension scales first (netCDF-4 defines dimensions before the variables using them):
@@ -296,8 +294,7 @@ std::vector<std::string> link_names(hid_t group, const std::string& path, const 
 
 // Scalar string attribute, fixed-length (netCDF NC_CHAR, what we write) or variable-length
 // (netCDF NC_STRING, what h5py writes).
-std::string read_text_attribute(hid_t loc, const std::string& name, const std::string& path,
-                                const std::string& where) {
+std::string read_text_attribute(hid_t loc, const std::string& name, const std::string& path, const std::string& where) {
   const std::string what = "attribute '" + name + "' of " + where;
   H5Handle attr = make(H5Aopen(loc, name.c_str(), H5P_DEFAULT), H5Aclose, path, "opening " + what);
   H5Handle type = make(H5Aget_type(attr.get()), H5Tclose, path, "reading the type of " + what);
@@ -382,8 +379,7 @@ Variable read_variable(hid_t ds, const std::string& name, const std::string& pat
     const std::string axis = "axis " + std::to_string(a) + " of " + where;
     const int scales = H5DSget_num_scales(ds, static_cast<unsigned>(a));
     if (scales < 0) fail(path, "reading the dimension scales of " + axis);
-    if (scales == 0)
-      throw RunError("InferenceData file '" + path + "': " + axis + " has no dimension scale attached");
+    if (scales == 0) throw RunError("InferenceData file '" + path + "': " + axis + " has no dimension scale attached");
     std::string dim;
     if (H5DSiterate_scales(ds, static_cast<unsigned>(a), nullptr, scale_name_visitor, &dim) < 0 || dim.empty())
       fail(path, "reading the dimension name of " + axis);
@@ -401,7 +397,8 @@ Group read_group(hid_t grp, const std::string& name, const std::string& path) {
   g.name = name;
   const std::string gw = "group '" + name + "'";
   for (const std::string& link : link_names(grp, path, gw)) {
-    H5Handle obj = make(H5Oopen(grp, link.c_str(), H5P_DEFAULT), H5Oclose, path, "opening " + gw + " member '" + link + "'");
+    H5Handle obj =
+        make(H5Oopen(grp, link.c_str(), H5P_DEFAULT), H5Oclose, path, "opening " + gw + " member '" + link + "'");
     if (H5Iget_type(obj.get()) == H5I_DATASET) {
       const htri_t is_scale = H5DSis_scale(obj.get());
       if (is_scale < 0) fail(path, "inspecting " + gw + " member '" + link + "'");
@@ -438,8 +435,7 @@ void write_inference_data_h5(const std::string& path, const InferenceData& idata
 
 InferenceData read_inference_data_h5(const std::string& path) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw RunError("InferenceData file '" + path + "': no such file");
+  if (!std::filesystem::is_regular_file(path, ec)) throw RunError("InferenceData file '" + path + "': no such file");
   QuietHdf5Errors quiet;
   H5Handle file = make(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, path, "cannot open as HDF5");
   H5Handle root = make(H5Gopen2(file.get(), "/", H5P_DEFAULT), H5Gclose, path, "opening the root group");

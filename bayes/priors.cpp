@@ -15,7 +15,10 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Hard physical limits: a priors file may narrow them, never widen them.
-struct Limits { double lower, upper; bool lower_open; };
+struct Limits {
+  double lower, upper;
+  bool lower_open;
+};
 constexpr std::array<Limits, kNumParams> kPhysical = {{
     {-1e9, 1e9, false},  // Kc
     {0.0, 1e11, false},  // Kphi
@@ -37,7 +40,8 @@ bool physically_allowed(int i, double x) {
 
 double get_number(const nlohmann::json& j, const std::string& path, const std::string& key, const char* field) {
   if (!j.contains(field)) throw InputError(fmt::format("{}: key '{}': missing field '{}'", path, key, field));
-  if (!j[field].is_number()) throw InputError(fmt::format("{}: key '{}.{}': {} is not a number", path, key, field, j[field].dump()));
+  if (!j[field].is_number())
+    throw InputError(fmt::format("{}: key '{}.{}': {} is not a number", path, key, field, j[field].dump()));
   return j[field].get<double>();
 }
 
@@ -47,30 +51,37 @@ double Prior::log_density(double x) const {
   if (kind == Kind::kFixed) return x == value ? 0.0 : -kInf;
   if (!contains(x)) return -kInf;
   switch (kind) {
-    case Kind::kNormal: return -0.5 * std::pow((x - mean) / sd, 2);
-    case Kind::kLogNormal: return x > 0 ? -0.5 * std::pow((std::log(x) - mean) / sd, 2) - std::log(x) : -kInf;
-    default: return 0.0;
+    case Kind::kNormal:
+      return -0.5 * std::pow((x - mean) / sd, 2);
+    case Kind::kLogNormal:
+      return x > 0 ? -0.5 * std::pow((std::log(x) - mean) / sd, 2) - std::log(x) : -kInf;
+    default:
+      return 0.0;
   }
 }
 
 std::string Prior::describe() const {
   switch (kind) {
-    case Kind::kFixed: return fmt::format("fixed at {}", value);
-    case Kind::kNormal: return fmt::format("normal(mean {}, sd {}) on [{}, {}]", mean, sd, lower, upper);
-    case Kind::kLogNormal: return fmt::format("lognormal(log-mean {}, log-sd {}) on [{}, {}]", mean, sd, lower, upper);
-    default: return fmt::format("uniform on [{}, {}]", lower, upper);
+    case Kind::kFixed:
+      return fmt::format("fixed at {}", value);
+    case Kind::kNormal:
+      return fmt::format("normal(mean {}, sd {}) on [{}, {}]", mean, sd, lower, upper);
+    case Kind::kLogNormal:
+      return fmt::format("lognormal(log-mean {}, log-sd {}) on [{}, {}]", mean, sd, lower, upper);
+    default:
+      return fmt::format("uniform on [{}, {}]", lower, upper);
   }
 }
 
 Priors default_priors() {
   Priors p;
   const std::array<std::pair<double, double>, kNumParams> bounds = {{
-      {-1e7, 1e7},   // Kc [Pa/m^(n-1)]
-      {0.0, 1e9},    // Kphi [Pa/m^n]
-      {1e-3, 2.0},   // n
-      {0.0, 2e5},    // c [Pa]
-      {0.0, 60.0},   // phi [deg]
-      {1e-5, 1.0},   // k [m]
+      {-1e7, 1e7},  // Kc [Pa/m^(n-1)]
+      {0.0, 1e9},   // Kphi [Pa/m^n]
+      {1e-3, 2.0},  // n
+      {0.0, 2e5},   // c [Pa]
+      {0.0, 60.0},  // phi [deg]
+      {1e-5, 1.0},  // k [m]
   }};
   for (int i = 0; i < kNumParams; ++i) {
     p[i].lower = bounds[i].first;
@@ -94,7 +105,8 @@ Priors load_priors(const std::string& path) {
   for (const auto& [key, spec] : j.items()) {
     const int i = param_index(key);
     if (i < 0)
-      throw InputError(fmt::format("{}: unknown key '{}'; expected one of Kc, Kphi, n, c, phi, k (or their Chrono names)", path, key));
+      throw InputError(fmt::format(
+          "{}: unknown key '{}'; expected one of Kc, Kphi, n, c, phi, k (or their Chrono names)", path, key));
     if (!spec.is_object() || !spec.contains("type") || !spec["type"].is_string())
       throw InputError(fmt::format("{}: key '{}': expected an object with a string field 'type'", path, key));
     Prior& pr = p[i];
@@ -112,18 +124,23 @@ Priors load_priors(const std::string& path) {
     } else if (type == "fixed") {
       const double value = get_number(spec, path, key, "value");
       if (!physically_allowed(i, value))
-        throw InputError(fmt::format("{}: key '{}.value': {} is outside the physical range {}", path, key, value, range_text(i)));
+        throw InputError(
+            fmt::format("{}: key '{}.value': {} is outside the physical range {}", path, key, value, range_text(i)));
       pr = fixed_prior(value);
       continue;
     } else {
-      throw InputError(fmt::format("{}: key '{}.type': '{}' is not a prior type; expected uniform, normal, lognormal or fixed", path, key, type));
+      throw InputError(
+          fmt::format("{}: key '{}.type': '{}' is not a prior type; expected uniform, normal, lognormal or fixed", path,
+                      key, type));
     }
     if (!(pr.lower < pr.upper))
       throw InputError(fmt::format("{}: key '{}': lower {} must be below upper {}", path, key, pr.lower, pr.upper));
     if (!physically_allowed(i, pr.lower))
-      throw InputError(fmt::format("{}: key '{}.lower': {} is outside the physical range {}", path, key, pr.lower, range_text(i)));
+      throw InputError(
+          fmt::format("{}: key '{}.lower': {} is outside the physical range {}", path, key, pr.lower, range_text(i)));
     if (!physically_allowed(i, pr.upper))
-      throw InputError(fmt::format("{}: key '{}.upper': {} is outside the physical range {}", path, key, pr.upper, range_text(i)));
+      throw InputError(
+          fmt::format("{}: key '{}.upper': {} is outside the physical range {}", path, key, pr.upper, range_text(i)));
   }
   return p;
 }

@@ -1,6 +1,5 @@
 #include "bayes/scm_json_read.hpp"
 
-
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -18,7 +17,8 @@ ParamVector read_scm_soil_parameters(const std::string& path) {
   for (int i = 0; i < kNumParams; ++i) {
     const std::string key(kChronoNames[i]);
     if (!s.contains(key)) throw InputError(fmt::format("{}: key 'Soil parameters.{}' is missing", path, key));
-    if (!s[key].is_number()) throw InputError(fmt::format("{}: key 'Soil parameters.{}': {} is not a number", path, key, s[key].dump()));
+    if (!s[key].is_number())
+      throw InputError(fmt::format("{}: key 'Soil parameters.{}': {} is not a number", path, key, s[key].dump()));
     p[i] = s[key].get<double>();
   }
   return p;

@@ -10,8 +10,8 @@ enum Param : int { kKc = 0, kKphi, kN, kCohesion, kFriction, kJanosi, kNumParams
 
 // Names exactly as in Chrono's SCM JSON "Soil parameters" block (docs/formats.md).
 inline constexpr std::array<std::string_view, kNumParams> kChronoNames = {
-    "Bekker Kc", "Bekker Kphi", "Bekker n exponent", "Mohr cohesive limit", "Mohr friction limit",
-    "Janosi shear coefficient"};
+    "Bekker Kc",           "Bekker Kphi",         "Bekker n exponent",
+    "Mohr cohesive limit", "Mohr friction limit", "Janosi shear coefficient"};
 
 // Short names: priors files, the posterior file and the summary table.
 inline constexpr std::array<std::string_view, kNumParams> kShortNames = {"Kc", "Kphi", "n", "c", "phi", "k"};

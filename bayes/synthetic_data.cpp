@@ -28,7 +28,8 @@ PlateData synthesize_plate(const ParamVector& truth, const SyntheticDesign& d, R
     // Loading sinkages: the even grid, where a turning point of a cycle replaces a grid point that
     // differs from it by rounding only (0.1 * 6 / 20 is not 0.03), plus the other turning points.
     auto turning = [&](double z) {
-      return std::any_of(d.unload_at.begin(), d.unload_at.end(), [&](double u) { return std::abs(u - z) <= 1e-12 * d.max_sinkage; });
+      return std::any_of(d.unload_at.begin(), d.unload_at.end(),
+                         [&](double u) { return std::abs(u - z) <= 1e-12 * d.max_sinkage; });
     };
     std::vector<double> loading = d.unload_at;
     for (int i = 1; i <= d.plate_points; ++i)
@@ -41,7 +42,8 @@ PlateData synthesize_plate(const ParamVector& truth, const SyntheticDesign& d, R
       const double zp = z - f / (area * d.elastic_stiffness);  // plastic sinkage left by unloading
       for (int k = 1; k <= d.unload_points; ++k) {
         const double zk = z - (z - zp) * k / d.unload_points;
-        add(zk, k == d.unload_points ? 0.0 : std::max(0.0, area * d.elastic_stiffness * (zk - zp)), PlatePhase::kUnload);
+        add(zk, k == d.unload_points ? 0.0 : std::max(0.0, area * d.elastic_stiffness * (zk - zp)),
+            PlatePhase::kUnload);
       }
       for (int k = 1; k < d.unload_points; ++k) {
         const double zk = zp + (z - zp) * k / d.unload_points;
@@ -63,8 +65,8 @@ ShearData synthesize_shear(const ParamVector& truth, const SyntheticDesign& d, R
       p.outer_radius = d.annulus_outer;
       p.normal_load = pressure * area;
       p.angle = d.max_angle * i / d.shear_points;
-      p.torque = annulus_torque(p.inner_radius, p.outer_radius, p.normal_load, p.angle, truth[kCohesion], truth[kFriction],
-                                truth[kJanosi]) *
+      p.torque = annulus_torque(p.inner_radius, p.outer_radius, p.normal_load, p.angle, truth[kCohesion],
+                                truth[kFriction], truth[kJanosi]) *
                  (1.0 + d.relative_noise * rng.normal());
       out.points.push_back(p);
     }
@@ -73,7 +75,8 @@ ShearData synthesize_shear(const ParamVector& truth, const SyntheticDesign& d, R
 
 void write_plate_csv(const std::string& path, const PlateData& data) {
   // Files without cycles keep the three-column layout (and the demo data set its bytes).
-  const bool phases = std::any_of(data.points.begin(), data.points.end(), [](const PlatePoint& p) { return p.phase != PlatePhase::kLoad; });
+  const bool phases = std::any_of(data.points.begin(), data.points.end(),
+                                  [](const PlatePoint& p) { return p.phase != PlatePhase::kLoad; });
   std::string s = phases ? "plate_radius_m,sinkage_m,force_N,phase\n" : "plate_radius_m,sinkage_m,force_N\n";
   for (const auto& p : data.points) {
     s += fmt::format("{},{},{}", p.radius, p.sinkage, p.force);
@@ -86,8 +89,9 @@ void write_plate_csv(const std::string& path, const PlateData& data) {
 void write_shear_csv(const std::string& path, const ShearData& data) {
   std::string s = "inner_radius_m,outer_radius_m,normal_load_N,angle_rad,torque_Nm\n";
   for (const auto& p : data.points)
-    s += p.developed ? fmt::format("{},{},{},,{}\n", p.inner_radius, p.outer_radius, p.normal_load, p.torque)
-                     : fmt::format("{},{},{},{},{}\n", p.inner_radius, p.outer_radius, p.normal_load, p.angle, p.torque);
+    s += p.developed
+             ? fmt::format("{},{},{},,{}\n", p.inner_radius, p.outer_radius, p.normal_load, p.torque)
+             : fmt::format("{},{},{},{},{}\n", p.inner_radius, p.outer_radius, p.normal_load, p.angle, p.torque);
   write_text_atomically(path, s);
 }
 

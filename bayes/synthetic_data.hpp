@@ -11,20 +11,20 @@
 namespace terracal::bayes {
 
 struct SyntheticDesign {
-  std::vector<double> plate_radii{0.1, 0.2};   // m
-  double max_sinkage = 0.1;                    // m
-  int plate_points = 20;                       // per plate, evenly spaced in (0, max_sinkage]
-  double annulus_inner = 0.15, annulus_outer = 0.20;  // m
+  std::vector<double> plate_radii{0.1, 0.2};                  // m
+  double max_sinkage = 0.1;                                   // m
+  int plate_points = 20;                                      // per plate, evenly spaced in (0, max_sinkage]
+  double annulus_inner = 0.15, annulus_outer = 0.20;          // m
   std::vector<double> shear_pressures{2e3, 8e3, 14e3, 20e3};  // normal pressure W/A [Pa]
-  double max_angle = 0.8;                      // rad
-  int shear_points = 30;                       // per load, evenly spaced in (0, max_angle]
-  double relative_noise = 0.02;                // sd of multiplicative Gaussian noise: y = f (1 + sd eps)
+  double max_angle = 0.8;                                     // rad
+  int shear_points = 30;                                      // per load, evenly spaced in (0, max_angle]
+  double relative_noise = 0.02;                               // sd of multiplicative Gaussian noise: y = f (1 + sd eps)
   // Load/unload/reload cycles: at each of these sinkages [m] every plate is unloaded elastically
   // (F = pi r^2 Ke (z - z_p)) down to lift-off, reloaded up the same line, then loading goes on.
   // Empty: monotone loading only.
   std::vector<double> unload_at;
-  double elastic_stiffness = 4e7;              // Ke [Pa/m] of the cycles
-  int unload_points = 8;                       // rows per unload branch (the last at lift-off, F = 0) and per reload branch
+  double elastic_stiffness = 4e7;  // Ke [Pa/m] of the cycles
+  int unload_points = 8;           // rows per unload branch (the last at lift-off, F = 0) and per reload branch
 };
 
 PlateData synthesize_plate(const ParamVector& truth, const SyntheticDesign& design, Rng& rng);

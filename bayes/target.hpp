@@ -24,8 +24,8 @@ struct Target {
 // Counters a chain keeps; saved in checkpoints.
 struct ChainStats {
   long iterations = 0;
-  long accepted = 0;             // accepted moves (either delayed-rejection stage)
-  long failed_evaluations = 0;   // NaN / +inf / exception from log_density
+  long accepted = 0;            // accepted moves (either delayed-rejection stage)
+  long failed_evaluations = 0;  // NaN / +inf / exception from log_density
   double acceptance_rate() const { return iterations ? double(accepted) / double(iterations) : 0.0; }
 };
 

@@ -31,8 +31,8 @@ int main(int argc, char** argv) {
   d.shear_points = 8;
   Rng rng(1);
   const CalibrationProblem problem(synthesize_plate(truth, d, rng), synthesize_shear(truth, d, rng), default_priors());
-  std::printf("data: %zu plate points, %zu shear points; %d OpenMP threads\n", problem.set(0).size(), problem.set(1).size(),
-              omp_get_max_threads());
+  std::printf("data: %zu plate points, %zu shear points; %d OpenMP threads\n", problem.set(0).size(),
+              problem.set(1).size(), omp_get_max_threads());
 
   // 1. Likelihood (log posterior) evaluations per second, one core.
   std::vector<double> rates;
@@ -68,8 +68,8 @@ int main(int argc, char** argv) {
       max_rhat = std::max(max_rhat, res.summary[v].rhat);
       min_ess = std::min(min_ess, res.summary[v].ess_bulk);
     }
-    std::printf("  run %d: %.2f s, %s, %ld draws/chain, max R-hat %.4f, min ESS %.0f\n", r, s, res.converged ? "converged" : "NOT converged",
-                res.draws, max_rhat, min_ess);
+    std::printf("  run %d: %.2f s, %s, %ld draws/chain, max R-hat %.4f, min ESS %.0f\n", r, s,
+                res.converged ? "converged" : "NOT converged", res.draws, max_rhat, min_ess);
   }
   std::printf("calibration: %.2f s (median of %d)\n", median(times), repeats);
   return 0;

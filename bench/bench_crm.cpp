@@ -15,8 +15,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "highfi/crm/crm_solver.hpp"
 #include "bench/bench_stats.hpp"
+#include "highfi/crm/crm_solver.hpp"
 
 using namespace terracal;
 using Clock = std::chrono::steady_clock;
@@ -24,8 +24,15 @@ using Clock = std::chrono::steady_clock;
 using bench::median;
 
 static nlohmann::json soil() {
-  return {{"density", 1700}, {"young_modulus", 1e6}, {"poisson_ratio", 0.3}, {"mu_s", 0.7}, {"mu_2", 0.7},
-          {"I0", 0.03}, {"grain_diameter", 0.005}, {"cohesion", 0}, {"gravity", {0, 0, -9.81}}};
+  return {{"density", 1700},
+          {"young_modulus", 1e6},
+          {"poisson_ratio", 0.3},
+          {"mu_s", 0.7},
+          {"mu_2", 0.7},
+          {"I0", 0.03},
+          {"grain_diameter", 0.005},
+          {"cohesion", 0},
+          {"gravity", {0, 0, -9.81}}};
 }
 
 struct Timing {
@@ -68,7 +75,8 @@ int main(int argc, char** argv) {
   const int repeats = argc > 4 ? std::atoi(argv[4]) : 5;
   const bool wheel = argc > 5 && std::string(argv[5]) == "wheel";
   const double d0 = 0.01;
-  std::printf("%-12s %-12s %-10s %-16s %-14s %s\n", "particles", "markers", "bytes/p", "particle-steps/s", "ms/step", "device");
+  std::printf("%-12s %-12s %-10s %-16s %-14s %s\n", "particles", "markers", "bytes/p", "particle-steps/s", "ms/step",
+              "device");
   for (double n : sizes) {
     // Square bin of side L filled to L/4: n = (L/d0)^2 (L/4d0).
     const int side = std::max(8, int(std::lround(std::cbrt(4 * n))));
@@ -80,26 +88,30 @@ int main(int argc, char** argv) {
     // BENCH_GRID_REACH=1 times the plain 2h grid instead of the default cells of h.
     if (const char* reach = std::getenv("BENCH_GRID_REACH")) j["resolution"]["grid_reach"] = std::atoi(reach);
     const Timing t = time_scene(j, device, steps, repeats);
-    std::printf("%-12zu %-12zu %-10.1f %-16.4g %-14.3f %s\n", t.particles, t.markers, double(t.bytes) / t.particles, t.rate,
-                1e3 * t.particles / t.rate, t.device.c_str());
+    std::printf("%-12zu %-12zu %-10.1f %-16.4g %-14.3f %s\n", t.particles, t.markers, double(t.bytes) / t.particles,
+                t.rate, 1e3 * t.particles / t.rate, t.device.c_str());
     std::fflush(stdout);
   }
   if (wheel) {
     // A wheel (radius 0.25 m, width 0.15 m) crossing a 4 m x 1 m bin 0.3 m deep, at the first size's spacing.
     const double dw = 0.02;
     for (bool active : {false, true}) {
-      nlohmann::json j = {{"soil", soil()},
-                          {"bin", {{"size", {4.0, 1.0, 0.4}}, {"fill_height", 0.3}}},
-                          {"resolution", {{"spacing", dw}, {"h_over_d0", 1.2}, {"cpu_precision", "float"}}},
-                          {"effects", active ? nlohmann::json{"artificial_viscosity", "active_domain"} : nlohmann::json{"artificial_viscosity"}},
-                          {"bodies", {{{"name", "wheel"},
-                                       {"shape", {{"type", "cylinder"}, {"radius", 0.25}, {"width", 0.15}}},
-                                       {"position", {0.5, 0.5, 0.3 + 0.25 - 0.02}},
-                                       {"motion", {{"type", "prescribed"}, {"linear_velocity", {0.5, 0, 0}}, {"angular_velocity", {0, 2.0, 0}}}}}}}};
+      nlohmann::json j = {
+          {"soil", soil()},
+          {"bin", {{"size", {4.0, 1.0, 0.4}}, {"fill_height", 0.3}}},
+          {"resolution", {{"spacing", dw}, {"h_over_d0", 1.2}, {"cpu_precision", "float"}}},
+          {"effects",
+           active ? nlohmann::json{"artificial_viscosity", "active_domain"} : nlohmann::json{"artificial_viscosity"}},
+          {"bodies",
+           {{{"name", "wheel"},
+             {"shape", {{"type", "cylinder"}, {"radius", 0.25}, {"width", 0.15}}},
+             {"position", {0.5, 0.5, 0.3 + 0.25 - 0.02}},
+             {"motion",
+              {{"type", "prescribed"}, {"linear_velocity", {0.5, 0, 0}}, {"angular_velocity", {0, 2.0, 0}}}}}}}};
       if (active) j["active_domain"] = {{"margin", 0.1}};
       const Timing t = time_scene(j, device, steps, repeats);
-      std::printf("wheel bin 4 m, d0 %.3f, active_domain %-3s: %zu particles, %.4g particle-steps/s (%.3f ms/step)\n", dw,
-                  active ? "on" : "off", t.particles, t.rate, 1e3 * t.particles / t.rate);
+      std::printf("wheel bin 4 m, d0 %.3f, active_domain %-3s: %zu particles, %.4g particle-steps/s (%.3f ms/step)\n",
+                  dw, active ? "on" : "off", t.particles, t.rate, 1e3 * t.particles / t.rate);
     }
   }
   return 0;

@@ -10,9 +10,9 @@
 
 #include <omp.h>
 
+#include "bench/bench_stats.hpp"
 #include "lowfi/scm_terrain.hpp"
 #include "virtual_bevameter/wheel_rig.hpp"
-#include "bench/bench_stats.hpp"
 
 using namespace terracal;
 using Clock = std::chrono::steady_clock;
@@ -41,9 +41,11 @@ int main(int argc, char** argv) {
     const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
     rates.push_back(duration / wall);
   }
-  std::printf("SCM wheel, grid %g m, step %g s, %g s simulated, 1 thread: median %.2f simulated s per wall s (min %.2f, max %.2f) over %d runs\n",
-              grid, s.time_step, duration, median(rates), *std::min_element(rates.begin(), rates.end()),
-              *std::max_element(rates.begin(), rates.end()), repeats);
+  std::printf(
+      "SCM wheel, grid %g m, step %g s, %g s simulated, 1 thread: median %.2f simulated s per wall s (min %.2f, max "
+      "%.2f) over %d runs\n",
+      grid, s.time_step, duration, median(rates), *std::min_element(rates.begin(), rates.end()),
+      *std::max_element(rates.begin(), rates.end()), repeats);
   std::printf("steady: DBP %.1f N, torque %.1f N m, sinkage %.4f m\n", last.dbp, last.torque, last.sinkage);
   return 0;
 }

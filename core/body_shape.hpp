@@ -18,7 +18,7 @@ struct BodyShape {
   double width = 0;             // cylinder width along y; disc/annulus thickness along z
   int grouser_count = 0;        // cylinder: straight grousers across the width
   double grouser_height = 0, grouser_thickness = 0;
-  std::vector<Vec3<double>> vertices;       // triangle mesh, body frame
+  std::vector<Vec3<double>> vertices;  // triangle mesh, body frame
   std::vector<std::array<int, 3>> triangles;
 };
 

@@ -53,7 +53,8 @@ CsvTable CsvTable::read(const std::string& path) {
       throw InputError(fmt::format("{}:{}: {} cells but the header has {} columns ({})", path, line_no,
                                    t.cells_.back().size(), t.header_.size(), fmt::join(t.header_, ",")));
   }
-  if (t.header_.empty()) throw InputError(fmt::format("{}: the file is empty (expected a header row and data rows)", path));
+  if (t.header_.empty())
+    throw InputError(fmt::format("{}: the file is empty (expected a header row and data rows)", path));
   if (t.cells_.empty())
     throw InputError(fmt::format("{}: the file has a header ({}) but no data rows", path, fmt::join(t.header_, ",")));
   return t;
@@ -70,8 +71,9 @@ void CsvTable::require_columns(const std::vector<std::string>& names) const {
   for (const auto& n : names)
     if (!has_column(n)) missing.push_back(n);
   if (!missing.empty())
-    throw InputError(fmt::format("{}:{}: missing column(s) {}; the header is '{}', expected the columns {}", path_, header_line_,
-                                 fmt::join(missing, ", "), fmt::join(header_, ","), fmt::join(names, ",")));
+    throw InputError(fmt::format("{}:{}: missing column(s) {}; the header is '{}', expected the columns {}", path_,
+                                 header_line_, fmt::join(missing, ", "), fmt::join(header_, ","),
+                                 fmt::join(names, ",")));
 }
 
 std::string CsvTable::where(std::size_t row, const std::string& column) const {

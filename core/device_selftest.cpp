@@ -11,7 +11,9 @@ void axpy_cpu(double a, const std::vector<double>& x, std::vector<double>& y) {
 
 #ifndef TERRACAL_HAVE_CUDA
 // A build without nvcc: the GPU entry points exist and say why they cannot run.
-CudaDeviceInfo cuda_device_info() { return {false, "this build has no CUDA backend (nvcc not found at configure time)"}; }
+CudaDeviceInfo cuda_device_info() {
+  return {false, "this build has no CUDA backend (nvcc not found at configure time)"};
+}
 void axpy_cuda(double, const std::vector<double>&, std::vector<double>&) {
   throw RunError("axpy_cuda: this build has no CUDA backend");
 }

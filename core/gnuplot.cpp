@@ -69,15 +69,15 @@ void run_gnuplot(const std::string& script, const std::string& workdir) {
   }
   // Run inside workdir so the script's relative data-file names resolve there; gnuplot's stdout
   // and stderr both go to the log, which becomes the error message if it fails.
-  const std::string command = "cd " + shell_quote(dir.string()) + " && " + shell_quote(gnuplot_path()) +
-                              " plot.gp > gnuplot.log 2>&1";
+  const std::string command =
+      "cd " + shell_quote(dir.string()) + " && " + shell_quote(gnuplot_path()) + " plot.gp > gnuplot.log 2>&1";
   const int status = std::system(command.c_str());
   if (status == -1) throw RunError("plotting: cannot start a shell to run gnuplot");
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    const std::string why = WIFEXITED(status) ? "exited with status " + std::to_string(WEXITSTATUS(status))
-                                              : "was killed by a signal";
-    throw RunError("plotting: gnuplot " + why + " running '" + script_file.string() + "': " +
-                   tail_of_file(log_file, 2000));
+    const std::string why =
+        WIFEXITED(status) ? "exited with status " + std::to_string(WEXITSTATUS(status)) : "was killed by a signal";
+    throw RunError("plotting: gnuplot " + why + " running '" + script_file.string() +
+                   "': " + tail_of_file(log_file, 2000));
   }
 }
 

@@ -11,7 +11,8 @@ namespace terracal {
 JsonObject::JsonObject(const nlohmann::json& j, std::string where, std::string path)
     : j_(j), where_(std::move(where)), path_(std::move(path)) {
   if (!j_.is_object())
-    throw InputError(fmt::format("{}: {} must be a JSON object, got {}", where_, path_.empty() ? "the file" : path_, j_.dump()));
+    throw InputError(
+        fmt::format("{}: {} must be a JSON object, got {}", where_, path_.empty() ? "the file" : path_, j_.dump()));
 }
 
 void JsonObject::fail(const std::string& key, const std::string& what) const {
@@ -33,7 +34,8 @@ double JsonObject::number(const std::string& key, double lo, double hi, bool lo_
   if (!v.is_number()) fail(key, fmt::format("value {} is not a number", v.dump()));
   const double x = v.get<double>();
   const bool ok = std::isfinite(x) && (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi);
-  if (!ok) fail(key, fmt::format("value {} is outside the allowed range {}", v.dump(), range_text(lo, hi, lo_open, hi_open)));
+  if (!ok)
+    fail(key, fmt::format("value {} is outside the allowed range {}", v.dump(), range_text(lo, hi, lo_open, hi_open)));
   return x;
 }
 
@@ -42,11 +44,13 @@ double JsonObject::number(const std::string& key, const Range& r, bool whole) {
   if (!v.is_number()) fail(key, fmt::format("value {} is not a number", v.dump()));
   if (whole && !v.is_number_integer()) fail(key, fmt::format("value {} is not a whole number", v.dump()));
   const double x = v.get<double>();
-  if (!(std::isfinite(x) && r.contains(x))) fail(key, fmt::format("value {} is outside the allowed range {}", v.dump(), r.text()));
+  if (!(std::isfinite(x) && r.contains(x)))
+    fail(key, fmt::format("value {} is outside the allowed range {}", v.dump(), r.text()));
   return x;
 }
 
-double JsonObject::number_or(const std::string& key, double fallback, double lo, double hi, bool lo_open, bool hi_open) {
+double JsonObject::number_or(const std::string& key, double fallback, double lo, double hi, bool lo_open,
+                             bool hi_open) {
   return has(key) ? number(key, lo, hi, lo_open, hi_open) : fallback;
 }
 
@@ -72,7 +76,8 @@ static std::string joined(const std::vector<std::string>& v) {
   return s;
 }
 
-std::string JsonObject::string_or(const std::string& key, const std::string& fallback, const std::vector<std::string>& allowed) {
+std::string JsonObject::string_or(const std::string& key, const std::string& fallback,
+                                  const std::vector<std::string>& allowed) {
   if (!has(key)) return fallback;
   const nlohmann::json& v = raw(key);
   if (!v.is_string()) fail(key, fmt::format("value {} is not a string", v.dump()));

@@ -19,10 +19,13 @@ class JsonObject {
   bool has(const std::string& key) const { return j_.contains(key); }
   // A number within [lo, hi] (open bounds when lo_open/hi_open).
   double number(const std::string& key, double lo, double hi, bool lo_open = false, bool hi_open = false);
-  double number_or(const std::string& key, double fallback, double lo, double hi, bool lo_open = false, bool hi_open = false);
+  double number_or(const std::string& key, double fallback, double lo, double hi, bool lo_open = false,
+                   bool hi_open = false);
   // A number within the range r (a whole number when `whole`).
   double number(const std::string& key, const Range& r, bool whole = false);
-  double number_or(const std::string& key, double fallback, const Range& r) { return has(key) ? number(key, r) : fallback; }
+  double number_or(const std::string& key, double fallback, const Range& r) {
+    return has(key) ? number(key, r) : fallback;
+  }
   long integer_or(const std::string& key, long fallback, long lo, long hi);
   bool boolean_or(const std::string& key, bool fallback);
   std::string string_or(const std::string& key, const std::string& fallback, const std::vector<std::string>& allowed);

@@ -5,9 +5,7 @@
 
 namespace terracal {
 
-bool BodyMotion::moves() const {
-  return any_free() || max_speed(1.0) > 0;
-}
+bool BodyMotion::moves() const { return any_free() || max_speed(1.0) > 0; }
 Vec3<double> BodyMotion::linear_at(double t) const {
   if (schedule.empty()) return linear_velocity;
   double end = 0;
@@ -28,16 +26,20 @@ double BodyMotion::max_speed(double radius) const {
   return v;
 }
 bool BodyMotion::any_free() const {
-  for (bool f : free) if (f) return true;
+  for (bool f : free)
+    if (f) return true;
   return false;
 }
 
 double RigidBody::bounding_radius() const {
   switch (shape.type) {
-    case ShapeType::kBox: return norm(shape.half_extents);
-    case ShapeType::kCylinder: return std::hypot(shape.radius + shape.grouser_height, 0.5 * shape.width);
+    case ShapeType::kBox:
+      return norm(shape.half_extents);
+    case ShapeType::kCylinder:
+      return std::hypot(shape.radius + shape.grouser_height, 0.5 * shape.width);
     case ShapeType::kDisc:
-    case ShapeType::kAnnulus: return std::hypot(shape.radius, 0.5 * shape.width);
+    case ShapeType::kAnnulus:
+      return std::hypot(shape.radius, 0.5 * shape.width);
     case ShapeType::kMesh: {
       double r = 0;
       for (const auto& v : shape.vertices) r = std::max(r, norm(v));

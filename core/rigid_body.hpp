@@ -43,14 +43,14 @@ struct RigidBody {
   Quat orientation{};
   BodyMotion motion;
   double mass = 0;
-  Vec3<double> inertia{};              // principal moments in the body frame
+  Vec3<double> inertia{};                          // principal moments in the body frame
   Vec3<double> applied_force{}, applied_torque{};  // world frame, added to the soil's wrench and gravity
   // [s] The body's weight and applied force grow linearly from zero over this time, as a bevameter's
   // ram puts its load on gradually; 0: all at once. A dead load dropped at once drives a body past
   // its static sinkage and leaves it moving when the test starts (results/plate_bin_check, twelfth study).
   double load_ramp = 0;
   double load_fraction(double t) const { return load_ramp > 0 ? std::min(1.0, std::max(0.0, t) / load_ramp) : 1.0; }
-  double bounding_radius() const;      // of the shape about the body origin
+  double bounding_radius() const;  // of the shape about the body origin
 };
 
 // The state of a body and the wrench of the soil on it.

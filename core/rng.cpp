@@ -62,7 +62,8 @@ void Rng::set_state(const std::string& s) {
     if (c >= 'a' && c <= 'f') return c - 'a' + 10;
     throw std::invalid_argument("Rng::set_state: state string is not hex");
   };
-  for (std::size_t i = 0; i < n; ++i) bytes[i] = static_cast<unsigned char>(nibble(s[2 * i]) << 4 | nibble(s[2 * i + 1]));
+  for (std::size_t i = 0; i < n; ++i)
+    bytes[i] = static_cast<unsigned char>(nibble(s[2 * i]) << 4 | nibble(s[2 * i + 1]));
 }
 
 }  // namespace terracal

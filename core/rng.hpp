@@ -21,9 +21,9 @@ class Rng {
   Rng& operator=(Rng&& other) noexcept;
   ~Rng();
 
-  double uniform();                    // in (0, 1): log(uniform()) is always finite
-  double normal();                     // standard normal
-  double gamma(double shape);          // Gamma(shape, scale 1)
+  double uniform();                      // in (0, 1): log(uniform()) is always finite
+  double normal();                       // standard normal
+  double gamma(double shape);            // Gamma(shape, scale 1)
   std::uint64_t below(std::uint64_t n);  // integer uniform in [0, n)
 
   // Engine state as a hex string, and back; set_state rejects a string of the wrong size.

@@ -21,8 +21,10 @@ struct Setting {
 
   double get(const S& s) const { return real ? s.*real : double(s.*whole); }
   void put(S& s, double v) const {
-    if (real) s.*real = v;
-    else s.*whole = int(v);
+    if (real)
+      s.*real = v;
+    else
+      s.*whole = int(v);
   }
 };
 

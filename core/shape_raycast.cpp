@@ -33,7 +33,8 @@ inline bool clip_slab(double o, double d, double inv, double h, double& lo, doub
 // (per direction); false when the ray never gets inside the circle. A ray parallel to the axis
 // (a zero or subnormal, as for slabs) is inside for all t or none. The roots use the
 // cancellation-free form (q / a, c / q) so that near-tangent and far-away rays keep full precision.
-inline bool circle_roots(double ox, double oy, double dx, double dy, double a, double inv_a, double r, double& t0, double& t1) {
+inline bool circle_roots(double ox, double oy, double dx, double dy, double a, double inv_a, double r, double& t0,
+                         double& t1) {
   const double b = ox * dx + oy * dy, c = ox * ox + oy * oy - r * r;
   if (is_parallel(a)) {
     t0 = -kInf;
@@ -50,7 +51,8 @@ inline bool circle_roots(double ox, double oy, double dx, double dy, double a, d
 }
 
 // Inside the infinite circular cylinder of radius r (x, y: the two coordinates across its axis).
-inline bool clip_circle(double ox, double oy, double dx, double dy, double a, double inv_a, double r, double& lo, double& hi) {
+inline bool clip_circle(double ox, double oy, double dx, double dy, double a, double inv_a, double r, double& lo,
+                        double& hi) {
   double t0, t1;
   if (!circle_roots(ox, oy, dx, dy, a, inv_a, r, t0, t1)) return false;
   lo = std::max(lo, t0);
@@ -95,8 +97,10 @@ ShapeRaycaster::ShapeRaycaster(const BodyShape& s) : type_(s.type) {
           for (double r : {g_mid_ - g_half_radial_, g_mid_ + g_half_radial_})
             for (double t : {-g_half_tangential_, g_half_tangential_}) {
               const double x = gr.c * r - gr.s * t, z = gr.s * r + gr.c * t;
-              lo_.x = std::min(lo_.x, x); hi_.x = std::max(hi_.x, x);
-              lo_.z = std::min(lo_.z, z); hi_.z = std::max(hi_.z, z);
+              lo_.x = std::min(lo_.x, x);
+              hi_.x = std::max(hi_.x, x);
+              lo_.z = std::min(lo_.z, z);
+              hi_.z = std::max(hi_.z, z);
             }
         }
       }
@@ -115,7 +119,10 @@ ShapeRaycaster::ShapeRaycaster(const BodyShape& s) : type_(s.type) {
       if (!s.vertices.empty()) {
         lo_ = hi_ = s.vertices[0];
         for (const auto& v : s.vertices)
-          for (int k = 0; k < 3; ++k) { lo_[k] = std::min(lo_[k], v[k]); hi_[k] = std::max(hi_[k], v[k]); }
+          for (int k = 0; k < 3; ++k) {
+            lo_[k] = std::min(lo_[k], v[k]);
+            hi_[k] = std::max(hi_[k], v[k]);
+          }
       }
       break;
   }
@@ -140,13 +147,16 @@ double ShapeRaycaster::first_hit(const Direction& d, const Vec3<double>& o, doub
   switch (type_) {
     case ShapeType::kBox: {
       double lo = 0, hi = t_max;
-      const bool hit = clip_slab(o.x, d.d.x, d.inv.x, half_.x, lo, hi) && clip_slab(o.y, d.d.y, d.inv.y, half_.y, lo, hi) &&
+      const bool hit = clip_slab(o.x, d.d.x, d.inv.x, half_.x, lo, hi) &&
+                       clip_slab(o.y, d.d.y, d.inv.y, half_.y, lo, hi) &&
                        clip_slab(o.z, d.d.z, d.inv.z, half_.z, lo, hi);
       return hit ? lo : kInf;
     }
-    case ShapeType::kCylinder: return cylinder_hit(o, d, t_max);
+    case ShapeType::kCylinder:
+      return cylinder_hit(o, d, t_max);
     case ShapeType::kDisc:
-    case ShapeType::kAnnulus: return round_plate_hit(o, d, t_max);
+    case ShapeType::kAnnulus:
+      return round_plate_hit(o, d, t_max);
     case ShapeType::kMesh:
       // Inside is not detected for meshes: the first triangle crossed is returned (the exit point
       // for an origin inside). The SCM casts from the terrain below the body, outside it, and an
@@ -156,8 +166,8 @@ double ShapeRaycaster::first_hit(const Direction& d, const Vec3<double>& o, doub
   return kInf;
 }
 
-void ShapeRaycaster::first_hits(const Direction& d, const Vec3<double>& origin, const Vec3<double>& step, int k0, int k1, double t_max,
-                                double* t) const {
+void ShapeRaycaster::first_hits(const Direction& d, const Vec3<double>& origin, const Vec3<double>& step, int k0,
+                                int k1, double t_max, double* t) const {
   auto row = [&](auto hit) {
     for (int k = k0; k < k1; ++k) t[k] = hit(origin + double(k) * step);
   };
@@ -185,7 +195,8 @@ inline double ShapeRaycaster::cylinder_hit(const Vec3<double>& o, const Directio
 
 // The first grouser entry in [lo, hi] if before best, else best. [lo, hi]: where the ray is within
 // the wheel's slab, cut at the rim's entry.
-double ShapeRaycaster::grouser_hit(const Vec3<double>& o, const Direction& dir, double lo, double hi, double best) const {
+double ShapeRaycaster::grouser_hit(const Vec3<double>& o, const Direction& dir, double lo, double hi,
+                                   double best) const {
   const Vec3<double>& d = dir.d;
   double gl = lo, gh = hi;
   if (!clip_circle(o.x, o.z, d.x, d.z, dir.a, dir.inv_a, g_outer_radius_, gl, gh)) return best;
@@ -209,7 +220,8 @@ double ShapeRaycaster::grouser_hit(const Vec3<double>& o, const Direction& dir, 
     const double orad = g.c * o.x + g.s * o.z - g_mid_, drad = g.c * d.x + g.s * d.z;
     const double otan = -g.s * o.x + g.c * o.z, dtan = -g.s * d.x + g.c * d.z;
     double l = gl, h = std::min(gh, best);
-    if (clip_slab(orad, drad, reciprocal(drad), g_half_radial_, l, h) && clip_slab(otan, dtan, reciprocal(dtan), g_half_tangential_, l, h))
+    if (clip_slab(orad, drad, reciprocal(drad), g_half_radial_, l, h) &&
+        clip_slab(otan, dtan, reciprocal(dtan), g_half_tangential_, l, h))
       best = l;
   }
   return best;
@@ -221,7 +233,8 @@ double ShapeRaycaster::grouser_hit(const Vec3<double>& o, const Direction& dir, 
 double ShapeRaycaster::round_plate_hit(const Vec3<double>& o, const Direction& dir, double t_max) const {
   const Vec3<double>& d = dir.d;
   double lo = 0, hi = t_max;
-  if (!clip_slab(o.z, d.z, dir.inv.z, half_width_, lo, hi) || !clip_circle(o.x, o.y, d.x, d.y, dir.a, dir.inv_a, radius_, lo, hi))
+  if (!clip_slab(o.z, d.z, dir.inv.z, half_width_, lo, hi) ||
+      !clip_circle(o.x, o.y, d.x, d.y, dir.a, dir.inv_a, radius_, lo, hi))
     return kInf;
   if (inner_ > 0) {
     double h0, h1;

@@ -27,7 +27,7 @@ class ShapeRaycaster {
   // the reciprocals of its components (slab tests) and the leading coefficient of the round
   // shapes' circle equation with its reciprocal. Belongs to the caster that made it.
   struct Direction {
-    Direction() = default;  // not an aggregate, so that first_hit({x, y, z}, dir, t) stays unambiguous
+    Direction() = default;    // not an aggregate, so that first_hit({x, y, z}, dir, t) stays unambiguous
     Vec3<double> d{}, inv{};  // the direction; 1 / its components (0 where the ray counts as parallel)
     double a = 0, inv_a = 0;  // |d|^2 across the round axis (cylinder: x, z; disc and annulus: x, y); 1 / a
   };
@@ -36,8 +36,8 @@ class ShapeRaycaster {
   double first_hit(const Direction& dir, const Vec3<double>& origin, double t_max) const;
   // A row of parallel rays: t[k] = first_hit(dir, origin + k step, t_max) for k in [k0, k1). The
   // origin of ray k depends on k only, not on [k0, k1), so a ray gives the same answer in any row.
-  void first_hits(const Direction& dir, const Vec3<double>& origin, const Vec3<double>& step, int k0, int k1, double t_max,
-                  double* t) const;
+  void first_hits(const Direction& dir, const Vec3<double>& origin, const Vec3<double>& step, int k0, int k1,
+                  double t_max, double* t) const;
 
   // How far thin features (grousers) reach beyond the smooth body: a coarse ray that hits the rim
   // may miss a grouser this much lower.
@@ -51,11 +51,16 @@ class ShapeRaycaster {
   double dip_over(double span) const { return type_ == ShapeType::kCylinder ? span * span / radius_ : span; }
   double narrowest() const {
     switch (type_) {
-      case ShapeType::kAnnulus: return radius_ - inner_;
-      case ShapeType::kDisc: return 2 * radius_;
-      case ShapeType::kCylinder: return std::min(2 * radius_, 2 * half_width_);
-      case ShapeType::kBox: return 2 * std::min(half_.x, half_.y);
-      default: return 0;
+      case ShapeType::kAnnulus:
+        return radius_ - inner_;
+      case ShapeType::kDisc:
+        return 2 * radius_;
+      case ShapeType::kCylinder:
+        return std::min(2 * radius_, 2 * half_width_);
+      case ShapeType::kBox:
+        return 2 * std::min(half_.x, half_.y);
+      default:
+        return 0;
     }
   }
 
@@ -72,7 +77,7 @@ class ShapeRaycaster {
   double round_plate_hit(const Vec3<double>& o, const Direction& d, double t_max) const;
 
   ShapeType type_;
-  Vec3<double> half_{};          // box half extents
+  Vec3<double> half_{};  // box half extents
   double radius_ = 0, inner_ = 0, half_width_ = 0;
   // Grousers: boxes with centre `mid` along their radial axis and half sizes (gr, half_width_, gt).
   std::vector<Grouser> grousers_;

@@ -18,7 +18,7 @@ class Terrain {
   virtual ~Terrain() = default;
   virtual std::string description() const = 0;
   virtual void step() = 0;
-  virtual double time() const = 0;       // simulated seconds since the bodies entered
+  virtual double time() const = 0;  // simulated seconds since the bodies entered
   virtual double time_step() const = 0;
   virtual const std::vector<BodyState>& bodies() const = 0;
   virtual const std::vector<BodyWrench>& wrenches() const = 0;
@@ -30,9 +30,9 @@ class Terrain {
 class TerrainSite {
  public:
   virtual ~TerrainSite() = default;
-  virtual std::string name() const = 0;            // "crm", "scm": for file names and reports
-  virtual std::string description() const = 0;     // resolution and effects, for reports
-  virtual double surface_height() const = 0;       // z of the undisturbed surface
+  virtual std::string name() const = 0;         // "crm", "scm": for file names and reports
+  virtual std::string description() const = 0;  // resolution and effects, for reports
+  virtual double surface_height() const = 0;    // z of the undisturbed surface
   virtual Vec3<double> gravity() const = 0;
   // The centre of the free surface (x, y) and how far from it a body may reach in x and y before
   // the bin's walls disturb it (infinite for SCM).

@@ -21,9 +21,15 @@ using Box = std::array<Vec3<double>, 2>;
 
 Box empty_box() { return {Vec3<double>{kInf, kInf, kInf}, Vec3<double>{-kInf, -kInf, -kInf}}; }
 void grow(Box& b, const Vec3<double>& p) {
-  for (int k = 0; k < 3; ++k) { b[0][k] = std::min(b[0][k], p[k]); b[1][k] = std::max(b[1][k], p[k]); }
+  for (int k = 0; k < 3; ++k) {
+    b[0][k] = std::min(b[0][k], p[k]);
+    b[1][k] = std::max(b[1][k], p[k]);
+  }
 }
-void grow(Box& b, const Box& o) { grow(b, o[0]); grow(b, o[1]); }
+void grow(Box& b, const Box& o) {
+  grow(b, o[0]);
+  grow(b, o[1]);
+}
 double half_area(const Box& b) {
   const Vec3<double> e = b[1] - b[0];
   return (e.x < 0) ? 0.0 : e.x * e.y + e.y * e.z + e.z * e.x;
@@ -33,8 +39,8 @@ double half_area(const Box& b) {
 // zero components replaced by a huge finite value, so (lo - o) * inv is never 0 * inf = NaN.
 // t_far is widened by a few ulps (as in PBRT) so that rounding never culls a triangle lying on
 // the box boundary (flat leaves of a cube face), which a brute-force test would still hit.
-inline double box_entry(const Vec3<double> (&box)[2], const Vec3<double>& o, const Vec3<double>& inv, const int (&sign)[3],
-                        double t_max) {
+inline double box_entry(const Vec3<double> (&box)[2], const Vec3<double>& o, const Vec3<double>& inv,
+                        const int (&sign)[3], double t_max) {
   double t0 = 0, t1 = t_max;
   for (int k = 0; k < 3; ++k) {
     t0 = std::max(t0, (box[sign[k]][k] - o[k]) * inv[k]);
@@ -129,15 +135,22 @@ int TriangleBvh::build(std::vector<int>& order, std::vector<Vec3<double>>& centr
       c += cnt[b - 1];
       if (c == 0 || right_cnt[b] == 0) continue;
       const double cost = half_area(acc) * c + right_area[b] * right_cnt[b];
-      if (cost < best_cost) { best_cost = cost; best_axis = axis; best_bin = b; }
+      if (cost < best_cost) {
+        best_cost = cost;
+        best_axis = axis;
+        best_bin = b;
+      }
     }
   }
   int mid;
   if (best_axis >= 0) {
     const double lo = cbounds[0][best_axis], scale = kBins / (cbounds[1][best_axis] - lo);
-    mid = int(std::partition(order.begin() + begin, order.begin() + end, [&](int t) {
-                return std::min(kBins - 1, int((centroids[std::size_t(t)][best_axis] - lo) * scale)) < best_bin;
-              }) - order.begin());
+    mid = int(std::partition(order.begin() + begin, order.begin() + end,
+                             [&](int t) {
+                               return std::min(kBins - 1, int((centroids[std::size_t(t)][best_axis] - lo) * scale)) <
+                                      best_bin;
+                             }) -
+              order.begin());
   } else {
     // Too deep, or all centroids coincide: halve by count along the widest centroid axis, which
     // bounds the depth by log2(count) from here on.
@@ -187,7 +200,10 @@ double TriangleBvh::first_hit(const Vec3<double>& o, const Vec3<double>& d, doub
         const double v = dot(d, q) * inv_det;
         if (v < 0 || u + v > 1) continue;
         const double t = dot(tr.e2, q) * inv_det;
-        if (t >= 0 && t <= best) { best = t; found = true; }
+        if (t >= 0 && t <= best) {
+          best = t;
+          found = true;
+        }
       }
     } else {
       const int l = node + 1, r = n.index;
@@ -200,14 +216,23 @@ double TriangleBvh::first_hit(const Vec3<double>& o, const Vec3<double>& d, doub
         stack_t[sp++] = left_first ? tr : tl;
         continue;
       }
-      if (tl != kInf) { node = l; continue; }
-      if (tr != kInf) { node = r; continue; }
+      if (tl != kInf) {
+        node = l;
+        continue;
+      }
+      if (tr != kInf) {
+        node = r;
+        continue;
+      }
     }
     // Pop the next subtree whose box the ray still enters before the best hit so far.
     for (;;) {
       if (sp == 0) return found ? best : kInf;
       --sp;
-      if (stack_t[sp] <= best) { node = stack_node[sp]; break; }
+      if (stack_t[sp] <= best) {
+        node = stack_node[sp];
+        break;
+      }
     }
   }
 }

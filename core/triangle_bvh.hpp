@@ -33,8 +33,8 @@ class TriangleBvh {
   struct Tri {
     Vec3<double> v0, e1, e2;
   };
-  int build(std::vector<int>& order, std::vector<Vec3<double>>& centroids, std::vector<std::array<Vec3<double>, 2>>& boxes,
-            int begin, int end, int depth);
+  int build(std::vector<int>& order, std::vector<Vec3<double>>& centroids,
+            std::vector<std::array<Vec3<double>, 2>>& boxes, int begin, int end, int depth);
 
   std::vector<Node> nodes_;
   std::vector<Tri> tris_;

@@ -39,12 +39,23 @@ std::string xml_escape(const std::string& s) {
   r.reserve(s.size());
   for (const char c : s) {
     switch (c) {
-      case '&': r += "&amp;"; break;
-      case '<': r += "&lt;"; break;
-      case '>': r += "&gt;"; break;
-      case '"': r += "&quot;"; break;
-      case '\'': r += "&apos;"; break;
-      default: r += c;
+      case '&':
+        r += "&amp;";
+        break;
+      case '<':
+        r += "&lt;";
+        break;
+      case '>':
+        r += "&gt;";
+        break;
+      case '"':
+        r += "&quot;";
+        break;
+      case '\'':
+        r += "&apos;";
+        break;
+      default:
+        r += c;
     }
   }
   return r;
@@ -136,8 +147,8 @@ void validate(const fs::path& file, const std::vector<double>& xyz, const std::v
                        " components; expected 1 (scalar), 3 (vector) or 6 (symmetric tensor)");
     if (f.values.size() != n * static_cast<std::uint64_t>(f.components))
       throw InputError(field + " has " + std::to_string(f.values.size()) + " values; expected " + std::to_string(n) +
-                       " points x " + std::to_string(f.components) + " components = " +
-                       std::to_string(n * f.components));
+                       " points x " + std::to_string(f.components) +
+                       " components = " + std::to_string(n * f.components));
     widest = std::max<std::uint64_t>(widest, n * 4 * f.components);
   }
   if (widest > std::numeric_limits<std::uint32_t>::max())
@@ -176,10 +187,14 @@ void write_vtu_points(const fs::path& file, const std::vector<double>& xyz, cons
          "  <UnstructuredGrid>\n"
          "    <FieldData>\n"
          "      <DataArray type=\"Float64\" Name=\"TimeValue\" NumberOfTuples=\"1\" format=\"ascii\">\n"
-         "        " << number_text(time) << "\n"
+         "        "
+      << number_text(time)
+      << "\n"
          "      </DataArray>\n"
          "    </FieldData>\n"
-         "    <Piece NumberOfPoints=\"" << ns << "\" NumberOfCells=\"" << ns << "\">\n"
+         "    <Piece NumberOfPoints=\""
+      << ns << "\" NumberOfCells=\"" << ns
+      << "\">\n"
          "      <PointData>\n";
   for (const auto& f : fields)
     data_array(out, "Float32", f.name, f.components, f.values.size() * sizeof(float),
@@ -190,7 +205,8 @@ void write_vtu_points(const fs::path& file, const std::vector<double>& xyz, cons
     std::array<float, 3 * kChunk> chunk;
     for (std::size_t i = 0; i < xyz.size(); i += chunk.size()) {
       const std::size_t m = std::min(chunk.size(), xyz.size() - i);
-      std::transform(xyz.begin() + i, xyz.begin() + i + m, chunk.begin(), [](double v) { return static_cast<float>(v); });
+      std::transform(xyz.begin() + i, xyz.begin() + i + m, chunk.begin(),
+                     [](double v) { return static_cast<float>(v); });
       b.put(chunk.data(), m * sizeof(float));
     }
   });

@@ -6,7 +6,8 @@
 namespace terracal::lowfi {
 
 namespace {
-double cross(const std::pair<double, double>& o, const std::pair<double, double>& a, const std::pair<double, double>& b) {
+double cross(const std::pair<double, double>& o, const std::pair<double, double>& a,
+             const std::pair<double, double>& b) {
   return (a.first - o.first) * (b.second - o.second) - (a.second - o.second) * (b.first - o.first);
 }
 
@@ -25,7 +26,9 @@ void join(std::vector<int>& parent, int a, int b) {
 // The SCM lists its nodes in row order already (one body's rays, row by row), so the sort is for
 // other callers and several bodies.
 void make_runs(const std::vector<GridIndex>& nodes, ContactPatches::Work& w) {
-  auto before = [&](int a, int b) { return nodes[a].j != nodes[b].j ? nodes[a].j < nodes[b].j : nodes[a].i < nodes[b].i; };
+  auto before = [&](int a, int b) {
+    return nodes[a].j != nodes[b].j ? nodes[a].j < nodes[b].j : nodes[a].i < nodes[b].i;
+  };
   w.order.resize(nodes.size());
   for (std::size_t n = 0; n < nodes.size(); ++n) w.order[n] = int(n);
   if (!std::is_sorted(w.order.begin(), w.order.end(), before)) std::sort(w.order.begin(), w.order.end(), before);

@@ -13,7 +13,7 @@ struct GridIndex {
 };
 
 struct ContactPatches {
-  std::vector<int> patch_of;  // per input node: its patch
+  std::vector<int> patch_of;                                    // per input node: its patch
   std::vector<double> bekker_width, hull_area, hull_perimeter;  // per patch
   std::size_t count() const { return bekker_width.size(); }
 

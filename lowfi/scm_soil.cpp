@@ -39,8 +39,10 @@ ScmSoil parse_scm_soil(const nlohmann::json& s, const std::string& where) {
   soil.elastic_stiffness = read_key(s, where, "Elastic stiffness", 1, 1e13, "in [1, 1e13] Pa/m", &ke);
   soil.damping = read_key(s, where, "Damping", 0, 1e10, "in [0, 1e10] Pa s/m", &damping);
   for (const auto& [key, value] : s.items()) {
-    static const char* known[] = {"Bekker Kphi", "Bekker Kc", "Bekker n exponent", "Mohr cohesive limit",
-                                  "Mohr friction limit", "Janosi shear coefficient", "Elastic stiffness", "Damping"};
+    static const char* known[] = {"Bekker Kphi",         "Bekker Kc",
+                                  "Bekker n exponent",   "Mohr cohesive limit",
+                                  "Mohr friction limit", "Janosi shear coefficient",
+                                  "Elastic stiffness",   "Damping"};
     bool ok = false;
     for (const char* k : known) ok = ok || key == k;
     if (!ok) throw InputError(fmt::format("{}: unknown key 'Soil parameters.{}'", where, key));

@@ -20,7 +20,9 @@ struct ScmSoil {
   // Mohr-Coulomb strength under normal pressure p.
   double shear_strength(double p) const { return cohesion + p * std::tan(friction_deg * M_PI / 180.0); }
   // Janosi-Hanamoto shear stress after shear displacement j under pressure p.
-  double janosi_shear(double p, double j) const { return shear_strength(p) * (1.0 - std::exp(-std::abs(j) / janosi_k)); }
+  double janosi_shear(double p, double j) const {
+    return shear_strength(p) * (1.0 - std::exp(-std::abs(j) / janosi_k));
+  }
 };
 
 // Reads the "Soil parameters" block of a Chrono SCM JSON file (or of terracal's scm_params.json).

@@ -38,12 +38,14 @@ ScmEffectChoice parse_scm_effects(const std::vector<std::string>& names, const s
 
 void validate(const ScmSettings& s, const ScmSoil& soil) {
   auto check = [](const char* key, double v, double lo, double hi, const char* unit) {
-    if (!(v >= lo && v <= hi)) throw InputError(fmt::format("SCM setting '{}' = {}: expected in [{}, {}] {}", key, v, lo, hi, unit));
+    if (!(v >= lo && v <= hi))
+      throw InputError(fmt::format("SCM setting '{}' = {}: expected in [{}, {}] {}", key, v, lo, hi, unit));
   };
   check("grid", s.grid, 1e-4, 1.0, "m");
   check("time_step", s.time_step, 1e-6, 0.1, "s");
   check_effect_settings(s.effects, "SCM settings");
-  if (!(norm(s.gravity) <= 1000)) throw InputError(fmt::format("SCM setting 'gravity': |g| = {} outside [0, 1000] m/s^2", norm(s.gravity)));
+  if (!(norm(s.gravity) <= 1000))
+    throw InputError(fmt::format("SCM setting 'gravity': |g| = {} outside [0, 1000] m/s^2", norm(s.gravity)));
   check("Bekker Kphi", soil.Kphi, 0, 1e12, "Pa/m^n");
   check("Bekker n exponent", soil.n, 0.05, 5, "");
   check("Janosi shear coefficient", soil.janosi_k, 1e-6, 10, "m");
@@ -56,7 +58,8 @@ ScmTerrain::ScmTerrain(const ScmSoil& soil, const ScmSettings& settings, std::ve
   tan_phi_ = std::tan(soil_.friction_deg * M_PI / 180.0);
   for (const auto& b : bodies_) {
     if (b.motion.any_free() && !(b.mass > 0))
-      throw InputError(fmt::format("body '{}': mass = {}: a body with free degrees of freedom needs mass > 0", b.name, b.mass));
+      throw InputError(
+          fmt::format("body '{}': mass = {}: a body with free degrees of freedom needs mass > 0", b.name, b.mass));
     shapes_.emplace_back(b.shape);
     BodyState s;
     s.position = b.position;
@@ -72,7 +75,8 @@ ScmTerrain::ScmTerrain(const ScmSoil& soil, const ScmSettings& settings, std::ve
 std::string ScmTerrain::description() const {
   std::string effects;
   for (const std::string& e : effect_names(settings_.effects.named)) effects += " " + e;
-  return fmt::format("SCM, grid {} m, step {} s, effects:{}", settings_.grid, settings_.time_step, effects.empty() ? " none" : effects);
+  return fmt::format("SCM, grid {} m, step {} s, effects:{}", settings_.grid, settings_.time_step,
+                     effects.empty() ? " none" : effects);
 }
 
 std::string ScmSite::description() const { return ScmTerrain(soil_, settings_, {}).description(); }
@@ -110,7 +114,9 @@ void ScmTerrain::cast_rays(std::vector<Hit>& hits) {
     std::sort(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) {
       return a.i != b.i ? a.i < b.i : a.j != b.j ? a.j < b.j : a.level < b.level;
     });
-    hits.erase(std::unique(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) { return a.i == b.i && a.j == b.j; }), hits.end());
+    hits.erase(
+        std::unique(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) { return a.i == b.i && a.j == b.j; }),
+        hits.end());
   }
 }
 
@@ -150,7 +156,8 @@ void ScmTerrain::select_rays(std::size_t b, const RayGrid& r, double top) {
   const int stride = kCoarseStride, nx = r.nx, ny = r.ny;
   std::vector<char>& wanted = scratch_.wanted;
   wanted.clear();
-  if (!(settings_.coarse_rays && shape.smooth_underside() && nx * ny >= 16 * stride * stride && shape.narrowest() >= 2 * stride * g))
+  if (!(settings_.coarse_rays && shape.smooth_underside() && nx * ny >= 16 * stride * stride &&
+        shape.narrowest() >= 2 * stride * g))
     return;
   const int cx = (nx - 1) / stride + 2, cy = (ny - 1) / stride + 2;  // coarse nodes, the last at or past the edge
   const double margin = shape.dip_over(stride * g) + shape.feature_depth() + 1e-9;
@@ -168,7 +175,8 @@ void ScmTerrain::select_rays(std::size_t b, const RayGrid& r, double top) {
       if (!near[std::size_t(b2) * cx + a2]) continue;
       const int ilo = std::max(0, (a2 - 1) * stride), ihi = std::min(nx - 1, (a2 + 1) * stride);
       const int jlo = std::max(0, (b2 - 1) * stride), jhi = std::min(ny - 1, (b2 + 1) * stride);
-      for (int jj = jlo; jj <= jhi; ++jj) std::fill(wanted.begin() + std::size_t(jj) * nx + ilo, wanted.begin() + std::size_t(jj) * nx + ihi + 1, 1);
+      for (int jj = jlo; jj <= jhi; ++jj)
+        std::fill(wanted.begin() + std::size_t(jj) * nx + ilo, wanted.begin() + std::size_t(jj) * nx + ihi + 1, 1);
     }
 }
 
@@ -198,7 +206,9 @@ void ScmTerrain::add_hits(std::size_t b, const RayGrid& r, double top, std::vect
   const double g = settings_.grid;
   const int nx = r.nx, ny = r.ny;
   const std::vector<double>& level = scratch_.level;
-  auto at = [&](int ii, int jj) { return (ii < 0 || jj < 0 || ii >= nx || jj >= ny) ? kInf : level[std::size_t(jj) * nx + ii]; };
+  auto at = [&](int ii, int jj) {
+    return (ii < 0 || jj < 0 || ii >= nx || jj >= ny) ? kInf : level[std::size_t(jj) * nx + ii];
+  };
   auto slope = [&](double minus, double here, double plus) {
     if (minus < kInf && plus < kInf) return (plus - minus) / (2 * g);
     if (plus < kInf) return (plus - here) / g;
@@ -257,7 +267,8 @@ void ScmTerrain::select_pressed(const std::vector<Hit>& candidates) {
   for (const Hit& c : candidates) {
     const ScmNodeGrid::Key k = ScmNodeGrid::key(c.i, c.j);
     auto it = nodes_.find(k);
-    const double surface = settings_.surface_height + (it == nodes_.end() ? 0.0 : it->second.level_offset - it->second.plastic_sinkage);
+    const double surface =
+        settings_.surface_height + (it == nodes_.end() ? 0.0 : it->second.level_offset - it->second.plastic_sinkage);
     if (c.level >= surface) continue;
     if (it == nodes_.end()) it = nodes_.emplace(k);
     hits.push_back(c);
@@ -274,10 +285,11 @@ void ScmTerrain::check_bekker_strength(const std::vector<Hit>& hits, const Conta
     const double b = patches.bekker_width[p];
     if (soil_.Kc / b + soil_.Kphi > 0) continue;
     const auto h = std::find(patches.patch_of.begin(), patches.patch_of.end(), int(p)) - patches.patch_of.begin();
-    throw NoBekkerStrength(fmt::format("SCM: body '{}' at t = {:.4g} s: contact patch of Bekker width b = {:.3g} m gives Kc/b + Kphi = {:.4g} "
-                               "Pa/m^n <= 0: this set's pressure-sinkage law has no strength for contacts narrower than "
-                               "|Kc|/Kphi = {:.3g} m (calibrate on plates nearer this width, or fix Kc)",
-                               bodies_[hits[h].body].name, time_, b, soil_.Kc / b + soil_.Kphi, std::abs(soil_.Kc) / soil_.Kphi));
+    throw NoBekkerStrength(fmt::format(
+        "SCM: body '{}' at t = {:.4g} s: contact patch of Bekker width b = {:.3g} m gives Kc/b + Kphi = {:.4g} "
+        "Pa/m^n <= 0: this set's pressure-sinkage law has no strength for contacts narrower than "
+        "|Kc|/Kphi = {:.3g} m (calibrate on plates nearer this width, or fix Kc)",
+        bodies_[hits[h].body].name, time_, b, soil_.Kc / b + soil_.Kphi, std::abs(soil_.Kc) / soil_.Kphi));
   }
 }
 
@@ -337,7 +349,7 @@ void ScmTerrain::press(const Hit& hit, ScmNode& n, double b, double& displaced) 
 void ScmTerrain::release_left_nodes() {
   for (ScmNode* node : contact_nodes_) {
     ScmNode& n = *node;
-    if (n.contact_step == steps_) continue;  // still in contact
+    if (n.contact_step == steps_) continue;                    // still in contact
     double rut = std::max(n.plastic_sinkage, n.last_sinkage);  // the effects may keep another (elastic_unloading)
     settings_.effects.named.for_each_named([&](auto tag) {
       using E = typename decltype(tag)::type;
@@ -362,10 +374,11 @@ void ScmTerrain::check_step() const {
     const double k = soil_.elastic_stiffness * stats_.body_contact_area[b];
     const double omega = std::sqrt(k / bodies_[b].mass);
     if (omega * dt >= 2.0)
-      throw RunError(fmt::format("SCM: body '{}' at t = {:.4g} s: time step {} s is unstable for its contact (elastic stiffness {} Pa/m "
-                                 "x contact area {:.4g} m^2 on mass {} kg: omega dt = {:.3g} >= 2); use a step below {:.3g} s",
-                                 bodies_[b].name, time_, dt, soil_.elastic_stiffness, stats_.body_contact_area[b], bodies_[b].mass,
-                                 omega * dt, 2.0 / omega));
+      throw RunError(fmt::format(
+          "SCM: body '{}' at t = {:.4g} s: time step {} s is unstable for its contact (elastic stiffness {} Pa/m "
+          "x contact area {:.4g} m^2 on mass {} kg: omega dt = {:.3g} >= 2); use a step below {:.3g} s",
+          bodies_[b].name, time_, dt, soil_.elastic_stiffness, stats_.body_contact_area[b], bodies_[b].mass, omega * dt,
+          2.0 / omega));
   }
 }
 

@@ -13,9 +13,9 @@
 #include <unordered_map>
 #include <vector>
 
+#include "core/errors.hpp"
 #include "core/rigid_body.hpp"
 #include "core/shape_raycast.hpp"
-#include "core/errors.hpp"
 #include "core/terrain.hpp"
 #include "lowfi/contact_patches.hpp"
 #include "lowfi/effects/scm_effects.hpp"
@@ -35,11 +35,11 @@ struct NoBekkerStrength : RunError {
 ScmEffectChoice parse_scm_effects(const std::vector<std::string>& names, const std::string& key);
 
 struct ScmSettings {
-  double grid = 0.01;          // node spacing [m]
-  double time_step = 1e-3;     // [s]
+  double grid = 0.01;       // node spacing [m]
+  double time_step = 1e-3;  // [s]
   Vec3<double> gravity{0, 0, -9.81};
-  double surface_height = 0;   // the undisturbed surface is the plane z = surface_height
-  bool coarse_rays = true;     // cull rays far above the soil with a coarse pass (same result, fewer rays)
+  double surface_height = 0;  // the undisturbed surface is the plane z = surface_height
+  bool coarse_rays = true;    // cull rays far above the soil with a coarse pass (same result, fewer rays)
   ScmEffectChoice effects;
 };
 // Throws InputError naming the setting, its value and the allowed range.
@@ -89,8 +89,8 @@ class ScmTerrain final : public Terrain {
   // A node under a body whose underside is below the soil's free surface there.
   struct Hit {
     int i, j, body;
-    double level;          // height of the body's underside above the node
-    Vec3<double> normal;   // outward normal of the body's underside (from neighbouring rays)
+    double level;         // height of the body's underside above the node
+    Vec3<double> normal;  // outward normal of the body's underside (from neighbouring rays)
   };
   // The vertical rays under one body, in its frame: its window of grid nodes (i0 + ii, j0 + jj) for
   // ii < nx, jj < ny; each ray starts at height z0 below the body and reaches t_max up to the
@@ -129,10 +129,10 @@ class ScmTerrain final : public Terrain {
   std::vector<ScmNode*> contact_nodes_;
   // Working memory of a step, kept between steps so that a step allocates nothing once warm.
   struct Scratch {
-    std::vector<double> level;  // cast_rays: per node of a body's window, the underside's height (+inf: none)
-    std::vector<char> near, wanted;  // cast_rays: coarse nodes near the soil; the nodes to cast (empty: all)
-    std::vector<Hit> hits;      // cast_rays: the candidates
-    std::vector<Hit> pressed;   // contact: the hits below their node's free surface ...
+    std::vector<double> level;            // cast_rays: per node of a body's window, the underside's height (+inf: none)
+    std::vector<char> near, wanted;       // cast_rays: coarse nodes near the soil; the nodes to cast (empty: all)
+    std::vector<Hit> hits;                // cast_rays: the candidates
+    std::vector<Hit> pressed;             // contact: the hits below their node's free surface ...
     std::vector<ScmNode*> pressed_nodes;  // ... and their nodes
     std::vector<GridIndex> pressed_at;
     ContactPatches patches;
@@ -146,7 +146,9 @@ class ScmTerrain final : public Terrain {
 // An unbounded flat SCM patch: every terrain it makes starts undisturbed.
 class ScmSite final : public TerrainSite {
  public:
-  ScmSite(const ScmSoil& soil, const ScmSettings& settings) : soil_(soil), settings_(settings) { validate(settings_, soil_); }
+  ScmSite(const ScmSoil& soil, const ScmSettings& settings) : soil_(soil), settings_(settings) {
+    validate(settings_, soil_);
+  }
   std::string name() const override { return "scm"; }
   std::string description() const override;
   double surface_height() const override { return settings_.surface_height; }

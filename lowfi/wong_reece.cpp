@@ -85,9 +85,12 @@ double integrand(double theta, void* p) {
   const Contact& c = *in->contact;
   const double s = c.sigma(theta), t = c.tau(theta);
   switch (in->q) {
-    case Quantity::Vertical: return s * std::cos(theta) + t * std::sin(theta);
-    case Quantity::Drawbar: return t * std::cos(theta) - s * std::sin(theta);
-    case Quantity::Torque: return t;
+    case Quantity::Vertical:
+      return s * std::cos(theta) + t * std::sin(theta);
+    case Quantity::Drawbar:
+      return t * std::cos(theta) - s * std::sin(theta);
+    case Quantity::Torque:
+      return t;
   }
   return 0.0;
 }
@@ -114,9 +117,10 @@ double integrate(const Contact& c, Quantity q, double rel_tol, gsl_integration_w
     const int status = gsl_integration_qags(&f, a, b, eps_abs, rel_tol, kWorkspaceIntervals, w, &result, &abserr);
     // A GSL warning with a still-small error estimate (round-off at a very tight rel_tol) is accepted.
     if (status != GSL_SUCCESS && !(abserr <= 1e-6 * std::max(std::abs(result), c.stress_scale() * (b - a))))
-      throw RunError(fmt::format("wong_reece: quadrature over [{}, {}] rad at entry angle {} rad failed: {} "
-                                 "(estimate {}, error {})",
-                                 a, b, c.theta1, gsl_strerror(status), result, abserr));
+      throw RunError(
+          fmt::format("wong_reece: quadrature over [{}, {}] rad at entry angle {} rad failed: {} "
+                      "(estimate {}, error {})",
+                      a, b, c.theta1, gsl_strerror(status), result, abserr));
     total += result;
   }
   return total;
@@ -144,7 +148,8 @@ void validate(const ScmSoil& soil, const WongReeceWheel& wheel, double load, dou
   const double k_sum = soil.Kc / wheel.width + soil.Kphi;
   require(std::isfinite(k_sum) && k_sum > 0, "soil Kc/b + Kphi", k_sum, "> 0 Pa/m^n (b = wheel width)");
   require(std::isfinite(soil.cohesion) && soil.cohesion >= 0, "soil cohesion", soil.cohesion, "a finite value >= 0 Pa");
-  require(soil.friction_deg >= 0 && soil.friction_deg < 90, "soil friction_deg", soil.friction_deg, "in [0, 90) degrees");
+  require(soil.friction_deg >= 0 && soil.friction_deg < 90, "soil friction_deg", soil.friction_deg,
+          "in [0, 90) degrees");
   require(std::isfinite(soil.janosi_k) && soil.janosi_k > 0, "soil janosi_k", soil.janosi_k, "a finite value > 0 m");
   require(std::isfinite(o.c1), "option c1", o.c1, "a finite value");
   require(std::isfinite(o.c2), "option c2", o.c2, "a finite value");
@@ -194,9 +199,10 @@ double solve_entry_angle(Equilibrium& eq, double rel_tol) {
     hi = lo;
     lo *= 0.1;
     if (lo < 1e-9)
-      throw RunError(fmt::format("wong_reece: load {} N is carried already at an entry angle below 1e-9 rad; "
-                                 "too light to resolve",
-                                 eq.load));
+      throw RunError(
+          fmt::format("wong_reece: load {} N is carried already at an entry angle below 1e-9 rad; "
+                      "too light to resolve",
+                      eq.load));
   }
   // A coarse upward scan, so that Brent gets the first sign change rather than any.
   for (int i = 1; i <= kGrid && !bracketed; ++i) {
@@ -210,9 +216,10 @@ double solve_entry_angle(Equilibrium& eq, double rel_tol) {
   }
   if (!bracketed) {
     set_entry_angle(*eq.contact, top, *eq.options);
-    throw RunError(fmt::format("wong_reece: no entry angle in (0, pi/2] carries the load of {} N (at pi/2 the soil "
-                               "carries only {} N): the wheel would sink past its axle",
-                               eq.load, eq.residual(top) + eq.load));
+    throw RunError(
+        fmt::format("wong_reece: no entry angle in (0, pi/2] carries the load of {} N (at pi/2 the soil "
+                    "carries only {} N): the wheel would sink past its axle",
+                    eq.load, eq.residual(top) + eq.load));
   }
 
   std::unique_ptr<gsl_root_fsolver, SolverFree> solver(gsl_root_fsolver_alloc(gsl_root_fsolver_brent));
@@ -238,8 +245,15 @@ WongReeceResult wong_reece(const ScmSoil& soil, const WongReeceWheel& wheel, dou
   Workspace w(gsl_integration_workspace_alloc(kWorkspaceIntervals));
 
   const double r = wheel.radius, b = wheel.width;
-  Contact c{r, b, slip, (soil.Kc / b + soil.Kphi) * std::pow(r, soil.n), soil.n, soil.cohesion,
-            std::tan(soil.friction_deg * M_PI / 180.0), soil.janosi_k, options.shear_displacement};
+  Contact c{r,
+            b,
+            slip,
+            (soil.Kc / b + soil.Kphi) * std::pow(r, soil.n),
+            soil.n,
+            soil.cohesion,
+            std::tan(soil.friction_deg * M_PI / 180.0),
+            soil.janosi_k,
+            options.shear_displacement};
   Equilibrium eq{&c, &options, w.get(), load, nullptr};
   const double theta1 = solve_entry_angle(eq, options.rel_tol);
 

@@ -43,13 +43,13 @@ struct WongReeceOptions {
 };
 
 struct WongReeceResult {
-  double slip = 0, load = 0;     // inputs echoed
-  double entry_angle = 0;        // theta1 [rad]
-  double max_stress_angle = 0;   // theta_m [rad]
-  double sinkage = 0;            // z = r (1 - cos theta1) [m]
-  double dbp = 0;                // drawbar pull [N] = r b ∫ (tau cos θ − sigma sin θ) dθ
-  double torque = 0;             // driving torque [N m] = r^2 b ∫ tau dθ
-  double vertical_force = 0;     // r b ∫ (sigma cos θ + tau sin θ) dθ [N], equals `load` at the solution
+  double slip = 0, load = 0;    // inputs echoed
+  double entry_angle = 0;       // theta1 [rad]
+  double max_stress_angle = 0;  // theta_m [rad]
+  double sinkage = 0;           // z = r (1 - cos theta1) [m]
+  double dbp = 0;               // drawbar pull [N] = r b ∫ (tau cos θ − sigma sin θ) dθ
+  double torque = 0;            // driving torque [N m] = r^2 b ∫ tau dθ
+  double vertical_force = 0;    // r b ∫ (sigma cos θ + tau sin θ) dθ [N], equals `load` at the solution
 };
 
 // Steady state of a rigid wheel carrying `load` [N] at slip s (−1 < s < 1; s = 1 − v/(ω r); s < 0 is

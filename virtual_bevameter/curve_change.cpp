@@ -17,7 +17,8 @@ void check_curve(const Curve& c, const char* which) {
     throw InputError(fmt::format("curve_change: {} curve has {} x and {} y samples", which, c.x.size(), c.y.size()));
   for (std::size_t i = 1; i < c.x.size(); ++i)
     if (!(c.x[i] >= c.x[i - 1]))
-      throw InputError(fmt::format("curve_change: {} curve's x falls at sample {} ({} after {})", which, i, c.x[i], c.x[i - 1]));
+      throw InputError(
+          fmt::format("curve_change: {} curve's x falls at sample {} ({} after {})", which, i, c.x[i], c.x[i - 1]));
 }
 
 // c.y at x, for x within [c.x.front(), c.x.back()].
@@ -82,7 +83,8 @@ Curve mean_curve(const std::vector<Curve>& realisations) {
 double realisation_scatter(const std::vector<Curve>& realisations) {
   double largest = 0;
   for (std::size_t a = 0; a < realisations.size(); ++a)
-    for (std::size_t b = a + 1; b < realisations.size(); ++b) largest = std::max(largest, curve_change(realisations[a], realisations[b]));
+    for (std::size_t b = a + 1; b < realisations.size(); ++b)
+      largest = std::max(largest, curve_change(realisations[a], realisations[b]));
   return largest;
 }
 

@@ -74,7 +74,8 @@ std::vector<PlateRow> run_plate(const TerrainSite& site, const PlateTest& test, 
     const double dz = b.position.z - z_before;
     if (dz > 0) lifted = true;
     const char* phase = dz > 0 ? "unload" : dz < 0 ? (lifted ? "reload" : "load") : last_phase;
-    const PlateRow row{test.radius, site.surface_height() - (b.position.z - 0.5 * test.thickness), terrain->wrenches()[0].force.z, phase};
+    const PlateRow row{test.radius, site.surface_height() - (b.position.z - 0.5 * test.thickness),
+                       terrain->wrenches()[0].force.z, phase};
     if (std::string(phase) != last_phase && !previous_recorded) rows.push_back(previous);
     last_phase = phase;
     previous = row;

@@ -12,13 +12,13 @@
 namespace terracal::rigs {
 
 struct PlateTest {
-  double radius = 0.2;          // [m]; the Bekker width b of a circular plate
-  double max_sinkage = 0.1;     // [m]
-  double speed = 0.05;          // [m/s] down and up
-  double unload_at = 0.6;       // the unload starts at this fraction of max_sinkage (0: no cycle)
-  double unload_depth = 0.1;    // and lifts the plate by this fraction of the sinkage reached
-  double thickness = 0.02;      // plate thickness [m] (for the CRM markers)
-  int samples = 200;            // rows over the whole stroke
+  double radius = 0.2;        // [m]; the Bekker width b of a circular plate
+  double max_sinkage = 0.1;   // [m]
+  double speed = 0.05;        // [m/s] down and up
+  double unload_at = 0.6;     // the unload starts at this fraction of max_sinkage (0: no cycle)
+  double unload_depth = 0.1;  // and lifts the plate by this fraction of the sinkage reached
+  double thickness = 0.02;    // plate thickness [m] (for the CRM markers)
+  int samples = 200;          // rows over the whole stroke
 };
 // Throws InputError naming the field, its value and the allowed range.
 void validate(const PlateTest& test);

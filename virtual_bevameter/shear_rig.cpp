@@ -68,7 +68,8 @@ std::vector<ShearRow> run_shear(const TerrainSite& site, const ShearTest& test, 
 void write_shear_csv(const std::string& path, const std::vector<ShearRow>& rows) {
   std::string s = "inner_radius_m,outer_radius_m,normal_load_N,angle_rad,torque_Nm,sinkage_m\n";
   for (const auto& r : rows)
-    s += fmt::format("{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", r.inner_radius, r.outer_radius, r.normal_load, r.angle, r.torque, r.sinkage);
+    s += fmt::format("{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", r.inner_radius, r.outer_radius, r.normal_load,
+                     r.angle, r.torque, r.sinkage);
   write_text_atomically(path, s);
 }
 

@@ -12,13 +12,13 @@ namespace terracal::rigs {
 
 struct ShearTest {
   double inner_radius = 0.15, outer_radius = 0.20;  // [m]
-  std::vector<double> loads;        // normal loads [N]; each a separate run on a fresh terrain
-  double angular_velocity = 1.0;    // [rad/s]
-  double max_angle = 1.0;           // [rad] turned after settling
-  double settle_time = 1.0;         // [s] under the load before turning (the bounce of the drop must die out)
-  double load_ramp = 0;             // [s] the load grows from zero over this part of the settling; 0: dropped at once
-  double thickness = 0.02;          // [m]
-  int samples = 100;                // rows per load over the turn
+  std::vector<double> loads;                        // normal loads [N]; each a separate run on a fresh terrain
+  double angular_velocity = 1.0;                    // [rad/s]
+  double max_angle = 1.0;                           // [rad] turned after settling
+  double settle_time = 1.0;  // [s] under the load before turning (the bounce of the drop must die out)
+  double load_ramp = 0;      // [s] the load grows from zero over this part of the settling; 0: dropped at once
+  double thickness = 0.02;   // [m]
+  int samples = 100;         // rows per load over the turn
 };
 void validate(const ShearTest& test);
 

@@ -23,8 +23,8 @@ void validate(const WheelSpec& w) {
   check_range("wheel grousers.height", w.grouser_height, 0, 0.5 * w.radius, "m (at most half the radius)");
   check_range("wheel grousers.thickness", w.grouser_thickness, 0, w.radius, "m");
   if (w.grouser_count > 0 && !(w.grouser_height > 0 && w.grouser_thickness > 0))
-    throw InputError(fmt::format("wheel grousers: count = {} needs height > 0 and thickness > 0 (got {}, {})", w.grouser_count,
-                                 w.grouser_height, w.grouser_thickness));
+    throw InputError(fmt::format("wheel grousers: count = {} needs height > 0 and thickness > 0 (got {}, {})",
+                                 w.grouser_count, w.grouser_height, w.grouser_thickness));
 }
 
 WheelSpec parse_wheel(const nlohmann::json& j, const std::string& where) {
@@ -60,7 +60,7 @@ void validate(const WheelRun& r) {
 }
 
 namespace {
-void mean_sd(const std::vector<WheelSample>& s, double WheelSample::* field, double& mean, double& sd) {
+void mean_sd(const std::vector<WheelSample>& s, double WheelSample::*field, double& mean, double& sd) {
   double sum = 0, sum2 = 0;
   for (const auto& x : s) sum += x.*field;
   mean = s.empty() ? 0 : sum / double(s.size());
@@ -69,7 +69,8 @@ void mean_sd(const std::vector<WheelSample>& s, double WheelSample::* field, dou
 }
 }  // namespace
 
-WheelResult run_wheel(const TerrainSite& site, const WheelSpec& wheel, double slip, const WheelRun& run, const RigProgress& progress) {
+WheelResult run_wheel(const TerrainSite& site, const WheelSpec& wheel, double slip, const WheelRun& run,
+                      const RigProgress& progress) {
   validate(wheel);
   validate(run);
   if (!(slip > -1 && slip < 1)) throw InputError(fmt::format("slip = {}: expected in (-1, 1)", slip));
@@ -93,9 +94,11 @@ WheelResult run_wheel(const TerrainSite& site, const WheelSpec& wheel, double sl
   const double iy = 0.5 * wheel.mass * wheel.radius * wheel.radius;
   const double ix = wheel.mass * (3 * wheel.radius * wheel.radius + wheel.width * wheel.width) / 12;
   w.inertia = {ix, iy, ix};
-  w.motion.free = {false, false, true, false, false, false};  // the axle sinks under the load; the carriage holds the rest
+  w.motion.free = {false, false, true,
+                   false, false, false};  // the axle sinks under the load; the carriage holds the rest
   w.motion.linear_velocity = {speed, 0, 0};
-  w.motion.angular_velocity = {0, wheel.angular_velocity, 0};  // about +y: the contact point moves back, the wheel rolls +x
+  w.motion.angular_velocity = {0, wheel.angular_velocity,
+                               0};                   // about +y: the contact point moves back, the wheel rolls +x
   check_fits(site, w, outer, wheel_reach_y(wheel));  // it starts travel/2 before the centre and ends travel/2 past it
 
   const auto start = std::chrono::steady_clock::now();
@@ -124,10 +127,14 @@ WheelResult run_wheel(const TerrainSite& site, const WheelSpec& wheel, double sl
     if (s % every != 0 && s != steps) continue;
     const BodyState& b = terrain->bodies()[0];
     const BodyWrench& f = terrain->wrenches()[0];
-    const WheelSample x{terrain->time(), b.position.x, f.force.x, -f.torque.y, site.surface_height() - (b.position.z - outer), f.force.z};
+    const WheelSample x{
+        terrain->time(), b.position.x, f.force.x, -f.torque.y, site.surface_height() - (b.position.z - outer),
+        f.force.z};
     if (!(std::isfinite(x.dbp) && std::isfinite(x.torque) && std::isfinite(x.sinkage)))
-      throw RunError(fmt::format("{} on {}: non-finite state at t = {:.4g} s (step {} of {} s): the step is too large for this "
-                                 "soil and load", w.name, terrain->description(), x.t, dt, dt));
+      throw RunError(
+          fmt::format("{} on {}: non-finite state at t = {:.4g} s (step {} of {} s): the step is too large for this "
+                      "soil and load",
+                      w.name, terrain->description(), x.t, dt, dt));
     r.series.push_back(x);
     if (x.t >= window_start) steady.push_back(x);
     if (progress) progress(w.name, x.t, run.duration);
@@ -146,9 +153,11 @@ WheelResult run_wheel(const TerrainSite& site, const WheelSpec& wheel, double sl
 
 std::string unsteady_reason(const WheelResult& r) {
   if (r.load <= 0 || (r.airborne_fraction <= 0.01 && r.vertical_sd <= 0.25 * r.load)) return "";
-  return fmt::format("the wheel {} at slip {}: off the ground in {:.1f} % of the averaging window's steps, vertical force scattering by "
-                     "{:.2f} times the load; its means are no steady values",
-                     r.airborne_fraction > 0.01 ? "hops" : "is unsteady", r.slip, 100 * r.airborne_fraction, r.vertical_sd / r.load);
+  return fmt::format(
+      "the wheel {} at slip {}: off the ground in {:.1f} % of the averaging window's steps, vertical force scattering "
+      "by "
+      "{:.2f} times the load; its means are no steady values",
+      r.airborne_fraction > 0.01 ? "hops" : "is unsteady", r.slip, 100 * r.airborne_fraction, r.vertical_sd / r.load);
 }
 
 std::string steadiness_summary(const std::string& model, const std::vector<WheelResult>& results) {
@@ -164,13 +173,16 @@ std::string steadiness_summary(const std::string& model, const std::vector<Wheel
   }
   if (judged == 0) return fmt::format("{}: no time series to judge the steadiness by.", model);
   if (!unsteady.empty()) return fmt::format("**{}: unsteady.** {}.", model, unsteady);
-  return fmt::format("{}: every run steady (off the ground in at most {:.1f} % of the averaging window's steps; vertical force scatter at "
-                     "most {:.1f} % of the load).",
-                     model, 100 * worst_airborne, 100 * worst_sd);
+  return fmt::format(
+      "{}: every run steady (off the ground in at most {:.1f} % of the averaging window's steps; vertical force "
+      "scatter at "
+      "most {:.1f} % of the load).",
+      model, 100 * worst_airborne, 100 * worst_sd);
 }
 
-std::vector<WheelResult> run_slip_sweep(const TerrainSite& site, const WheelSpec& wheel, const std::vector<double>& slips,
-                                        const WheelRun& run, const RigProgress& progress) {
+std::vector<WheelResult> run_slip_sweep(const TerrainSite& site, const WheelSpec& wheel,
+                                        const std::vector<double>& slips, const WheelRun& run,
+                                        const RigProgress& progress) {
   std::vector<WheelResult> out;
   for (double s : slips) out.push_back(run_wheel(site, wheel, s, run, progress));
   return out;
@@ -179,7 +191,8 @@ std::vector<WheelResult> run_slip_sweep(const TerrainSite& site, const WheelSpec
 void write_wheel_csv(const std::string& path, const std::vector<WheelResult>& results) {
   std::string s = "slip,load_N,dbp_N,torque_Nm,sinkage_m,dbp_sd_N,torque_sd_Nm\n";
   for (const auto& r : results)
-    s += fmt::format("{:.6g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", r.slip, r.load, r.dbp, r.torque, r.sinkage, r.dbp_sd, r.torque_sd);
+    s += fmt::format("{:.6g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", r.slip, r.load, r.dbp, r.torque, r.sinkage,
+                     r.dbp_sd, r.torque_sd);
   write_text_atomically(path, s);
 }
 
@@ -187,7 +200,8 @@ void write_wheel_series_csv(const std::string& path, const std::vector<WheelResu
   std::string s = "slip,time_s,x_m,dbp_N,torque_Nm,sinkage_m,vertical_force_N\n";
   for (const auto& r : results)
     for (const auto& x : r.series)
-      s += fmt::format("{:.6g},{:.6g},{:.6g},{:.9g},{:.9g},{:.9g},{:.9g}\n", r.slip, x.t, x.x, x.dbp, x.torque, x.sinkage, x.vertical);
+      s += fmt::format("{:.6g},{:.6g},{:.6g},{:.9g},{:.9g},{:.9g},{:.9g}\n", r.slip, x.t, x.x, x.dbp, x.torque,
+                       x.sinkage, x.vertical);
   write_text_atomically(path, s);
 }
 

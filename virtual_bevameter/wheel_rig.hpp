@@ -28,9 +28,9 @@ void validate(const WheelSpec& w);
 inline double wheel_reach_y(const WheelSpec& w) { return 0.75 * w.width; }
 
 struct WheelRun {
-  double duration = 4.0;        // [s] simulated per slip
-  double average_from = 0.5;    // steady means over t >= average_from * duration
-  int samples = 200;            // rows of the time series
+  double duration = 4.0;      // [s] simulated per slip
+  double average_from = 0.5;  // steady means over t >= average_from * duration
+  int samples = 200;          // rows of the time series
 };
 void validate(const WheelRun& r);
 
@@ -54,8 +54,9 @@ struct WheelResult {
 // sinkage the depth of the wheel's lowest point below the undisturbed surface.
 WheelResult run_wheel(const TerrainSite& site, const WheelSpec& wheel, double slip, const WheelRun& run,
                       const RigProgress& progress = {});
-std::vector<WheelResult> run_slip_sweep(const TerrainSite& site, const WheelSpec& wheel, const std::vector<double>& slips,
-                                        const WheelRun& run, const RigProgress& progress = {});
+std::vector<WheelResult> run_slip_sweep(const TerrainSite& site, const WheelSpec& wheel,
+                                        const std::vector<double>& slips, const WheelRun& run,
+                                        const RigProgress& progress = {});
 
 // Whether the steady means describe a rolling wheel. A wheel off the ground in more than 1 % of the
 // averaging window's steps, or whose vertical force scatters by more than a quarter of the load, has

@@ -19,7 +19,8 @@ double extrusion_sdf(double a, double b) {
   return std::hypot(std::max(a, 0.0), std::max(b, 0.0)) + std::min(std::max(a, b), 0.0);
 }
 
-double point_triangle_distance2(const Vec3<double>& p, const Vec3<double>& a, const Vec3<double>& b, const Vec3<double>& c) {
+double point_triangle_distance2(const Vec3<double>& p, const Vec3<double>& a, const Vec3<double>& b,
+                                const Vec3<double>& c) {
   // Ericson, Real-Time Collision Detection, closest point on a triangle.
   const Vec3<double> ab = b - a, ac = c - a, ap = p - a;
   const double d1 = dot(ab, ap), d2 = dot(ac, ap);
@@ -77,7 +78,8 @@ std::vector<double> centred(double ext, double d0) {
 
 double shape_signed_distance(const BodyShape& s, const Vec3<double>& p) {
   switch (s.type) {
-    case ShapeType::kBox: return box_sdf(p, s.half_extents);
+    case ShapeType::kBox:
+      return box_sdf(p, s.half_extents);
     case ShapeType::kCylinder: {
       double d = extrusion_sdf(std::hypot(p.x, p.z) - s.radius, std::abs(p.y) - 0.5 * s.width);
       for (int g = 0; g < s.grouser_count; ++g) {
@@ -87,16 +89,19 @@ double shape_signed_distance(const BodyShape& s, const Vec3<double>& p) {
         const double radial = ca * p.x + sa * p.z, tangential = -sa * p.x + ca * p.z;
         const double mid = s.radius + 0.5 * s.grouser_height - 0.5 * s.grouser_thickness;
         const Vec3<double> q{radial - mid, p.y, tangential};
-        d = std::min(d, box_sdf(q, {0.5 * (s.grouser_height + s.grouser_thickness), 0.5 * s.width, 0.5 * s.grouser_thickness}));
+        d = std::min(
+            d, box_sdf(q, {0.5 * (s.grouser_height + s.grouser_thickness), 0.5 * s.width, 0.5 * s.grouser_thickness}));
       }
       return d;
     }
-    case ShapeType::kDisc: return extrusion_sdf(std::hypot(p.x, p.y) - s.radius, std::abs(p.z) - 0.5 * s.width);
+    case ShapeType::kDisc:
+      return extrusion_sdf(std::hypot(p.x, p.y) - s.radius, std::abs(p.z) - 0.5 * s.width);
     case ShapeType::kAnnulus: {
       const double r = std::hypot(p.x, p.y);
       return extrusion_sdf(std::max(r - s.radius, s.inner_radius - r), std::abs(p.z) - 0.5 * s.width);
     }
-    case ShapeType::kMesh: return mesh_sdf(s, p);
+    case ShapeType::kMesh:
+      return mesh_sdf(s, p);
   }
   return 1e300;
 }
@@ -117,7 +122,9 @@ std::vector<Vec3<double>> body_marker_positions(const BodyShape& s, double d0, i
       const int nt = std::max(1, int(std::lround(2 * kPi * r / d0)));
       for (int k = 0; k < nt; ++k) {
         const double a = 2 * kPi * (k + 0.5) / nt;
-        for (double h : axial) keep(axis_y ? Vec3<double>{r * std::cos(a), h, r * std::sin(a)} : Vec3<double>{r * std::cos(a), r * std::sin(a), h});
+        for (double h : axial)
+          keep(axis_y ? Vec3<double>{r * std::cos(a), h, r * std::sin(a)}
+                      : Vec3<double>{r * std::cos(a), r * std::sin(a), h});
       }
     }
     if (s.type == ShapeType::kCylinder && s.grouser_count > 0) {
@@ -135,7 +142,10 @@ std::vector<Vec3<double>> body_marker_positions(const BodyShape& s, double d0, i
   if (s.type == ShapeType::kMesh) {
     Vec3<double> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
     for (const auto& v : s.vertices)
-      for (int q = 0; q < 3; ++q) { lo[q] = std::min(lo[q], v[q]); hi[q] = std::max(hi[q], v[q]); }
+      for (int q = 0; q < 3; ++q) {
+        lo[q] = std::min(lo[q], v[q]);
+        hi[q] = std::max(hi[q], v[q]);
+      }
     // Lattice over the mesh bounds, aligned to d0 from the lower corner.
     for (double x = lo.x + 0.5 * d0; x < hi.x; x += d0)
       for (double y = lo.y + 0.5 * d0; y < hi.y; y += d0)

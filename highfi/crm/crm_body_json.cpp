@@ -28,7 +28,8 @@ void read_obj(const std::filesystem::path& file, BodyShape& shape, const std::st
     ls >> tag;
     if (tag == "v") {
       Vec3<double> v;
-      if (!(ls >> v.x >> v.y >> v.z)) throw InputError(fmt::format("{}:{}: bad vertex line '{}'", file.string(), lineno, line));
+      if (!(ls >> v.x >> v.y >> v.z))
+        throw InputError(fmt::format("{}:{}: bad vertex line '{}'", file.string(), lineno, line));
       shape.vertices.push_back(v);
     } else if (tag == "f") {
       std::vector<int> idx;
@@ -44,7 +45,8 @@ void read_obj(const std::filesystem::path& file, BodyShape& shape, const std::st
   for (const auto& t : shape.triangles)
     for (int v : t)
       if (v < 0 || v >= int(shape.vertices.size()))
-        throw InputError(fmt::format("{}: a face refers to vertex {} of {}", file.string(), v + 1, shape.vertices.size()));
+        throw InputError(
+            fmt::format("{}: a face refers to vertex {} of {}", file.string(), v + 1, shape.vertices.size()));
   if (shape.triangles.empty()) throw InputError(fmt::format("{}: mesh file '{}' has no faces", key, file.string()));
 }
 
@@ -55,7 +57,8 @@ BodyShape parse_shape(JsonObject o, const std::filesystem::path& base) {
   if (type == "box") {
     s.type = ShapeType::kBox;
     s.half_extents = 0.5 * o.vec3_or("size", {0, 0, 0});
-    if (!(s.half_extents.x > 0 && s.half_extents.y > 0 && s.half_extents.z > 0)) o.fail("size", "box size needs three positive lengths");
+    if (!(s.half_extents.x > 0 && s.half_extents.y > 0 && s.half_extents.z > 0))
+      o.fail("size", "box size needs three positive lengths");
   } else if (type == "cylinder") {
     s.type = ShapeType::kCylinder;
     s.radius = o.number("radius", 0, 100, true);
@@ -102,7 +105,8 @@ void parse_motion(JsonObject m, BodyMotion& motion) {
     if (m.has("linear_velocity") || m.has("angular_velocity"))
       m.fail("schedule", "give either constant velocities or a schedule, not both");
     const nlohmann::json& segs = m.raw("schedule");
-    if (!segs.is_array() || segs.empty()) m.fail("schedule", "must be a non-empty array of {duration, linear_velocity, angular_velocity}");
+    if (!segs.is_array() || segs.empty())
+      m.fail("schedule", "must be a non-empty array of {duration, linear_velocity, angular_velocity}");
     for (std::size_t k = 0; k < segs.size(); ++k) {
       JsonObject g(segs[k], m.where(), m.key_path(fmt::format("schedule[{}]", k)));
       MotionSegment seg;
@@ -139,7 +143,8 @@ RigidBody parse_body(JsonObject o, const std::filesystem::path& base, int index)
     b.mass = o.number("mass", 0, 1e9, true);
     const Vec3<double> I = o.vec3_or("inertia", {0, 0, 0});
     bool rot_free = b.motion.free[3] || b.motion.free[4] || b.motion.free[5];
-    if (rot_free && !(I.x > 0 && I.y > 0 && I.z > 0)) o.fail("inertia", "a body free to rotate needs three positive principal moments");
+    if (rot_free && !(I.x > 0 && I.y > 0 && I.z > 0))
+      o.fail("inertia", "a body free to rotate needs three positive principal moments");
     b.inertia = I;
   } else {
     b.mass = o.number_or("mass", 0, 0, 1e9);

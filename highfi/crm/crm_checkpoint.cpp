@@ -15,7 +15,9 @@ namespace {
 
 struct H5File {
   hid_t id;
-  ~H5File() { if (id >= 0) H5Fclose(id); }
+  ~H5File() {
+    if (id >= 0) H5Fclose(id);
+  }
 };
 
 void put(hid_t f, const char* name, const std::vector<Vec4<double>>& v, const std::filesystem::path& file) {
@@ -114,14 +116,15 @@ std::string crm_fingerprint(const CrmScene& sc, CrmDevice device, bool include_b
   const CrmSoil& soil = sc.soil;
   const CrmBin& bin = sc.bin;
   const CrmNumerics& n = sc.numerics;
-  std::string d = fmt::format("soil {} {} {} {} {} {} {} {} {} {} {} | bin {} {} {} {} {} {}", soil.density,
-                              soil.young_modulus, soil.poisson_ratio, soil.mu_s, soil.mu_2, soil.I0, soil.grain_diameter,
-                              soil.cohesion, soil.gravity.x, soil.gravity.y, soil.gravity.z, bin.size.x, bin.size.y,
-                              bin.size.z, bin.fill_height, bin.fill_length, bin.boundary_layers);
-  d += fmt::format(" | resolution {} {} {} {} {} {} {} {} | device {} | settle {} {}", n.spacing, n.h_over_d0,
-                   int(n.kernel), n.time_step, n.free_surface_support, int(n.cpu_precision),
-                   marker_velocity_name(n.marker_velocity), n.grid_reach, int(device), sc.settle_time,
-                   sc.settle_jitter);
+  std::string d =
+      fmt::format("soil {} {} {} {} {} {} {} {} {} {} {} | bin {} {} {} {} {} {}", soil.density, soil.young_modulus,
+                  soil.poisson_ratio, soil.mu_s, soil.mu_2, soil.I0, soil.grain_diameter, soil.cohesion, soil.gravity.x,
+                  soil.gravity.y, soil.gravity.z, bin.size.x, bin.size.y, bin.size.z, bin.fill_height, bin.fill_length,
+                  bin.boundary_layers);
+  d +=
+      fmt::format(" | resolution {} {} {} {} {} {} {} {} | device {} | settle {} {}", n.spacing, n.h_over_d0,
+                  int(n.kernel), n.time_step, n.free_surface_support, int(n.cpu_precision),
+                  marker_velocity_name(n.marker_velocity), n.grid_reach, int(device), sc.settle_time, sc.settle_jitter);
   if (sc.settle_jitter > 0) d += fmt::format(" seed {}", sc.settle_seed);
   d += " | effects " + effects_text(sc.effects);
   if (include_bodies)

@@ -6,8 +6,8 @@
 #include <sstream>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
+#include <nlohmann/json.hpp>
 
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
@@ -27,9 +27,10 @@ constexpr double kSettledRmsSpeed = 0.02;
 void check_finite(const CrmSolver& s, const char* phase) {
   const SoilStats st = s.stats();
   if (st.nonfinite > 0)
-    throw RunError(fmt::format("{}: {} particles have a non-finite state at step {} (t = {:.6g} s, dt = {:.4g} s); the "
-                               "scene is unstable at this step size: lower resolution.cfl or resolution.time_step",
-                               phase, st.nonfinite, s.steps(), s.time(), s.time_step()));
+    throw RunError(
+        fmt::format("{}: {} particles have a non-finite state at step {} (t = {:.6g} s, dt = {:.4g} s); the "
+                    "scene is unstable at this step size: lower resolution.cfl or resolution.time_step",
+                    phase, st.nonfinite, s.steps(), s.time(), s.time_step()));
 }
 
 // Progress in the style of a long solver run: simulated time, speed and real-time factor.
@@ -43,10 +44,11 @@ class Progress {
     const long steps = s.steps() - first_step_;
     const double rate = wall > 0 ? double(steps) / wall : 0;
     const SoilStats st = s.stats();
-    spdlog::info("{}: t = {:.4f} / {:.4f} s, step {}, {:.3g} steps/s, {:.3g} particle-steps/s, real-time factor {:.3g}, "
-                 "max speed {:.3g} m/s, lost {}",
-                 phase_, s.time(), total_, s.steps(), rate, rate * double(s.engine().soil_count()),
-                 wall > 0 ? (s.time() - first_time_) / wall : 0.0, st.max_speed, st.lost);
+    spdlog::info(
+        "{}: t = {:.4f} / {:.4f} s, step {}, {:.3g} steps/s, {:.3g} particle-steps/s, real-time factor {:.3g}, "
+        "max speed {:.3g} m/s, lost {}",
+        phase_, s.time(), total_, s.steps(), rate, rate * double(s.engine().soil_count()),
+        wall > 0 ? (s.time() - first_time_) / wall : 0.0, st.max_speed, st.lost);
     last_ = now;
   }
   void start(const CrmSolver& s) {
@@ -102,9 +104,11 @@ HostSoil settled_bed(const CrmScene& scene, CrmDevice device, const fs::path& ca
   const SoilStats st = solver.stats();
   const double rms_speed = st.mass > 0 ? std::sqrt(2 * st.kinetic_energy / st.mass) : 0;
   if (rms_speed > kSettledRmsSpeed)
-    spdlog::warn("settling: the bed is still moving after {:.3g} s (rms particle speed {:.3g} m/s, largest {:.3g} m/s, above {} m/s): "
-                 "a test on it meets that motion; settle longer (--settle-time), see results/crm_settling",
-                 solver.time(), rms_speed, st.max_speed, kSettledRmsSpeed);
+    spdlog::warn(
+        "settling: the bed is still moving after {:.3g} s (rms particle speed {:.3g} m/s, largest {:.3g} m/s, above {} "
+        "m/s): "
+        "a test on it meets that motion; settle longer (--settle-time), see results/crm_settling",
+        solver.time(), rms_speed, st.max_speed, kSettledRmsSpeed);
   HostSoil soil = solver.soil();
   // A settled bed starts at rest.
   for (auto& v : soil.vel) v = {0, 0, 0, v.w == double(kParticleLost) ? v.w : double(kParticleActive)};
@@ -154,11 +158,12 @@ void write_crm_snapshot(const fs::path& file, const CrmSolver& solver) {
 namespace {
 // Restores the solver from the checkpoint of the same scene and device (InputError otherwise) and
 // returns the rows of bodies.csv up to the checkpoint's time.
-std::vector<std::string> resume_run(CrmSolver& solver, const fs::path& ckpt, const std::string& fingerprint, const fs::path& bodies_csv) {
+std::vector<std::string> resume_run(CrmSolver& solver, const fs::path& ckpt, const std::string& fingerprint,
+                                    const fs::path& bodies_csv) {
   CrmCheckpoint c = read_crm_checkpoint(ckpt);
   if (c.fingerprint != fingerprint)
-    throw InputError(fmt::format("--resume: {} belongs to a different scene or device (fingerprint {} != {})", ckpt.string(),
-                                 c.fingerprint, fingerprint));
+    throw InputError(fmt::format("--resume: {} belongs to a different scene or device (fingerprint {} != {})",
+                                 ckpt.string(), c.fingerprint, fingerprint));
   solver.restore(c.soil, c.bodies, c.time, c.steps);
   std::vector<std::string> rows;
   std::ifstream in(bodies_csv);
@@ -177,18 +182,26 @@ void fill_summary(const CrmSolver& solver, long first_step, double wall_seconds,
   sum.time_step = solver.time_step();
   sum.simulated = solver.time();
   sum.wall_seconds = wall_seconds;
-  sum.particle_steps_per_second = sum.wall_seconds > 0 ? double(sum.steps) * double(sum.particles) / sum.wall_seconds : 0;
+  sum.particle_steps_per_second =
+      sum.wall_seconds > 0 ? double(sum.steps) * double(sum.particles) / sum.wall_seconds : 0;
   sum.lost = solver.stats().lost;
   sum.device = solver.engine().description();
   if (sum.lost > 0) spdlog::warn("{} particles left the domain and were removed from the simulation", sum.lost);
 }
 
 void write_summary_json(const fs::path& path, const CrmRunSummary& sum, std::size_t device_bytes) {
-  nlohmann::ordered_json j = {{"particles", sum.particles}, {"markers", sum.markers}, {"steps", sum.steps},
-                              {"time_step_s", sum.time_step}, {"simulated_s", sum.simulated},
-                              {"wall_s", sum.wall_seconds}, {"particle_steps_per_second", sum.particle_steps_per_second},
-                              {"lost_particles", sum.lost}, {"bed_from_cache", sum.bed_from_cache}, {"device", sum.device},
-                              {"device_bytes_per_particle", double(device_bytes) / double(std::max<std::size_t>(1, sum.particles))}};
+  nlohmann::ordered_json j = {
+      {"particles", sum.particles},
+      {"markers", sum.markers},
+      {"steps", sum.steps},
+      {"time_step_s", sum.time_step},
+      {"simulated_s", sum.simulated},
+      {"wall_s", sum.wall_seconds},
+      {"particle_steps_per_second", sum.particle_steps_per_second},
+      {"lost_particles", sum.lost},
+      {"bed_from_cache", sum.bed_from_cache},
+      {"device", sum.device},
+      {"device_bytes_per_particle", double(device_bytes) / double(std::max<std::size_t>(1, sum.particles))}};
   write_text_atomically(path.string(), j.dump(2) + "\n");
 }
 }  // namespace
@@ -213,9 +226,10 @@ CrmRunSummary run_crm_scene(const CrmScene& scene, const CrmRunOptions& o) {
     for (std::size_t b = 0; b < solver.bodies().size(); ++b) {
       const BodyWrench& w = solver.wrenches()[b];
       const BodyState& s = solver.bodies()[b];
-      rows.push_back(fmt::format("{:.9g},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}",
-                                 solver.time(), scene.bodies[b].name, w.force.x, w.force.y, w.force.z, w.torque.x, w.torque.y,
-                                 w.torque.z, s.position.x, s.position.y, s.position.z, s.velocity.x, s.velocity.y, s.velocity.z));
+      rows.push_back(
+          fmt::format("{:.9g},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}",
+                      solver.time(), scene.bodies[b].name, w.force.x, w.force.y, w.force.z, w.torque.x, w.torque.y,
+                      w.torque.z, s.position.x, s.position.y, s.position.z, s.velocity.x, s.velocity.y, s.velocity.z));
     }
   };
   auto checkpoint = [&] {

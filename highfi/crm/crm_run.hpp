@@ -10,11 +10,11 @@
 namespace terracal {
 
 struct CrmRunOptions {
-  std::filesystem::path out;                     // bodies.csv, summary.json, checkpoint.h5, soil.pvd + vtu/
+  std::filesystem::path out;  // bodies.csv, summary.json, checkpoint.h5, soil.pvd + vtu/
   CrmDevice device = CrmDevice::kCpu;
-  std::filesystem::path cache_dir;               // settled beds; empty = no cache
-  bool resume = false;                           // continue from out/checkpoint.h5
-  long record_every = 10;                        // steps between rows of bodies.csv
+  std::filesystem::path cache_dir;  // settled beds; empty = no cache
+  bool resume = false;              // continue from out/checkpoint.h5
+  long record_every = 10;           // steps between rows of bodies.csv
 };
 
 struct CrmRunSummary {
@@ -28,7 +28,8 @@ struct CrmRunSummary {
 
 // The bed of a scene after settle_time seconds without bodies; cached per (soil, bin, spacing,
 // numerics, device) under cache_dir when that is not empty.
-HostSoil settled_bed(const CrmScene& scene, CrmDevice device, const std::filesystem::path& cache_dir, bool* from_cache = nullptr);
+HostSoil settled_bed(const CrmScene& scene, CrmDevice device, const std::filesystem::path& cache_dir,
+                     bool* from_cache = nullptr);
 
 // Runs the scene for scene.duration; throws RunError naming the step when the state turns non-finite.
 CrmRunSummary run_crm_scene(const CrmScene& scene, const CrmRunOptions& options);

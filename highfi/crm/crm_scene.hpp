@@ -58,7 +58,7 @@ struct CrmRanges {
   static constexpr Range kHOverD0{1.0, 1.6};
   static constexpr Range kTimeStep{0, 1, true, false, "s"};
   static constexpr Range kSettleTime{0, 1e4, false, false, "s"};
-  static constexpr Range kSettleJitter{0, 0.3};  // a fraction of the spacing
+  static constexpr Range kSettleJitter{0, 0.3};     // a fraction of the spacing
   static constexpr long kMaxSettleSeed = 1L << 62;  // seeds are whole numbers in [0, 2^62]
 };
 

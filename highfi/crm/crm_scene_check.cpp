@@ -145,13 +145,13 @@ void resolve_time_step(CrmScene& sc, double speed, const SceneFail& fail) {
   n.expected_speed = speed;
   const double limit = n.cfl_limit(sc.soil, speed);
   if (n.time_step < 0)
-    fail("resolution.time_step", fmt::format("value {} s is negative; expected > 0, or 0 for the CFL step", n.time_step));
+    fail("resolution.time_step",
+         fmt::format("value {} s is negative; expected > 0, or 0 for the CFL step", n.time_step));
   if (n.time_step > 0) {
     if (n.time_step > limit * (1 + 1e-12))
-      fail("resolution.time_step",
-           fmt::format("value {} s is above the CFL limit 0.3 h / (c_s + v_max) = {:.4g} s "
-                       "(h = {} m, c_s = {:.4g} m/s, v_max = {:.3g} m/s)",
-                       n.time_step, limit, n.smoothing_length(), sc.soil.sound_speed(), speed));
+      fail("resolution.time_step", fmt::format("value {} s is above the CFL limit 0.3 h / (c_s + v_max) = {:.4g} s "
+                                               "(h = {} m, c_s = {:.4g} m/s, v_max = {:.3g} m/s)",
+                                               n.time_step, limit, n.smoothing_length(), sc.soil.sound_speed(), speed));
   } else {
     n.time_step = n.cfl / 0.3 * limit;
   }

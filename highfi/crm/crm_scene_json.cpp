@@ -21,9 +21,9 @@ CrmSoil parse_crm_soil(const nlohmann::json& j, const std::string& where) {
   s.poisson_ratio = o.number("poisson_ratio", 0, 0.5, false, true);
   s.mu_s = o.number("mu_s", 0, 10);
   s.mu_2 = o.number_or("mu_2", s.mu_s, s.mu_s, 10);
-  s.I0 = o.number_or("I0", 0.03, 0, 10, true);
-  s.grain_diameter = o.number_or("grain_diameter", 0.005, 0, 1, true);
-  s.cohesion = o.number_or("cohesion", 0, 0, 1e9);
+  s.I0 = o.number_or("I0", s.I0, 0, 10, true);
+  s.grain_diameter = o.number_or("grain_diameter", s.grain_diameter, 0, 1, true);
+  s.cohesion = o.number_or("cohesion", s.cohesion, 0, 1e9);
   s.gravity = o.vec3_or("gravity", s.gravity);
   if (norm(s.gravity) > 1000) o.fail("gravity", fmt::format("|g| = {} m/s^2 is outside [0, 1000]", norm(s.gravity)));
   o.finish();
@@ -63,10 +63,10 @@ CrmNumerics read_resolution(JsonObject r) {
   n.cfl = r.number_or("cfl", n.cfl, 0, 0.3, true);
   n.time_step = r.number_or("time_step", 0, CrmRanges::kTimeStep);
   n.cpu_precision = r.string_or("cpu_precision", "double", {"double", "float"}) == "float" ? CrmPrecision::kFloat
-                                                                                          : CrmPrecision::kDouble;
+                                                                                           : CrmPrecision::kDouble;
   n.free_surface_support = r.number_or("free_surface_support", n.free_surface_support, 0, 1);
-  n.marker_velocity = marker_velocity_from_name(r.string_or(
-      "marker_velocity", "mirror", {std::begin(kMarkerVelocityNames), std::end(kMarkerVelocityNames)}));
+  n.marker_velocity = marker_velocity_from_name(
+      r.string_or("marker_velocity", "mirror", {std::begin(kMarkerVelocityNames), std::end(kMarkerVelocityNames)}));
   n.grid_reach = int(r.integer_or("grid_reach", n.grid_reach, 1, 2));
   r.finish();
   return n;
@@ -82,7 +82,7 @@ CrmOutputSettings read_output(JsonObject out) {
   CrmOutputSettings s;
   s.vtu_every = out.integer_or("vtu_every", 0, 0, 1L << 40);
   s.checkpoint_every = out.integer_or("checkpoint_every", 0, 0, 1L << 40);
-  s.progress_seconds = out.number_or("progress_seconds", 5, 0, 1e6, true);
+  s.progress_seconds = out.number_or("progress_seconds", s.progress_seconds, 0, 1e6, true);
   out.finish();
   return s;
 }
@@ -117,10 +117,14 @@ MarkerVelocity marker_velocity_from_name(const std::string& name) {
 
 const char* marker_velocity_name(MarkerVelocity v) {
   switch (v) {
-    case MarkerVelocity::kMirrorImage: return "mirror_image";
-    case MarkerVelocity::kMirrorContact: return "mirror_contact";
-    case MarkerVelocity::kWall: return "wall";
-    case MarkerVelocity::kMirror: break;
+    case MarkerVelocity::kMirrorImage:
+      return "mirror_image";
+    case MarkerVelocity::kMirrorContact:
+      return "mirror_contact";
+    case MarkerVelocity::kWall:
+      return "wall";
+    case MarkerVelocity::kMirror:
+      break;
   }
   return "mirror";
 }

@@ -52,7 +52,8 @@ GridGeometry<double> crm_grid(const CrmScene& sc) {
   g.nx = int(std::ceil((sc.bin.size.x + 2 * pad) / cell));
   g.ny = int(std::ceil((sc.bin.size.y + 2 * pad) / cell));
   g.nz = int(std::ceil((top + pad) / cell));
-  if (double(g.nx) * g.ny * g.nz > 2e9) throw InputError("the neighbour grid would exceed 2e9 cells: the bin is too large for this spacing");
+  if (double(g.nx) * g.ny * g.nz > 2e9)
+    throw InputError("the neighbour grid would exceed 2e9 cells: the bin is too large for this spacing");
   return g;
 }
 
@@ -65,7 +66,11 @@ HostSoil initial_bed(const CrmScene& sc) {
   const double k0 = sc.soil.poisson_ratio / (1 - sc.soil.poisson_ratio);
   HostSoil s;
   const std::size_t n = std::size_t(nx) * ny * nz;
-  s.pos.reserve(n); s.vel.reserve(n); s.s0.reserve(n); s.s1.reserve(n); s.ids.reserve(n);
+  s.pos.reserve(n);
+  s.vel.reserve(n);
+  s.s0.reserve(n);
+  s.s1.reserve(n);
+  s.ids.reserve(n);
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) {
@@ -135,7 +140,8 @@ CrmSolver::CrmSolver(const CrmScene& scene, CrmDevice device, const HostSoil* be
     }
   }
   wrenches_.assign(scene_.bodies.size(), {});
-  engine_ = device == CrmDevice::kCuda ? make_cuda_engine(setup) : make_cpu_engine(setup, scene_.numerics.cpu_precision);
+  engine_ =
+      device == CrmDevice::kCuda ? make_cuda_engine(setup) : make_cpu_engine(setup, scene_.numerics.cpu_precision);
   engine_->set_poses(poses(bodies_));
   engine_->set_active({});  // every particle, until an effect focuses the step (active_domain)
 }
@@ -188,7 +194,9 @@ void CrmSolver::step() {
   engine_->set_poses(poses(bodies_));
   const std::vector<double> w0 = engine_->stage(0, dt);
   std::vector<BodyState> half(nb);
-  for (std::size_t b = 0; b < nb; ++b) half[b] = advance_body(scene_.bodies[b], bodies_[b], bodies_[b], unpack(w0, b + 1), scene_.soil.gravity, 0.5 * dt, time_ + 0.5 * dt);
+  for (std::size_t b = 0; b < nb; ++b)
+    half[b] = advance_body(scene_.bodies[b], bodies_[b], bodies_[b], unpack(w0, b + 1), scene_.soil.gravity, 0.5 * dt,
+                           time_ + 0.5 * dt);
   engine_->set_poses(poses(half));
   const std::vector<double> w1 = engine_->stage(1, dt);
   for (std::size_t b = 0; b < nb; ++b) {

@@ -42,15 +42,17 @@ void CrmTerrain::step() {
   const CrmScene& sc = solver_.scene();
   for (std::size_t b = 0; b < sc.bodies.size(); ++b)
     if (solver_.bodies()[b].position.z < 0.5 * sc.numerics.spacing)
-      throw RunError(fmt::format("CRM: body '{}' reached the bin floor at t = {:.4g} s: the soil did not carry it (spacing {} m too "
-                                 "coarse for the body, or its load above the bearing capacity)",
-                                 sc.bodies[b].name, solver_.time(), sc.numerics.spacing));
+      throw RunError(fmt::format(
+          "CRM: body '{}' reached the bin floor at t = {:.4g} s: the soil did not carry it (spacing {} m too "
+          "coarse for the body, or its load above the bearing capacity)",
+          sc.bodies[b].name, solver_.time(), sc.numerics.spacing));
   if (!finite)
-    throw RunError(fmt::format("CRM: the state turned non-finite at step {} (t = {:.4g} s, step {:.3g} s)", solver_.steps(), solver_.time(),
-                               solver_.time_step()));
+    throw RunError(fmt::format("CRM: the state turned non-finite at step {} (t = {:.4g} s, step {:.3g} s)",
+                               solver_.steps(), solver_.time(), solver_.time_step()));
 }
 
-CrmSite::CrmSite(const CrmScene& base, CrmDevice device, const std::filesystem::path& cache_dir) : base_(base), device_(device) {
+CrmSite::CrmSite(const CrmScene& base, CrmDevice device, const std::filesystem::path& cache_dir)
+    : base_(base), device_(device) {
   requested_step_ = base_.numerics.time_step;
   base_.bodies.clear();
   validate_crm_scene(base_);
@@ -59,8 +61,9 @@ CrmSite::CrmSite(const CrmScene& base, CrmDevice device, const std::filesystem::
 }
 
 std::string CrmSite::description() const {
-  return fmt::format("CRM, spacing {} m, {} particles, bin {} x {} x {} m filled to {} m, surface at {:.4g} m", base_.numerics.spacing,
-                     bed_.size(), base_.bin.size.x, base_.bin.size.y, base_.bin.size.z, base_.bin.fill_height, surface_);
+  return fmt::format("CRM, spacing {} m, {} particles, bin {} x {} x {} m filled to {} m, surface at {:.4g} m",
+                     base_.numerics.spacing, bed_.size(), base_.bin.size.x, base_.bin.size.y, base_.bin.size.z,
+                     base_.bin.fill_height, surface_);
 }
 
 Vec3<double> CrmSite::centre() const {
@@ -68,7 +71,9 @@ Vec3<double> CrmSite::centre() const {
   return {0.5 * length, 0.5 * base_.bin.size.y, surface_};
 }
 
-double CrmSite::half_length() const { return 0.5 * (base_.bin.fill_length > 0 ? base_.bin.fill_length : base_.bin.size.x); }
+double CrmSite::half_length() const {
+  return 0.5 * (base_.bin.fill_length > 0 ? base_.bin.fill_length : base_.bin.size.x);
+}
 
 std::unique_ptr<Terrain> CrmSite::make(std::vector<RigidBody> bodies, double duration) const {
   CrmScene scene = base_;

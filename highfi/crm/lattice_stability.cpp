@@ -10,9 +10,9 @@ namespace terracal {
 
 namespace {
 struct LatticeTerm {
-  Eigen::Vector3d l;      // lattice vector in units of d0
-  Eigen::Matrix3d hess;   // V Hess W(l), units of d0 (V = d0^3, W ~ 1/d0^3, two derivatives)
-  Eigen::Vector3d grad;   // V grad W(l)
+  Eigen::Vector3d l;     // lattice vector in units of d0
+  Eigen::Matrix3d hess;  // V Hess W(l), units of d0 (V = d0^3, W ~ 1/d0^3, two derivatives)
+  Eigen::Vector3d grad;  // V grad W(l)
 };
 
 // Hess W = F I + r F'(r) n n^T with F = W'/r the kernel's gradient factor; F' by central differences
@@ -40,8 +40,9 @@ std::vector<LatticeTerm> lattice_terms(KernelType kernel, double h_over_d0) {
   return terms;
 }
 // rho omega^2 d0^2 for wave vector k (units 1/d0) and the geometric stiffness D(k).
-Eigen::Matrix3d dynamic_matrix(const std::vector<LatticeTerm>& terms, const Eigen::Vector3d& k, const Eigen::Matrix3d& sigma,
-                               double lambda, double mu, Eigen::Matrix3d* geometric = nullptr) {
+Eigen::Matrix3d dynamic_matrix(const std::vector<LatticeTerm>& terms, const Eigen::Vector3d& k,
+                               const Eigen::Matrix3d& sigma, double lambda, double mu,
+                               Eigen::Matrix3d* geometric = nullptr) {
   Eigen::Matrix3d D = Eigen::Matrix3d::Zero();
   Eigen::Vector3d G = Eigen::Vector3d::Zero();
   for (const LatticeTerm& t : terms) {
@@ -56,12 +57,13 @@ Eigen::Matrix3d dynamic_matrix(const std::vector<LatticeTerm>& terms, const Eige
 constexpr double kPi = 3.14159265358979323846;
 }  // namespace
 
-std::array<std::array<double, 3>, 3> lattice_mode_omega2(KernelType kernel, double h_over_d0, double d0, double rho, double lambda,
-                                                         double mu, const std::array<double, 3>& stress,
+std::array<std::array<double, 3>, 3> lattice_mode_omega2(KernelType kernel, double h_over_d0, double d0, double rho,
+                                                         double lambda, double mu, const std::array<double, 3>& stress,
                                                          const std::array<double, 3>& k_over_pi) {
   const Eigen::Matrix3d sigma = Eigen::Vector3d(stress[0], stress[1], stress[2]).asDiagonal();
-  const Eigen::Matrix3d M = dynamic_matrix(lattice_terms(kernel, h_over_d0),
-                                           kPi * Eigen::Vector3d(k_over_pi[0], k_over_pi[1], k_over_pi[2]), sigma, lambda, mu);
+  const Eigen::Matrix3d M =
+      dynamic_matrix(lattice_terms(kernel, h_over_d0), kPi * Eigen::Vector3d(k_over_pi[0], k_over_pi[1], k_over_pi[2]),
+                     sigma, lambda, mu);
   std::array<std::array<double, 3>, 3> out{};
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < 3; ++b) out[a][b] = M(a, b) / (rho * d0 * d0);
@@ -81,7 +83,8 @@ LatticeStability lattice_stability(KernelType kernel, double h_over_d0, double d
         const Eigen::Vector3d k = (kPi / samples) * Eigen::Vector3d(a, b, c);
         Eigen::Matrix3d D;
         const Eigen::Matrix3d M = dynamic_matrix(terms, k, sigma, lambda, mu, &D);
-        out.min_geometric = std::min(out.min_geometric, Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(D).eigenvalues()(0));
+        out.min_geometric =
+            std::min(out.min_geometric, Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(D).eigenvalues()(0));
         const Eigen::Vector3cd ev = Eigen::EigenSolver<Eigen::Matrix3d>(M, false).eigenvalues();
         for (int q = 0; q < 3; ++q)
           if (ev(q).real() < worst) {

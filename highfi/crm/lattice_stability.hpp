@@ -18,9 +18,9 @@
 namespace terracal {
 
 struct LatticeStability {
-  double growth_rate = 0;            // fastest exponential growth [1/s]; 0 when every mode is stable
-  std::array<double, 3> wave{};      // its wave vector k d0 / pi (0..1 per axis)
-  double min_geometric = 0;          // smallest eigenvalue of d0^2 V D(k) over the zone, or 0 if none is negative
+  double growth_rate = 0;        // fastest exponential growth [1/s]; 0 when every mode is stable
+  std::array<double, 3> wave{};  // its wave vector k d0 / pi (0..1 per axis)
+  double min_geometric = 0;      // smallest eigenvalue of d0^2 V D(k) over the zone, or 0 if none is negative
 };
 
 // The fastest-growing perturbation of a cubic lattice of spacing d0 carrying the principal stresses
@@ -31,8 +31,8 @@ LatticeStability lattice_stability(KernelType kernel, double h_over_d0, double d
 
 // omega^2 [1/s^2] as the 3 x 3 matrix of the mode with wave vector
 // k = pi k_over_pi / d0: u'' = -omega2 u (a negative eigenvalue is the square of a growth rate).
-std::array<std::array<double, 3>, 3> lattice_mode_omega2(KernelType kernel, double h_over_d0, double d0, double rho, double lambda,
-                                                         double mu, const std::array<double, 3>& stress,
+std::array<std::array<double, 3>, 3> lattice_mode_omega2(KernelType kernel, double h_over_d0, double d0, double rho,
+                                                         double lambda, double mu, const std::array<double, 3>& stress,
                                                          const std::array<double, 3>& k_over_pi);
 
 }  // namespace terracal

@@ -175,7 +175,8 @@ struct MarkerStage {
   // space around it (a rim, a corner, an image past the free surface), or the fit is ill-conditioned,
   // the result blends into Adami's average `adami` between supports of 0.3 and 0.7, so that nothing
   // jumps as a body moves.
-  TERRACAL_HD Vec3<T> mirror_image_velocity(long m, const Vec3<T>& xm, const Vec3<T>& v_wall, const Vec3<T>& adami) const {
+  TERRACAL_HD Vec3<T> mirror_image_velocity(long m, const Vec3<T>& xm, const Vec3<T>& v_wall,
+                                            const Vec3<T>& adami) const {
     const Vec4<T> nw = world_normal(m);
     if (!(nw.w > T(0)) || !(dot(nw.xyz(), nw.xyz()) > T(0.5))) return adami;  // no normal: no image
     const BodyPose<T>& b = poses[int(mk.local[m].w)];

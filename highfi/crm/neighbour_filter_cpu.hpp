@@ -1,8 +1,8 @@
 #pragma once
-// The CPU's neighbour filter and staging (see stage_neighbours below). The filter appends to `list` the indices j in [first, last) of one row of
-// cells, j != self, whose particle lies within the support of x. With AVX2 it tests 8 candidates
-// at a time and compacts the hits with a lookup table, so that a row costs a few instructions
-// per candidate and no branch per candidate. Not used on the GPU, where a thread walks its rows.
+// The CPU's neighbour filter and staging (see stage_neighbours below). The filter appends to `list` the indices j in
+// [first, last) of one row of cells, j != self, whose particle lies within the support of x. With AVX2 it tests 8
+// candidates at a time and compacts the hits with a lookup table, so that a row costs a few instructions per candidate
+// and no branch per candidate. Not used on the GPU, where a thread walks its rows.
 //
 // Contract: `list` has room for n + (last - first) + 8 entries (the vector path stores 8 at a
 // time), and `pos` may be read up to 7 records past `last` (the CPU backend pads its arrays).
@@ -66,7 +66,8 @@ inline int filter_row(const Vec4<float>* pos, int first, int last, long self, co
     const __m256i valid = _mm256_andnot_si256(_mm256_cmpeq_epi32(idx, vself), _mm256_cmpgt_epi32(vlast, idx));
     const __m256 hit = _mm256_and_ps(_mm256_cmp_ps(r2, s2, _CMP_LT_OQ), _mm256_castsi256_ps(valid));
     const int mask = _mm256_movemask_ps(hit);
-    const __m256i perm = _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<long long>(detail::kCompactTable.entry[mask])));
+    const __m256i perm =
+        _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<long long>(detail::kCompactTable.entry[mask])));
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(list + n), _mm256_permutevar8x32_epi32(idx, perm));
     n += __builtin_popcount(unsigned(mask));
   }
@@ -115,15 +116,22 @@ inline void stage_neighbours(const Vec4<float>* pos, const Vec4<float>* vel, con
   for (int q = 0; q < n; q += 8) {
     __m256 x, y, z, w;
     detail::transpose8(pos, list + q, x, y, z, w);
-    _mm256_storeu_ps(out[0] + q, x); _mm256_storeu_ps(out[1] + q, y);
-    _mm256_storeu_ps(out[2] + q, z); _mm256_storeu_ps(out[3] + q, w);
+    _mm256_storeu_ps(out[0] + q, x);
+    _mm256_storeu_ps(out[1] + q, y);
+    _mm256_storeu_ps(out[2] + q, z);
+    _mm256_storeu_ps(out[3] + q, w);
     detail::transpose8(vel, list + q, x, y, z, w);
-    _mm256_storeu_ps(out[4] + q, x); _mm256_storeu_ps(out[5] + q, y); _mm256_storeu_ps(out[6] + q, z);
+    _mm256_storeu_ps(out[4] + q, x);
+    _mm256_storeu_ps(out[5] + q, y);
+    _mm256_storeu_ps(out[6] + q, z);
     detail::transpose8(s0, list + q, x, y, z, w);
-    _mm256_storeu_ps(out[7] + q, x); _mm256_storeu_ps(out[8] + q, y);
-    _mm256_storeu_ps(out[9] + q, z); _mm256_storeu_ps(out[10] + q, w);
+    _mm256_storeu_ps(out[7] + q, x);
+    _mm256_storeu_ps(out[8] + q, y);
+    _mm256_storeu_ps(out[9] + q, z);
+    _mm256_storeu_ps(out[10] + q, w);
     detail::transpose8(s1, list + q, x, y, z, w);
-    _mm256_storeu_ps(out[11] + q, x); _mm256_storeu_ps(out[12] + q, y);
+    _mm256_storeu_ps(out[11] + q, x);
+    _mm256_storeu_ps(out[12] + q, y);
   }
 }
 #endif
@@ -135,7 +143,8 @@ inline void stage_neighbours(const Vec4<T>* pos, const Vec4<T>* vel, const Vec4<
 }
 
 template <typename T>
-inline int filter_row(const Vec4<T>* pos, int first, int last, long self, const Vec3<T>& x, T support2, int* list, int n) {
+inline int filter_row(const Vec4<T>* pos, int first, int last, long self, const Vec3<T>& x, T support2, int* list,
+                      int n) {
   return filter_row_scalar(pos, first, last, self, x, support2, list, n);
 }
 

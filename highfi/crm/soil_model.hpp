@@ -11,9 +11,9 @@ namespace terracal {
 
 template <typename T>
 struct SoilModel {
-  T shear_modulus = 0, bulk_modulus = 0;   // G = E/(2(1+nu)), K = E/(3(1-2nu))
+  T shear_modulus = 0, bulk_modulus = 0;  // G = E/(2(1+nu)), K = E/(3(1-2nu))
   T mu_s = 0, mu_2 = 0, I0 = 0, grain_diameter = 0, rho0 = 0;
-  T cohesion = 0;                          // zero unless the scene names the `cohesion` effect
+  T cohesion = 0;  // zero unless the scene names the `cohesion` effect
 };
 
 // d sigma / dt = W sigma - sigma W + 2G dev(D) + K tr(D) I, with L = grad v, D = sym L, W = skew L.

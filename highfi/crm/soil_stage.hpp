@@ -75,7 +75,8 @@ struct SoilStage {
         const Vec4<T> pj = load(eval.pos + j), vj = load(eval.vel + j);
         const SoilSums<T> c = neighbour_share<T, Fx, true>(k, ec, me, pj, vj, load(eval.s0 + j), load(eval.s1 + j));
         sum += c;
-        add_listed<T, Fx>(k, ec, me.x, pj, vj, c.support, [&](int slot) { return load(eval.record[slot] + j); }, own);
+        add_listed<T, Fx>(
+            k, ec, me.x, pj, vj, c.support, [&](int slot) { return load(eval.record[slot] + j); }, own);
       });
     });
     grid.for_each_neighbour_range(me.x, marker_begin, [&](int first, int last) {
@@ -83,7 +84,8 @@ struct SoilStage {
         const Vec4<T> pj = load(mk.pos + j), vj = load(mk.vel + j);
         const SoilSums<T> c = neighbour_share<T, Fx, false>(k, ec, me, pj, vj, load(mk.s0 + j), load(mk.s1 + j));
         sum += c;
-        add_listed<T, Fx>(k, ec, me.x, pj, vj, c.support, [](int) { return Vec4<T>{}; }, own);
+        add_listed<T, Fx>(
+            k, ec, me.x, pj, vj, c.support, [](int) { return Vec4<T>{}; }, own);
       });
     });
   }
@@ -113,8 +115,9 @@ struct SoilStage {
       if constexpr (AnyListed<Fx>::value)
         for (int q = 0; q < n; ++q) {
           const int j = list[q];
-          add_listed<T, Fx>(k, ec, me.x, eval.pos[j], eval.vel[j], support_share(k, me.x, eval.pos[j]),
-                            [&](int slot) { return eval.record[slot][j]; }, own);
+          add_listed<T, Fx>(
+              k, ec, me.x, eval.pos[j], eval.vel[j], support_share(k, me.x, eval.pos[j]),
+              [&](int slot) { return eval.record[slot][j]; }, own);
         }
     };
     grid.for_each_neighbour_range(me.x, soil_begin,
@@ -126,8 +129,8 @@ struct SoilStage {
       if constexpr (AnyListed<Fx>::value)
         for (int q = 0; q < n; ++q) {
           const int j = list[q];
-          add_listed<T, Fx>(k, ec, me.x, mk.pos[j], mk.vel[j], support_share(k, me.x, mk.pos[j]),
-                            [](int) { return Vec4<T>{}; }, own);
+          add_listed<T, Fx>(
+              k, ec, me.x, mk.pos[j], mk.vel[j], support_share(k, me.x, mk.pos[j]), [](int) { return Vec4<T>{}; }, own);
         }
     };
     grid.for_each_neighbour_range(me.x, marker_begin,

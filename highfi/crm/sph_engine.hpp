@@ -51,8 +51,10 @@ struct EngineSetup {
   CrmEffectConstants<float> effect_constants_float;
   template <class T>
   const CrmEffectConstants<T>& effect_constants() const {
-    if constexpr (sizeof(T) == sizeof(double)) return effect_constants_double;
-    else return effect_constants_float;
+    if constexpr (sizeof(T) == sizeof(double))
+      return effect_constants_double;
+    else
+      return effect_constants_float;
   }
   GridGeometry<double> grid;
   HostSoil soil;

@@ -20,19 +20,33 @@ struct CpuBackend {
   static std::size_t scratch_bytes() { return 0; }
   // 8 records of padding: the SIMD neighbour filter reads up to 7 records past a row's end.
   template <typename U>
-  static U* alloc(std::size_t n) { return new U[n + 8](); }
+  static U* alloc(std::size_t n) {
+    return new U[n + 8]();
+  }
   template <typename U>
-  static void release(U* p) { delete[] p; }
+  static void release(U* p) {
+    delete[] p;
+  }
   template <typename U>
-  static void upload(U* dst, const U* src, std::size_t n) { if (n) std::memcpy(static_cast<void*>(dst), src, n * sizeof(U)); }
+  static void upload(U* dst, const U* src, std::size_t n) {
+    if (n) std::memcpy(static_cast<void*>(dst), src, n * sizeof(U));
+  }
   template <typename U>
-  static void download(U* dst, const U* src, std::size_t n) { if (n) std::memcpy(static_cast<void*>(dst), src, n * sizeof(U)); }
+  static void download(U* dst, const U* src, std::size_t n) {
+    if (n) std::memcpy(static_cast<void*>(dst), src, n * sizeof(U));
+  }
   template <typename U>
-  static void copy(U* dst, const U* src, std::size_t n) { if (n) std::memcpy(static_cast<void*>(dst), src, n * sizeof(U)); }
+  static void copy(U* dst, const U* src, std::size_t n) {
+    if (n) std::memcpy(static_cast<void*>(dst), src, n * sizeof(U));
+  }
   template <typename F>
-  static void parallel_for(long n, const F& f) { parallel_for_cpu(n, f); }
+  static void parallel_for(long n, const F& f) {
+    parallel_for_cpu(n, f);
+  }
   template <typename F>
-  static void parallel_for_heavy(long n, const F& f) { parallel_for_cpu_balanced(n, f); }
+  static void parallel_for_heavy(long n, const F& f) {
+    parallel_for_cpu_balanced(n, f);
+  }
   static void fill_begin(int* begin, int count, int value) { std::fill(begin, begin + count, value); }
 
   // Stable counting sort of values by key (keys in [0, bins)); begin[c] is the first sorted index of
@@ -57,8 +71,12 @@ struct CpuBackend {
       const Vec3<double> x{double(mk.pos[m].x), double(mk.pos[m].y), double(mk.pos[m].z)};
       const Vec3<double> t = cross(x - c, f);
       double* o = out + 6 * b;
-      o[0] += f.x; o[1] += f.y; o[2] += f.z;
-      o[3] += t.x; o[4] += t.y; o[5] += t.z;
+      o[0] += f.x;
+      o[1] += f.y;
+      o[2] += f.z;
+      o[3] += t.x;
+      o[4] += t.y;
+      o[5] += t.z;
     }
   }
 
@@ -73,12 +91,20 @@ struct CpuBackend {
       const double vx = v.x, vy = v.y, vz = v.z;
       const bool finite = std::isfinite(vx) && std::isfinite(vy) && std::isfinite(vz) && std::isfinite(double(p.x)) &&
                           std::isfinite(double(p.y)) && std::isfinite(double(p.z)) && std::isfinite(double(p.w));
-      if (!finite) { ++bad; continue; }
-      if (v.w == T(kParticleLost)) { ++lost; continue; }
+      if (!finite) {
+        ++bad;
+        continue;
+      }
+      if (v.w == T(kParticleLost)) {
+        ++lost;
+        continue;
+      }
       if (v.w == T(kParticleFrozen)) ++frozen;
       const double v2 = vx * vx + vy * vy + vz * vz;
       ke += 0.5 * mass * v2;
-      px += mass * vx; py += mass * vy; pz += mass * vz;
+      px += mass * vx;
+      py += mass * vy;
+      pz += mass * vz;
       vmax = std::max(vmax, std::sqrt(v2));
     }
     st.mass = mass * double(n - lost - bad);

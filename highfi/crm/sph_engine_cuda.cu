@@ -20,7 +20,9 @@ constexpr int kDefaultMinBlocks = 4;  // the measured best (bench/RESULTS.md, "O
 struct CubScratch {
   void* p = nullptr;
   std::size_t bytes = 0;
-  ~CubScratch() { if (p) cudaFree(p); }
+  ~CubScratch() {
+    if (p) cudaFree(p);
+  }
   void* ensure(std::size_t n) {
     if (n > bytes) {
       if (p) TERRACAL_CUDA_CHECK(cudaFree(p));
@@ -43,8 +45,10 @@ struct CellBegin {  // begin[c] = first sorted index with key >= c (binary searc
     int lo = 0, hi = n;
     while (lo < hi) {
       const int mid = (lo + hi) >> 1;
-      if (keys[mid] < int(c)) lo = mid + 1;
-      else hi = mid;
+      if (keys[mid] < int(c))
+        lo = mid + 1;
+      else
+        hi = mid;
     }
     begin[c] = lo;
   }
@@ -80,8 +84,12 @@ __global__ void wrench_kernel(MarkerArrays<T> mk, long nm, const BodyPose<T>* po
       const Vec4<T> f4 = mk.force[m], x4 = mk.pos[m];
       const Vec3<double> f{double(f4.x), double(f4.y), double(f4.z)};
       const Vec3<double> t = cross(Vec3<double>{double(x4.x), double(x4.y), double(x4.z)} - c, f);
-      acc[0] += f.x; acc[1] += f.y; acc[2] += f.z;
-      acc[3] += t.x; acc[4] += t.y; acc[5] += t.z;
+      acc[0] += f.x;
+      acc[1] += f.y;
+      acc[2] += f.z;
+      acc[3] += t.x;
+      acc[4] += t.y;
+      acc[5] += t.z;
     }
     for (int q = 0; q < 6; ++q) {
       const double s = warp_sum(acc[q]);
@@ -99,19 +107,29 @@ __global__ void stats_kernel(SoilArrays<T> s, long n, double mass, double* out) 
     const double vx = v.x, vy = v.y, vz = v.z;
     const bool finite = isfinite(vx) && isfinite(vy) && isfinite(vz) && isfinite(double(p.x)) &&
                         isfinite(double(p.y)) && isfinite(double(p.z)) && isfinite(double(p.w));
-    if (!finite) { acc[5] += 1; continue; }
-    if (v.w == T(kParticleLost)) { acc[6] += 1; continue; }
+    if (!finite) {
+      acc[5] += 1;
+      continue;
+    }
+    if (v.w == T(kParticleLost)) {
+      acc[6] += 1;
+      continue;
+    }
     if (v.w == T(kParticleFrozen)) acc[7] += 1;
     const double v2 = vx * vx + vy * vy + vz * vz;
     acc[0] += 0.5 * mass * v2;
-    acc[1] += mass * vx; acc[2] += mass * vy; acc[3] += mass * vz;
+    acc[1] += mass * vx;
+    acc[2] += mass * vy;
+    acc[3] += mass * vz;
     acc[4] = fmax(acc[4], sqrt(v2));
   }
   for (int q = 0; q < 8; ++q) {
     const double r = q == 4 ? warp_max(acc[q]) : warp_sum(acc[q]);
     if ((threadIdx.x & 31) == 0) {
-      if (q == 4) atomic_max_nonneg(out + 4, r);
-      else if (r != 0.0) atomicAdd(out + q, r);
+      if (q == 4)
+        atomic_max_nonneg(out + 4, r);
+      else if (r != 0.0)
+        atomicAdd(out + q, r);
     }
   }
 }
@@ -131,7 +149,9 @@ struct CudaBackend {
     return p;
   }
   template <typename U>
-  static void release(U* p) { if (p) cudaFree(p); }
+  static void release(U* p) {
+    if (p) cudaFree(p);
+  }
   template <typename U>
   static void upload(U* dst, const U* src, std::size_t n) {
     if (n) TERRACAL_CUDA_CHECK(cudaMemcpy(dst, src, n * sizeof(U), cudaMemcpyHostToDevice));
@@ -145,7 +165,9 @@ struct CudaBackend {
     if (n) TERRACAL_CUDA_CHECK(cudaMemcpy(dst, src, n * sizeof(U), cudaMemcpyDeviceToDevice));
   }
   template <typename F>
-  static void parallel_for(long n, const F& f) { parallel_for_cuda(n, f); }
+  static void parallel_for(long n, const F& f) {
+    parallel_for_cuda(n, f);
+  }
   // The neighbour-loop stages; TERRACAL_CUDA_MIN_BLOCKS (1-4) picks the occupancy/register trade-off
   // for tuning runs (bench/RESULTS.md); the default is the measured best.
   template <typename F>
@@ -156,10 +178,18 @@ struct CudaBackend {
       return v >= 1 && v <= 4 ? v : kDefaultMinBlocks;
     }();
     switch (min_blocks) {
-      case 1: parallel_for_cuda_bounded<1>(n, f); break;
-      case 2: parallel_for_cuda_bounded<2>(n, f); break;
-      case 3: parallel_for_cuda_bounded<3>(n, f); break;
-      default: parallel_for_cuda_bounded<4>(n, f); break;
+      case 1:
+        parallel_for_cuda_bounded<1>(n, f);
+        break;
+      case 2:
+        parallel_for_cuda_bounded<2>(n, f);
+        break;
+      case 3:
+        parallel_for_cuda_bounded<3>(n, f);
+        break;
+      default:
+        parallel_for_cuda_bounded<4>(n, f);
+        break;
     }
   }
   static void fill_begin(int* begin, int count, int value) { parallel_for_cuda(count, FillInt{begin, value}); }

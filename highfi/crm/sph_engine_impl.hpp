@@ -18,9 +18,13 @@
 namespace terracal {
 
 template <typename T>
-inline Vec4<T> to_t(const Vec4<double>& v) { return {T(v.x), T(v.y), T(v.z), T(v.w)}; }
+inline Vec4<T> to_t(const Vec4<double>& v) {
+  return {T(v.x), T(v.y), T(v.z), T(v.w)};
+}
 template <typename T>
-inline Vec3<T> to_t(const Vec3<double>& v) { return {T(v.x), T(v.y), T(v.z)}; }
+inline Vec3<T> to_t(const Vec3<double>& v) {
+  return {T(v.x), T(v.y), T(v.z)};
+}
 
 template <typename T>
 SphConstants<T> constants_in(const SphConstants<double>& c) {
@@ -29,8 +33,8 @@ SphConstants<T> constants_in(const SphConstants<double>& c) {
   k.kernel.h = T(c.kernel.h);
   k.kernel.inv_h = T(c.kernel.inv_h);
   k.kernel.alpha = T(c.kernel.alpha);
-  k.model = {T(c.model.shear_modulus), T(c.model.bulk_modulus), T(c.model.mu_s), T(c.model.mu_2), T(c.model.I0),
-             T(c.model.grain_diameter), T(c.model.rho0), T(c.model.cohesion)};
+  k.model = {T(c.model.shear_modulus),  T(c.model.bulk_modulus), T(c.model.mu_s),    T(c.model.mu_2), T(c.model.I0),
+             T(c.model.grain_diameter), T(c.model.rho0),         T(c.model.cohesion)};
   k.mass = T(c.mass);
   k.gravity = to_t<T>(c.gravity);
   k.free_surface_support = T(c.free_surface_support);
@@ -123,9 +127,8 @@ class SphEngineImpl final : public SphEngine {
     A_.release();
     B_.release();
     for (int* p : {ids_, keys_, vals_, keys_alt_, vals_alt_, soil_begin_, marker_begin_}) B::release(p);
-    Vec4<T>* const marker_fields[] = {mk_.pos,    mk_.vel,       mk_.s0,          mk_.s1,        mk_.local, mk_.wall_vel,
-                                        mk_.force,  mk_.normal,    canon_.pos,      canon_.local,  canon_.wall_vel,
-                                        canon_.normal};
+    Vec4<T>* const marker_fields[] = {mk_.pos,   mk_.vel,    mk_.s0,     mk_.s1,       mk_.local,       mk_.wall_vel,
+                                      mk_.force, mk_.normal, canon_.pos, canon_.local, canon_.wall_vel, canon_.normal};
     for (Vec4<T>* p : marker_fields) B::release(p);
     B::release(poses_);
     B::release(boxes_);
@@ -168,7 +171,8 @@ class SphEngineImpl final : public SphEngine {
     if (!b.empty()) B::upload(boxes_, b.data(), b.size());
     if (b.empty()) {
       // Everyone active: a single box that covers the whole grid.
-      ActiveBox<T> all{grid_.origin, grid_.origin + (T(1) / grid_.inv_cell) * Vec3<T>{T(grid_.nx), T(grid_.ny), T(grid_.nz)}};
+      ActiveBox<T> all{grid_.origin,
+                       grid_.origin + (T(1) / grid_.inv_cell) * Vec3<T>{T(grid_.nx), T(grid_.ny), T(grid_.nz)}};
       B::upload(boxes_, &all, 1);
     }
     B::parallel_for(long(n_), MarkActive<T>{boxes_, int(std::max<std::size_t>(b.size(), 1)), A_.a});
@@ -251,8 +255,8 @@ class SphEngineImpl final : public SphEngine {
       });
     if (n_ == 0) return;
     with_named<InSoilLoop>(effects_, [&](auto fx) {
-      B::parallel_for_heavy(long(n_), SoilStage<T, decltype(fx)>{k_, ec_, grid_, soil_begin_, marker_begin_, eval, A_.a,
-                                                                 out, mk_, dt});
+      B::parallel_for_heavy(
+          long(n_), SoilStage<T, decltype(fx)>{k_, ec_, grid_, soil_begin_, marker_begin_, eval, A_.a, out, mk_, dt});
     });
   }
 
@@ -294,7 +298,8 @@ class SphEngineImpl final : public SphEngine {
   void download_vec4(const Vec4<T>* src, std::vector<Vec4<double>>& dst) const {
     std::vector<Vec4<T>> t(dst.size());
     B::download(t.data(), src, t.size());
-    for (std::size_t i = 0; i < t.size(); ++i) dst[i] = {double(t[i].x), double(t[i].y), double(t[i].z), double(t[i].w)};
+    for (std::size_t i = 0; i < t.size(); ++i)
+      dst[i] = {double(t[i].x), double(t[i].y), double(t[i].z), double(t[i].w)};
   }
 
   SphConstants<T> k_;

@@ -7,8 +7,8 @@
 #include "core/host_device.hpp"
 #include "core/vec.hpp"
 #include "highfi/crm/marker_velocity.hpp"
-#include "highfi/crm/sph_kernel.hpp"
 #include "highfi/crm/soil_model.hpp"
+#include "highfi/crm/sph_kernel.hpp"
 
 namespace terracal {
 
@@ -17,9 +17,9 @@ enum ParticleStatus : int { kParticleActive = 0, kParticleFrozen = 1, kParticleL
 
 template <typename T>
 struct MarkerArrays {
-  Vec4<T>* pos = nullptr;       // x, y, z, density seen by the soil
-  Vec4<T>* vel = nullptr;       // velocity seen by the soil: 2 v_wall - extrapolated v (Adami 2012)
-  Vec4<T>* s0 = nullptr;        // extrapolated stress, as SoilArrays
+  Vec4<T>* pos = nullptr;  // x, y, z, density seen by the soil
+  Vec4<T>* vel = nullptr;  // velocity seen by the soil: 2 v_wall - extrapolated v (Adami 2012)
+  Vec4<T>* s0 = nullptr;   // extrapolated stress, as SoilArrays
   Vec4<T>* s1 = nullptr;
   Vec4<T>* local = nullptr;     // position in the body frame; w = body index
   Vec4<T>* wall_vel = nullptr;  // rigid-body velocity at the marker; w = 1 when the body moves
@@ -61,7 +61,9 @@ struct GridGeometry {
     const T fx = (p.x - origin.x) * inv_cell, fy = (p.y - origin.y) * inv_cell, fz = (p.z - origin.z) * inv_cell;
     // The comparisons are written so that NaN also counts as outside.
     if (!(fx >= T(0) && fy >= T(0) && fz >= T(0) && fx < T(nx) && fy < T(ny) && fz < T(nz))) return false;
-    ix = int(fx); iy = int(fy); iz = int(fz);
+    ix = int(fx);
+    iy = int(fy);
+    iz = int(fz);
     if (ix >= nx) ix = nx - 1;
     if (iy >= ny) iy = ny - 1;
     if (iz >= nz) iz = nz - 1;
@@ -96,10 +98,10 @@ template <typename T>
 struct SphConstants {
   SphKernel<T> kernel;
   SoilModel<T> model;
-  T mass = 0;                  // particle mass rho0 d0^3 (soil and markers alike)
+  T mass = 0;  // particle mass rho0 d0^3 (soil and markers alike)
   Vec3<T> gravity{};
   T free_surface_support = 0;  // kernel support (Shepard sum) below which a particle is on the free surface
-  T spacing = 0;              // d0
+  T spacing = 0;               // d0
   MarkerVelocity marker_velocity = MarkerVelocity::kMirror;  // CrmNumerics::marker_velocity
 };
 

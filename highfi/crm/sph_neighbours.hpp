@@ -53,8 +53,8 @@ inline void add_neighbours_simd(SoilSums<T>& sum, const SphConstants<T>& k, cons
                                 const Vec4<T>* s1, int* list, int n) {
   alignas(64) T px[kSimdChunk + 8], py[kSimdChunk + 8], pz[kSimdChunk + 8], pr[kSimdChunk + 8];
   alignas(64) T vx[kSimdChunk + 8], vy[kSimdChunk + 8], vz[kSimdChunk + 8];
-  alignas(64) T sxx[kSimdChunk + 8], syy[kSimdChunk + 8], szz[kSimdChunk + 8], sxy[kSimdChunk + 8],
-      sxz[kSimdChunk + 8], syz[kSimdChunk + 8];
+  alignas(64) T sxx[kSimdChunk + 8], syy[kSimdChunk + 8], szz[kSimdChunk + 8], sxy[kSimdChunk + 8], sxz[kSimdChunk + 8],
+      syz[kSimdChunk + 8];
   T* const staged[kStagedFields] = {px, py, pz, pr, vx, vy, vz, sxx, syy, szz, sxy, sxz, syz};
   stage_neighbours(pos, vel, s0, s1, list, n, staged);
   // The effects' constants in this frame: an effect may read them under a condition (the artificial

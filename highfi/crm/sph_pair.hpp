@@ -73,10 +73,9 @@ struct AnyUsesDrift<EffectList<E...>> : std::bool_constant<(E::kUsesDrift || ...
 // The caller supplies 1/rho_j^2, which it has from the one division per pair that also gives the
 // volume m/rho_j.
 template <typename T, class Fx, class EC>
-TERRACAL_HD inline Vec3<T> pair_acceleration(const SphConstants<T>& k, const EC& ec,
-                                             const Sym3<T>& si, T inv_rho2_i, T rho_i, const Vec3<T>& vi,
-                                             const Sym3<T>& sj, T inv_rho2_j, T rho_j, const Vec3<T>& vj,
-                                             const Vec3<T>& rij, T r2, const Vec3<T>& grad) {
+TERRACAL_HD inline Vec3<T> pair_acceleration(const SphConstants<T>& k, const EC& ec, const Sym3<T>& si, T inv_rho2_i,
+                                             T rho_i, const Vec3<T>& vi, const Sym3<T>& sj, T inv_rho2_j, T rho_j,
+                                             const Vec3<T>& vj, const Vec3<T>& rij, T r2, const Vec3<T>& grad) {
   const Sym3<T> a = inv_rho2_i * si + inv_rho2_j * sj;
   Vec3<T> acc = a * grad;
   for_each_effect(Fx{}, [&](auto tag) {
@@ -91,9 +90,8 @@ TERRACAL_HD inline Vec3<T> pair_acceleration(const SphConstants<T>& k, const EC&
 // by value, so that the CPU's SIMD loop keeps them in registers (GCC privatises any local whose
 // address is taken inside an `omp simd` loop).
 template <typename T, class Fx, bool kSoil, class EC>
-TERRACAL_HD inline SoilSums<T> neighbour_share(const SphConstants<T>& k, const EC& ec,
-                                               const SoilSelf<T>& me, Vec4<T> pj, Vec4<T> vj4, Vec4<T> s0j,
-                                               Vec4<T> s1j) {
+TERRACAL_HD inline SoilSums<T> neighbour_share(const SphConstants<T>& k, const EC& ec, const SoilSelf<T>& me,
+                                               Vec4<T> pj, Vec4<T> vj4, Vec4<T> s0j, Vec4<T> s1j) {
   Neighbour<T> nb;
   nb.r = me.x - pj.xyz();
   nb.r2 = dot(nb.r, nb.r);
@@ -104,8 +102,8 @@ TERRACAL_HD inline SoilSums<T> neighbour_share(const SphConstants<T>& k, const E
   nb.vol = k.mass * nb.inv_rho;
   nb.dv = vj - me.v;
   SoilSums<T> c;
-  c.acc = pair_acceleration<T, Fx>(k, ec, me.s, me.inv_rho2, me.rho, me.v, stress_of(s0j, s1j),
-                                   nb.inv_rho * nb.inv_rho, pj.w, vj, nb.r, nb.r2, nb.grad);
+  c.acc = pair_acceleration<T, Fx>(k, ec, me.s, me.inv_rho2, me.rho, me.v, stress_of(s0j, s1j), nb.inv_rho * nb.inv_rho,
+                                   pj.w, vj, nb.r, nb.r2, nb.grad);
   if constexpr (kSoil) {
     for_each_effect(Fx{}, [&](auto tag) {
       using E = typename decltype(tag)::type;

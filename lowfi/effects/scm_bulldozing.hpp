@@ -18,10 +18,10 @@ struct ScmBulldozing : ScmEffect {
     int erosion_sweeps = 5;        // relaxation sweeps per step
   };
   static constexpr auto settings() {
-    return std::array{real_setting("repose_angle_deg", &Settings::repose_angle_deg, Range{1, 89, false, false, "deg"},
-                                   "the slope the eroded surface relaxes to"),
-                      whole_setting("erosion_sweeps", &Settings::erosion_sweeps, Range{0, 100},
-                                    "relaxation sweeps per step")};
+    return std::array{
+        real_setting("repose_angle_deg", &Settings::repose_angle_deg, Range{1, 89, false, false, "deg"},
+                     "the slope the eroded surface relaxes to"),
+        whole_setting("erosion_sweeps", &Settings::erosion_sweeps, Range{0, 100}, "relaxation sweeps per step")};
   }
 
   static void after_contact(const Settings& s, ScmContactView& c) {

@@ -38,7 +38,8 @@ bool enable_effects(const std::string& extra, CrmScene& sc) {
     } else if (item.rfind("h:", 0) == 0) {
       sc.numerics.h_over_d0 = std::atof(item.c_str() + 2);  // the smoothing length h/d0 (not an effect)
     } else {
-      std::fprintf(stderr, "unknown effect '%s' (expected shifting, hourglass_damping[:ALPHA] or h:H_OVER_D0)\n", item.c_str());
+      std::fprintf(stderr, "unknown effect '%s' (expected shifting, hourglass_damping[:ALPHA] or h:H_OVER_D0)\n",
+                   item.c_str());
       return false;
     }
   }
@@ -63,9 +64,13 @@ void print_layers(const HostSoil& end, double top, double width, double d0, cons
     auto& a = acc[std::size_t(layer)];
     a[0] += p.w, a[1] += a1.z, a[2] += pressure > 0 ? tau / (sc.soil.mu_s * pressure) : 1.0, a[3] += 1;
   }
-  std::printf("# by layer below the surface (%.4f m), middle of the bin: layer, density kg/m^3, plastic shear strain, tau/(mu_s p), particles\n", top);
+  std::printf(
+      "# by layer below the surface (%.4f m), middle of the bin: layer, density kg/m^3, plastic shear strain, "
+      "tau/(mu_s p), particles\n",
+      top);
   for (int l = 0; l < kLayers; ++l)
-    if (const auto& a = acc[std::size_t(l)]; a[3] > 0) std::printf("# %d, %.2f, %.3g, %.3f, %d\n", l, a[0] / a[3], a[1] / a[3], a[2] / a[3], int(a[3]));
+    if (const auto& a = acc[std::size_t(l)]; a[3] > 0)
+      std::printf("# %d, %.2f, %.3g, %.3f, %d\n", l, a[0] / a[3], a[1] / a[3], a[2] / a[3], int(a[3]));
 }
 
 void print_top_roughness(const HostSoil& end, double top, double width, double d0) {
@@ -113,11 +118,14 @@ void print_velocity_correlation(const HostSoil& end, double d0) {
 
 int main(int argc, char** argv) {
   if (argc < 5) {
-    std::fprintf(stderr, "usage: %s DEPTH SPACING WIDTH T_END [T_ZERO=0] [cpu|cuda] [JITTER=0] [shifting,hourglass_damping[:ALPHA],h:H_OVER_D0]\n",
+    std::fprintf(stderr,
+                 "usage: %s DEPTH SPACING WIDTH T_END [T_ZERO=0] [cpu|cuda] [JITTER=0] "
+                 "[shifting,hourglass_damping[:ALPHA],h:H_OVER_D0]\n",
                  argv[0]);
     return 2;
   }
-  const double depth = std::atof(argv[1]), d0 = std::atof(argv[2]), width = std::atof(argv[3]), t_end = std::atof(argv[4]);
+  const double depth = std::atof(argv[1]), d0 = std::atof(argv[2]), width = std::atof(argv[3]),
+               t_end = std::atof(argv[4]);
   const double t_zero = argc > 5 ? std::atof(argv[5]) : 0;
   const CrmDevice device = argc > 6 && std::string(argv[6]) == "cuda" ? CrmDevice::kCuda : CrmDevice::kCpu;
   const double jitter = argc > 7 ? std::atof(argv[7]) : 0;
@@ -128,17 +136,21 @@ int main(int argc, char** argv) {
   sc.numerics.spacing = d0;
   sc.effects.enable<ArtificialViscosity>();  // as the rigs' sites
   if (!enable_effects(extra, sc)) return 2;
-  sc.settle_jitter = jitter;               // 0: released from the exact lattice
+  sc.settle_jitter = jitter;  // 0: released from the exact lattice
   validate_crm_scene(sc);
   const HostSoil bed0 = settling_start(sc);
   auto solver = std::make_unique<CrmSolver>(sc, device, &bed0);
   const double dt = solver->time_step();
   const double mass = sc.soil.density * width * width * depth;
-  std::printf("# bed %.3g m deep, %.3g x %.3g m, spacing %.3g m, h/d0 %.3g, jitter %.3g, %zu particles, step %.3g s; 4H/c = %.3g s; effects: "
-              "artificial_viscosity%s%s\n",
-              depth, width, width, d0, sc.numerics.h_over_d0, jitter, solver->soil().size(), dt, 4 * depth / sc.soil.sound_speed(),
-              sc.effects.on<Shifting>() ? ", shifting" : "",
-              sc.effects.on<HourglassDamping>() ? (", hourglass_damping " + std::to_string(sc.effects.of<HourglassDamping>().alpha)).c_str() : "");
+  std::printf(
+      "# bed %.3g m deep, %.3g x %.3g m, spacing %.3g m, h/d0 %.3g, jitter %.3g, %zu particles, step %.3g s; 4H/c = "
+      "%.3g s; effects: "
+      "artificial_viscosity%s%s\n",
+      depth, width, width, d0, sc.numerics.h_over_d0, jitter, solver->soil().size(), dt,
+      4 * depth / sc.soil.sound_speed(), sc.effects.on<Shifting>() ? ", shifting" : "",
+      sc.effects.on<HourglassDamping>()
+          ? (", hourglass_damping " + std::to_string(sc.effects.of<HourglassDamping>().alpha)).c_str()
+          : "");
   std::printf("t_s,kinetic_energy_J,rms_speed_m_s,max_speed_m_s,surface_m\n");
   const long every = std::max(1L, long(std::lround(0.025 / dt)));
   bool zeroed = !(t_zero > 0);
@@ -153,8 +165,8 @@ int main(int argc, char** argv) {
     solver->step();
     if (k % every == 0) {
       const SoilStats st = solver->stats();
-      std::printf("%.4f,%.5g,%.4g,%.4g,%.6f\n", k * dt, st.kinetic_energy, std::sqrt(2 * st.kinetic_energy / mass), st.max_speed,
-                  bed_surface_height(solver->soil(), sc));
+      std::printf("%.4f,%.5g,%.4g,%.4g,%.6f\n", k * dt, st.kinetic_energy, std::sqrt(2 * st.kinetic_energy / mass),
+                  st.max_speed, bed_surface_height(solver->soil(), sc));
       std::fflush(stdout);
     }
   }

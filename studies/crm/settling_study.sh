@@ -2,7 +2,8 @@
 # How long a CRM bed takes to come to rest after its release from the lattice (results/crm_settling):
 # beds 0.96 m and 2.85 m deep (the plate bins of results/plate_bin_check) at 0.06 m, and 0.96 m at
 # 0.03 m, on the CPU; then a plot of the rms particle speed against time.
-# Usage: studies/crm/settling_study.sh [OUT=results/crm_settling] [PROBE=build/crm_settle_probe]   (about 16 min on 2 cores)
+# Usage: studies/crm/settling_study.sh [OUT=results/crm_settling] [PROBE=build/crm_settle_probe]
+#   (about 16 min on 2 cores)
 set -euo pipefail
 out=${1:-results/crm_settling}; probe=${2:-build/crm_settle_probe}
 mkdir -p "$out"
@@ -33,8 +34,11 @@ set label "end of the default settling (0.3 s)" at 0.32, graph 0.95 tc rgb "gray
 plot "$out/bed_0.96m_d0.06.csv" every ::2 using 1:3 with lines lw 2 title "0.96 m deep, 0.06 m", \
      "$out/bed_2.85m_d0.06.csv" every ::2 using 1:3 with lines lw 2 title "2.85 m deep, 0.06 m", \
      "$out/bed_0.96m_d0.03.csv" every ::2 using 1:3 with lines lw 2 title "0.96 m deep, 0.03 m", \
-     "$out/bed_0.96m_d0.06_jitter0.1.csv" every ::2 using 1:3 with lines lw 2 dt 2 title "0.96 m deep, 0.06 m, jitter 0.1", \
-     "$out/bed_2.85m_d0.06_jitter0.1.csv" every ::2 using 1:3 with lines lw 2 dt 2 title "2.85 m deep, 0.06 m, jitter 0.1"
+     "$out/bed_0.96m_d0.06_jitter0.1.csv" every ::2 using 1:3 with lines lw 2 dt 2 \
+       title "0.96 m deep, 0.06 m, jitter 0.1", \
+     "$out/bed_2.85m_d0.06_jitter0.1.csv" every ::2 using 1:3 with lines lw 2 dt 2 \
+       title "2.85 m deep, 0.06 m, jitter 0.1"
 GP
 mv "$out/settling.png.tmp" "$out/settling.png"
-[ -f "$out/bed_2.85m_d0.02_h1.4_gpu.csv" ] && [ -f "$out/lattice_stability.gp" ] && (cd "$out" && gnuplot lattice_stability.gp) || true
+[ -f "$out/bed_2.85m_d0.02_h1.4_gpu.csv" ] && [ -f "$out/lattice_stability.gp" ] \
+  && (cd "$out" && gnuplot lattice_stability.gp) || true

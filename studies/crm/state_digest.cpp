@@ -64,7 +64,8 @@ int main(int argc, char** argv) {
   const CrmDevice device = argc > 4 && std::string(argv[4]) == "cuda" ? CrmDevice::kCuda : CrmDevice::kCpu;
   if (argc > 5 && std::string(argv[5]) != "-") {
     const std::vector<std::string> named = std::string(argv[5]) == "none" ? std::vector<std::string>{} : split(argv[5]);
-    for (const char* e : {"artificial_viscosity", "shifting", "active_domain", "hourglass_damping", "hourglass_stiffness"})
+    for (const char* e :
+         {"artificial_viscosity", "shifting", "active_domain", "hourglass_damping", "hourglass_stiffness"})
       if (std::find(named.begin(), named.end(), e) == named.end()) j.erase(e);
     if (std::find(named.begin(), named.end(), "cohesion") == named.end()) j["soil"]["cohesion"] = 0;
     j["effects"] = named;
@@ -90,11 +91,12 @@ int main(int argc, char** argv) {
   d.add(soil.s1);
   if (std::getenv("DIGEST_DUMP"))
     for (std::size_t i = 0; i < soil.size(); ++i)
-      std::fprintf(stderr, "%zu %a %a %a %a | %a %a %a %a | %a %a %a %a | %a %a %a %a\n", i, soil.pos[i].x, soil.pos[i].y,
-                   soil.pos[i].z, soil.pos[i].w, soil.vel[i].x, soil.vel[i].y, soil.vel[i].z, soil.vel[i].w, soil.s0[i].x,
-                   soil.s0[i].y, soil.s0[i].z, soil.s0[i].w, soil.s1[i].x, soil.s1[i].y, soil.s1[i].z, soil.s1[i].w);
+      std::fprintf(stderr, "%zu %a %a %a %a | %a %a %a %a | %a %a %a %a | %a %a %a %a\n", i, soil.pos[i].x,
+                   soil.pos[i].y, soil.pos[i].z, soil.pos[i].w, soil.vel[i].x, soil.vel[i].y, soil.vel[i].z,
+                   soil.vel[i].w, soil.s0[i].x, soil.s0[i].y, soil.s0[i].z, soil.s0[i].w, soil.s1[i].x, soil.s1[i].y,
+                   soil.s1[i].z, soil.s1[i].w);
   const SoilStats st = s.stats();
-  std::printf("# particles %zu, lost %ld, frozen %ld, kinetic energy %.17g, state digest %016llx\n", soil.size(), st.lost,
-              st.frozen, st.kinetic_energy, static_cast<unsigned long long>(d.h));
+  std::printf("# particles %zu, lost %ld, frozen %ld, kinetic energy %.17g, state digest %016llx\n", soil.size(),
+              st.lost, st.frozen, st.kinetic_energy, static_cast<unsigned long long>(d.h));
   return 0;
 }

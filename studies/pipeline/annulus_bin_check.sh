@@ -5,7 +5,8 @@
 # settling), once per case W:D:RATE:ANGLE (walls scaled by W, bed depth by D, turned at RATE rad/s to
 # ANGLE rad; 1:1:1:0.6 is the rigs' bin). Then annulus_summary.py OUT compares the curves as the
 # pipeline's checks do (rigs::curve_change).
-# Usage: [LOAD=1962] [SPACING=0.02] [SETTLE=0.5] [DEVICE=cuda] annulus_bin_check.sh OUT [TERRACAL=build/terracal] [CASES="1:1:1:0.6 1.5:1.5:1:0.6 ..."] [extra options...]
+# Usage: [LOAD=1962] [SPACING=0.02] [SETTLE=0.5] [DEVICE=cuda] annulus_bin_check.sh OUT [TERRACAL=build/terracal]
+#          [CASES="1:1:1:0.6 1.5:1.5:1:0.6 ..."] [extra options...]
 set -euo pipefail
 out=${1:?output folder}; bin=${2:-build/terracal}
 cases=${3:-1:1:1:0.6 1.5:1.5:1:0.6 2.25:2.25:1:0.6 1:1.5:1:0.6 1.5:1:1:0.6 1:1:0.667:0.6 1:1:1:0.9}
@@ -17,7 +18,9 @@ for c in $cases; do
   tag="w${w}_d${d}_r${rate}_a${angle}"
   [ -f "$out/$tag/shear.csv" ] && continue
   "$bin" bevameter --solver crm --soil "$here/bevameter_soil_2022.json" --test shear --shear-loads "${LOAD:-1962}" \
-    --spacing "${SPACING:-0.02}" --shear-step 1e-4 --shear-settle "${SETTLE:-0.5}" --shear-rate "$rate" --shear-angle "$angle" \
-    --bin-scale "$w" --bin-depth-scale "$d" --device "${DEVICE:-cuda}" --no-plots --out "$out/$tag" "$@" > "$out/$tag.log" 2>&1 ||
+    --spacing "${SPACING:-0.02}" --shear-step 1e-4 --shear-settle "${SETTLE:-0.5}" \
+    --shear-rate "$rate" --shear-angle "$angle" \
+    --bin-scale "$w" --bin-depth-scale "$d" --device "${DEVICE:-cuda}" --no-plots --out "$out/$tag" "$@" \
+    > "$out/$tag.log" 2>&1 ||
     echo "case $c failed (see $out/$tag.log)"
 done

@@ -15,7 +15,8 @@ import sys
 
 def load(path):
     rows = list(csv.DictReader(open(path)))
-    return ([float(r["angle_rad"]) for r in rows], [float(r["torque_Nm"]) for r in rows], [float(r["sinkage_m"]) for r in rows])
+    return ([float(r["angle_rad"]) for r in rows], [float(r["torque_Nm"]) for r in rows],
+            [float(r["sinkage_m"]) for r in rows])
 
 
 def interpolate(x, y, at):
@@ -65,12 +66,14 @@ def ensemble(a, b, dirs):
     upto = runs[a][0][0][-1]
     for c in (a, b):
         x, t = mean_curve(runs[c])
-        pairs = [100 * curve_change(runs[c][i][:2], runs[c][j][:2]) for i in range(len(dirs)) for j in range(i + 1, len(dirs))]
+        pairs = [100 * curve_change(runs[c][i][:2], runs[c][j][:2])
+                 for i in range(len(dirs)) for j in range(i + 1, len(dirs))]
         sink = [r[2][-1] for r in runs[c]]
         print(f"{c}: mean torque in fifths of 0-{upto:g} rad " + " / ".join(f"{v:.0f}" for v in parts(x, t, upto)) +
               f" N m; sinkage at the end {min(sink):.4f}-{max(sink):.4f} m; single runs against each other " +
               ", ".join(f"{p:.1f}" for p in pairs) + " %")
-    print(f"mean of {b} against mean of {a} ({len(dirs)} runs each): {100 * curve_change(mean_curve(runs[a]), mean_curve(runs[b])):.1f} %")
+    print(f"mean of {b} against mean of {a} ({len(dirs)} runs each): "
+          f"{100 * curve_change(mean_curve(runs[a]), mean_curve(runs[b])):.1f} %")
 
 
 def main():
@@ -82,7 +85,8 @@ def main():
     cases = sorted(d for d in os.listdir(out) if os.path.isfile(os.path.join(out, d, "shear.csv")))
     curves = {c: load(os.path.join(out, c, "shear.csv")) for c in cases}
     upto = curves[base][0][-1] if base in curves else 0.6
-    print(f"| case | torque in fifths of 0-{upto:g} rad [N m] | sinkage at {upto:g} rad [m] | torque change vs {base} |")
+    print(f"| case | torque in fifths of 0-{upto:g} rad [N m] | sinkage at {upto:g} rad [m] | "
+          f"torque change vs {base} |")
     print("|---|---|---|---|")
     for c in cases:
         x, t, s = curves[c]

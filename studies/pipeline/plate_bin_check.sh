@@ -8,7 +8,8 @@
 # check does (rigs::curve_change: the second curve read at the first one's sinkages, in five parts;
 # the largest difference of the parts' means over the largest mean).
 # A scale W:D scales the walls by W and the depth by D (to tell which of the two the curve feels).
-# Usage: [SPACING=0.02] [PLATE=0.3] plate_bin_check.sh OUT [TERRACAL=build/terracal] [SCALES="1 1.5 2 2.25"] [extra options...]
+# Usage: [SPACING=0.02] [PLATE=0.3] plate_bin_check.sh OUT [TERRACAL=build/terracal] [SCALES="1 1.5 2 2.25"]
+#          [extra options...]
 set -euo pipefail
 out=${1:?output folder}; bin=${2:-build/terracal}; scales=${3:-1 1.5 2 2.25}; shift $(( $# < 3 ? $# : 3 ))
 here=$(cd "$(dirname "$0")" && pwd)
@@ -17,8 +18,9 @@ tag() { echo "scale_${1/:/_d}"; }  # no ':' in file names
 for s in $scales; do
   [ -f "$out/$(tag "$s")/plate.csv" ] && continue
   w=${s%%:*}; d=${s#*:}
-  "$bin" bevameter --solver crm --soil "$here/bevameter_soil_2022.json" --test plate --plates "${PLATE:-0.3}" --max-sinkage 0.2 \
-    --spacing "${SPACING:-0.02}" --bin-scale "$w" --bin-depth-scale "$d" --no-plots --out "$out/$(tag "$s")" "$@" > "$out/$(tag "$s").log" 2>&1
+  "$bin" bevameter --solver crm --soil "$here/bevameter_soil_2022.json" --test plate --plates "${PLATE:-0.3}" \
+    --max-sinkage 0.2 --spacing "${SPACING:-0.02}" --bin-scale "$w" --bin-depth-scale "$d" --no-plots \
+    --out "$out/$(tag "$s")" "$@" > "$out/$(tag "$s").log" 2>&1
 done
 change() { awk -F, -f "$here/curve_change.awk" "$1" "$2"; }  # as rigs::curve_change measures it
 force_at() { awk -F, -v z="$2" 'NR > 1 && ($4 == "load" || $4 == "reload") && $2 >= z - 1e-4 { print $3; exit }' "$1"; }
@@ -28,7 +30,8 @@ force_at() { awk -F, -v z="$2" 'NR > 1 && ($4 == "load" || $4 == "reload") && $2
   prev=""
   for s in $scales; do
     t=$(tag "$s")
-    p=$(grep -o 'CRM bin [0-9.]* x [0-9.]* m, soil [0-9.]* m deep' "$out/$t.log" 2>/dev/null | head -1 | sed 's/CRM bin //' || true)
+    p=$(grep -o 'CRM bin [0-9.]* x [0-9.]* m, soil [0-9.]* m deep' "$out/$t.log" 2>/dev/null | head -1 |
+      sed 's/CRM bin //' || true)
     c=$([ -n "$prev" ] && change "$out/$(tag "$prev")/plate.csv" "$out/$t/plate.csv" || echo "-")
     echo "| $s | ${p:-?} | $(force_at "$out/$t/plate.csv" 0.1) | $(force_at "$out/$t/plate.csv" 0.2) | $c |"
     prev=$s

@@ -8,7 +8,8 @@ import re, base64, struct, sys, math
 def arrays(path):
     txt = open(path).read()
     out = {}
-    for m in re.finditer(r'<DataArray type="Float32" Name="(\w+)" NumberOfComponents="(\d+)" format="binary">\s*([A-Za-z0-9+/=]+)\s*</DataArray>', txt):
+    for m in re.finditer(r'<DataArray type="Float32" Name="(\w+)" NumberOfComponents="(\d+)" format="binary">'
+                         r'\s*([A-Za-z0-9+/=]+)\s*</DataArray>', txt):
         raw = base64.b64decode(m.group(3)); n = struct.unpack('<I', raw[:4])[0]
         vals = struct.unpack('<%df' % (n // 4), raw[4:4 + n])
         c = int(m.group(2)); out[m.group(1)] = [vals[i:i + c] for i in range(0, len(vals), c)]
@@ -23,10 +24,13 @@ def summary(path, cx, cy, surface):
     ke = 0
     for p, s in zip(P, sp):
         r = math.hypot(p[0] - cx, p[1] - cy); z = surface - p[2]
-        key = ('r<0.08' if r < 0.08 else 'r0.08-0.14' if r < 0.14 else 'r0.14-0.2' if r < 0.2 else 'r>0.2') + (' z<0.04' if z < 0.04 else ' z0.04-0.1' if z < 0.1 else ' z>0.1')
+        key = (('r<0.08' if r < 0.08 else 'r0.08-0.14' if r < 0.14 else 'r0.14-0.2' if r < 0.2 else 'r>0.2')
+               + (' z<0.04' if z < 0.04 else ' z0.04-0.1' if z < 0.1 else ' z>0.1'))
         reg[key] = reg.get(key, 0) + s * s; ke += s * s
-    print(path, 'fastest:', ' '.join('%.3f@(r%.3f,z%.3f)' % (sp[i], math.hypot(P[i][0]-cx, P[i][1]-cy), P[i][2]) for i in idx[:8]))
-    print('   KE share:', ', '.join('%s %.0f%%' % (k, 100 * v / ke) for k, v in sorted(reg.items(), key=lambda kv: -kv[1])[:6]))
+    print(path, 'fastest:', ' '.join('%.3f@(r%.3f,z%.3f)' % (sp[i], math.hypot(P[i][0]-cx, P[i][1]-cy), P[i][2])
+                                     for i in idx[:8]))
+    print('   KE share:', ', '.join('%s %.0f%%' % (k, 100 * v / ke)
+                                    for k, v in sorted(reg.items(), key=lambda kv: -kv[1])[:6]))
 
 def detail(path, cx, cy, n=10):
     a = arrays(path); P = a['Points']; V = a['velocity']; D = a['density']; PR = a['pressure']; PL = a['plastic_strain']
@@ -35,7 +39,8 @@ def detail(path, cx, cy, n=10):
     for i in idx:
         r = math.hypot(P[i][0]-cx, P[i][1]-cy)
         vr = ((P[i][0]-cx)*V[i][0] + (P[i][1]-cy)*V[i][1]) / max(r, 1e-9)
-        print('  |v| %.3f v_r %+.3f v_z %+.3f  r %.3f z %.3f  rho %.0f p %.0f plastic %.3f' % (sp[i], vr, V[i][2], r, P[i][2], D[i][0], PR[i][0], PL[i][0]))
+        print('  |v| %.3f v_r %+.3f v_z %+.3f  r %.3f z %.3f  rho %.0f p %.0f plastic %.3f'
+              % (sp[i], vr, V[i][2], r, P[i][2], D[i][0], PR[i][0], PL[i][0]))
 
 
 if __name__ == '__main__':

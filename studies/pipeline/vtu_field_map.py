@@ -10,7 +10,8 @@ import base64, re, struct, sys
 def read_vtu(path):
     txt = open(path).read()
     out = {}
-    for m in re.finditer(r'<DataArray type="(\w+)" Name="([^"]+)"(?: NumberOfComponents="(\d+)")? format="(\w+)"[^>]*>\s*(.*?)\s*</DataArray>', txt, re.S):
+    for m in re.finditer(r'<DataArray type="(\w+)" Name="([^"]+)"(?: NumberOfComponents="(\d+)")? format="(\w+)"[^>]*>'
+                         r'\s*(.*?)\s*</DataArray>', txt, re.S):
         typ, name, nc, fmt, body = m.groups()
         nc = int(nc or 1)
         code = {'Float32': 'f', 'Float64': 'd', 'Int32': 'i', 'UInt8': 'B', 'Int64': 'q', 'UInt32': 'I'}[typ]

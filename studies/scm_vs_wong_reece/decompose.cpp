@@ -77,7 +77,8 @@ std::string table(const std::vector<Row>& rows) {
   md << "\n";
   for (std::size_t k = 0; k < rows.size(); ++k) {
     md << fmt::format("| {} | {} | {} |", k + 1, rows[k].name, rows[k].what);
-    for (const auto& r : rows[k].at) md << fmt::format(" {:.0f} N / {:.0f} N m / {:.4f} m |", r.dbp, r.torque, r.sinkage);
+    for (const auto& r : rows[k].at)
+      md << fmt::format(" {:.0f} N / {:.0f} N m / {:.4f} m |", r.dbp, r.torque, r.sinkage);
     md << "\n";
   }
   return md.str();
@@ -102,11 +103,13 @@ int main(int argc, char** argv) {
     lowfi::WongReeceOptions scm_like;
     scm_like.c1 = scm_like.c2 = 0;
     scm_like.shear_displacement = lowfi::ShearDisplacement::ground;
-    rows.push_back(integral_row("integral", "quadrature instead of nodes (peak at the bottom, shear per ground point)", stiff, load, scm_like));
+    rows.push_back(integral_row("integral", "quadrature instead of nodes (peak at the bottom, shear per ground point)",
+                                stiff, load, scm_like));
     lowfi::WongReeceOptions rim = scm_like;
     rim.shear_displacement = lowfi::ShearDisplacement::rim;
     rows.push_back(integral_row("integral", "shear displacement along the rim", stiff, load, rim));
-    rows.push_back(integral_row("Wong-Reece", "peak stress at (0.43 + 0.32 s) theta1, mirrored to the rear", soil, load, {}));
+    rows.push_back(
+        integral_row("Wong-Reece", "peak stress at (0.43 + 0.32 s) theta1, mirrored to the rear", soil, load, {}));
     const std::string md = table(rows);
     std::cout << md;
     if (argc == 3) write_text_atomically(argv[2], md);

@@ -35,6 +35,8 @@ inline CliResult run_cli(const std::string& args, const std::string& scratch) {
 
 inline void write(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
 
-inline std::string demo_data(const std::string& file) { return std::string(TERRACAL_SOURCE_DIR) + "/studies/demo/" + file; }
+inline std::string demo_data(const std::string& file) {
+  return std::string(TERRACAL_SOURCE_DIR) + "/studies/demo/" + file;
+}
 
 }  // namespace terracal::test

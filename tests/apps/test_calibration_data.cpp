@@ -34,13 +34,15 @@ app::BevameterCurves scm_curves() {
 }
 }  // namespace
 
-TEST_CASE("calibration data from curves in memory equal the data read from the written curve files", "[apps][calibrate]") {
+TEST_CASE("calibration data from curves in memory equal the data read from the written curve files",
+          "[apps][calibrate]") {
   test::ScratchDir dir("calibration_data");
   const app::BevameterCurves curves = scm_curves();
   rigs::write_plate_csv(dir.str() + "/plate.csv", curves.plate);
   rigs::write_shear_csv(dir.str() + "/shear.csv", curves.shear);
   const app::CalibrationData memory = app::calibration_data(curves, dir.str());
-  const app::CalibrationData files = app::read_calibration_files({dir.str() + "/plate.csv", dir.str() + "/shear.csv", ""});
+  const app::CalibrationData files =
+      app::read_calibration_files({dir.str() + "/plate.csv", dir.str() + "/shear.csv", ""});
 
   REQUIRE(memory.plate.points.size() == files.plate.points.size());
   int unload = 0, fitted = 0;
@@ -75,7 +77,8 @@ TEST_CASE("calibration data from curves in memory equal the data read from the w
 TEST_CASE("calibration data from curves in memory are refused as the files would be, naming the file and line",
           "[apps][calibrate][bad_input]") {
   app::BevameterCurves curves;
-  curves.plate = {{0.1, 0.0, 0.0, "load"}, {0.1, 0.01, 100, "load"}, {0.1, 0.02, 180, "load"}, {0.1, 0.03, 150, "unload"}};
+  curves.plate = {
+      {0.1, 0.0, 0.0, "load"}, {0.1, 0.01, 100, "load"}, {0.1, 0.02, 180, "load"}, {0.1, 0.03, 150, "unload"}};
   try {
     app::calibration_data(curves, "out/bevameter");
     FAIL("no error");

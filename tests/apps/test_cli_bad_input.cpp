@@ -14,23 +14,28 @@ namespace {
 struct BadCase {
   const char* name;
   const char* plate_csv;
-  const char* expect_line;    // "file:LINE" fragment expected in the message
-  const char* expect_text;    // a word the message must contain
+  const char* expect_line;  // "file:LINE" fragment expected in the message
+  const char* expect_text;  // a word the message must contain
 };
 
 const BadCase kCases[] = {
     {"missing column", "plate_radius_m,force_N\n0.1,100\n", ":1", "sinkage_m"},
-    {"non-numeric cell", "plate_radius_m,sinkage_m,force_N\n0.1,0.01,100\n0.1,abc,200\n", ":3, column 'sinkage_m' (2)", "not a number"},
+    {"non-numeric cell", "plate_radius_m,sinkage_m,force_N\n0.1,0.01,100\n0.1,abc,200\n", ":3, column 'sinkage_m' (2)",
+     "not a number"},
     {"NaN", "plate_radius_m,sinkage_m,force_N\n0.1,0.01,nan\n", ":2, column 'force_N' (3)", "finite"},
-    {"negative sinkage", "plate_radius_m,sinkage_m,force_N\n0.1,0.01,100\n0.1,-0.02,50\n", ":3, column 'sinkage_m'", "negative"},
+    {"negative sinkage", "plate_radius_m,sinkage_m,force_N\n0.1,0.01,100\n0.1,-0.02,50\n", ":3, column 'sinkage_m'",
+     "negative"},
     {"negative radius", "plate_radius_m,sinkage_m,force_N\n-0.1,0.01,100\n", ":2, column 'plate_radius_m'", "> 0"},
     {"empty file", "", "plate.csv", "empty"},
     {"header only", "plate_radius_m,sinkage_m,force_N\n", "plate.csv", "no data rows"},
-    {"sinkage in millimetres", "plate_radius_m,sinkage_m,force_N\n0.1,10,100\n0.1,20,200\n", ":2, column 'sinkage_m'", "millimetres"},
-    {"missing column after comments", "# rig 3\n# 2026-11-01\nplate_radius_m,force_N\n0.1,100\n", "plate.csv:3: missing column(s) sinkage_m", "sinkage_m"},
+    {"sinkage in millimetres", "plate_radius_m,sinkage_m,force_N\n0.1,10,100\n0.1,20,200\n", ":2, column 'sinkage_m'",
+     "millimetres"},
+    {"missing column after comments", "# rig 3\n# 2026-11-01\nplate_radius_m,force_N\n0.1,100\n",
+     "plate.csv:3: missing column(s) sinkage_m", "sinkage_m"},
     {"negative force", "plate_radius_m,sinkage_m,force_N\n0.1,0.01,-5\n", ":2, column 'force_N' (3)", "negative"},
     {"all-zero forces", "plate_radius_m,sinkage_m,force_N\n0.1,0.01,0\n0.1,0.02,0\n", "plate.csv", "zero"},
-    {"unknown phase", "plate_radius_m,sinkage_m,force_N,phase\n0.1,0.01,100,press\n", ":2, column 'phase' (4)", "load, unload or reload"},
+    {"unknown phase", "plate_radius_m,sinkage_m,force_N,phase\n0.1,0.01,100,press\n", ":2, column 'phase' (4)",
+     "load, unload or reload"},
 };
 
 }  // namespace
@@ -42,7 +47,8 @@ TEST_CASE("bad plate input: exit 2, the message names file, line and column, no 
       const std::string dir = scratch.str();
       write(dir + "/plate.csv", c.plate_csv);
       const std::string out = dir + "/out";
-      const CliResult r = run_cli("calibrate --plate " + dir + "/plate.csv --shear " + demo_data("shear.csv") + " --out " + out, dir);
+      const CliResult r =
+          run_cli("calibrate --plate " + dir + "/plate.csv --shear " + demo_data("shear.csv") + " --out " + out, dir);
       INFO(c.name << ": stderr was: " << r.err);
       CHECK(r.exit_code == 2);
       CHECK(r.err.find(dir + "/plate.csv") != std::string::npos);
@@ -66,27 +72,31 @@ TEST_CASE("bad shear input and bad options: exit 2 naming what is wrong", "[cli]
     const char* expect;
   };
   const FileCase cases[] = {
-      {"negative angle", "shear.csv", "inner_radius_m,outer_radius_m,normal_load_N,angle_rad,torque_Nm\n0.15,0.2,100,-0.1,5\n",
-       "--shear", "shear.csv:2, column 'angle_rad' (4)"},
-      {"outer radius below inner", "shear.csv", "inner_radius_m,outer_radius_m,normal_load_N,angle_rad,torque_Nm\n0.2,0.15,100,0.1,5\n",
-       "--shear", "shear.csv:2, column 'outer_radius_m'"},
+      {"negative angle", "shear.csv",
+       "inner_radius_m,outer_radius_m,normal_load_N,angle_rad,torque_Nm\n0.15,0.2,100,-0.1,5\n", "--shear",
+       "shear.csv:2, column 'angle_rad' (4)"},
+      {"outer radius below inner", "shear.csv",
+       "inner_radius_m,outer_radius_m,normal_load_N,angle_rad,torque_Nm\n0.2,0.15,100,0.1,5\n", "--shear",
+       "shear.csv:2, column 'outer_radius_m'"},
       {"priors: unknown key", "priors.json", R"({"Kphii": {"type": "uniform", "lower": 0, "upper": 1e7}})", "--priors",
        "unknown key 'Kphii'"},
-      {"priors: bound out of range", "priors.json", R"({"phi": {"type": "uniform", "lower": 0, "upper": 75}})", "--priors",
-       "'phi.upper': 75 is outside the physical range [0, 60]"},
+      {"priors: bound out of range", "priors.json", R"({"phi": {"type": "uniform", "lower": 0, "upper": 75}})",
+       "--priors", "'phi.upper': 75 is outside the physical range [0, 60]"},
       {"priors: open lower bound", "priors.json", R"({"k": {"type": "uniform", "lower": 0, "upper": 0.1}})", "--priors",
        "'k.lower': 0 is outside the physical range (0, 10]"},
-      {"priors: number out of range", "priors.json", R"({"c": {"type": "uniform", "lower": 0, "upper": 1e400}})", "--priors",
-       "priors.json: the priors file is not valid JSON"},
+      {"priors: number out of range", "priors.json", R"({"c": {"type": "uniform", "lower": 0, "upper": 1e400}})",
+       "--priors", "priors.json: the priors file is not valid JSON"},
       {"priors: everything fixed", "priors.json",
-       R"({"Kc": {"type": "fixed", "value": 0}, "Kphi": {"type": "fixed", "value": 1e6}, "n": {"type": "fixed", "value": 1}})",
+       R"({"Kc": {"type": "fixed", "value": 0}, "Kphi": {"type": "fixed", "value": 1e6}, )"
+       R"("n": {"type": "fixed", "value": 1}})",
        "--priors", "every parameter is fixed"},
   };
   for (const auto& c : cases) {
     SECTION(c.name) {
       write(dir + "/" + c.file, c.content);
-      const CliResult r =
-          run_cli("calibrate --plate " + demo_data("plate.csv") + " " + c.option + " " + dir + "/" + c.file + " --out " + out, dir);
+      const CliResult r = run_cli(
+          "calibrate --plate " + demo_data("plate.csv") + " " + c.option + " " + dir + "/" + c.file + " --out " + out,
+          dir);
       INFO(c.name << ": stderr was: " << r.err);
       CHECK(r.exit_code == 2);
       CHECK(r.err.find(c.expect) != std::string::npos);

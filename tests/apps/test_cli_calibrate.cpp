@@ -19,10 +19,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const char* kOutputs[] = {"scm_params.json", "posterior.h5", "summary.txt", "plate_fit.png", "shear_fit.png", "pairs.png"};
+const char* kOutputs[] = {"scm_params.json", "posterior.h5",  "summary.txt",
+                          "plate_fit.png",   "shear_fit.png", "pairs.png"};
 
 std::string calibrate_args(const std::string& out, const std::string& extra = "") {
-  return "calibrate --plate " + demo_data("plate.csv") + " --shear " + demo_data("shear.csv") + " --out " + out + " --seed 11 " + extra;
+  return "calibrate --plate " + demo_data("plate.csv") + " --shear " + demo_data("shear.csv") + " --out " + out +
+         " --seed 11 " + extra;
 }
 
 void require_identical_outputs(const std::string& a, const std::string& b) {
@@ -55,8 +57,10 @@ TEST_CASE("calibrate writes the contract outputs; the same seed gives byte-ident
     CHECK(j["Soil parameters"].contains(key));
   // The demo data set is dry sand with 2 % noise: the MAP is near the truth (truth.json).
   const auto truth = nlohmann::json::parse(read_file(demo_data("truth.json")))["Soil parameters"];
-  CHECK(j["Soil parameters"]["Bekker n exponent"].get<double>() == Approx(truth["Bekker n exponent"].get<double>()).epsilon(0.05));
-  CHECK(j["Soil parameters"]["Mohr friction limit"].get<double>() == Approx(truth["Mohr friction limit"].get<double>()).epsilon(0.05));
+  CHECK(j["Soil parameters"]["Bekker n exponent"].get<double>() ==
+        Approx(truth["Bekker n exponent"].get<double>()).epsilon(0.05));
+  CHECK(j["Soil parameters"]["Mohr friction limit"].get<double>() ==
+        Approx(truth["Mohr friction limit"].get<double>()).epsilon(0.05));
   const auto& kphi = j["Posterior"]["Bekker Kphi"];
   CHECK(kphi["q05"].get<double>() < kphi["q50"].get<double>());
   CHECK(kphi["q50"].get<double>() < kphi["q95"].get<double>());
@@ -79,7 +83,8 @@ TEST_CASE("calibrate writes the contract outputs; the same seed gives byte-ident
   CHECK(found_kphi);
 }
 
-TEST_CASE("a killed calibration resumes and ends with exactly the draws of an uninterrupted run", "[cli][calibrate][resume]") {
+TEST_CASE("a killed calibration resumes and ends with exactly the draws of an uninterrupted run",
+          "[cli][calibrate][resume]") {
   const ScratchDir scratch("resume");
   const std::string dir = scratch.str();
   // A long run (high ESS target) so that the kill lands while sampling.
@@ -96,7 +101,8 @@ TEST_CASE("a killed calibration resumes and ends with exactly the draws of an un
     freopen(log.c_str(), "w", stderr);
     freopen("/dev/null", "w", stdout);
     execl(TERRACAL_EXE, TERRACAL_EXE, "calibrate", "--plate", demo_data("plate.csv").c_str(), "--shear",
-          demo_data("shear.csv").c_str(), "--out", out.c_str(), "--seed", "11", "--min-ess", "6000", "--no-plots", nullptr);
+          demo_data("shear.csv").c_str(), "--out", out.c_str(), "--seed", "11", "--min-ess", "6000", "--no-plots",
+          nullptr);
     _exit(127);
   }
   // Wait for the checkpoint after warm-up and at least one block of draws (the file is replaced,
@@ -108,7 +114,8 @@ TEST_CASE("a killed calibration resumes and ends with exactly the draws of an un
     std::error_code ec;
     const auto size = fs::file_size(checkpoint, ec);
     if (ec) continue;
-    if (first_size == 0) first_size = size;
+    if (first_size == 0)
+      first_size = size;
     else if (size > first_size) {
       kill(child, SIGKILL);
       killed = true;
@@ -135,10 +142,12 @@ TEST_CASE("one plate size: Kc is fixed at 0, the run goes on and says so", "[cli
   const ScratchDir scratch("oneplate");
   const std::string dir = scratch.str();
   std::string plate = "plate_radius_m,sinkage_m,force_N\n";
-  for (const auto& line : std::vector<std::string>{"0.1,0.01,310", "0.1,0.02,640", "0.1,0.04,1350", "0.1,0.06,2080", "0.1,0.08,2790", "0.1,0.1,3600"})
+  for (const auto& line : std::vector<std::string>{"0.1,0.01,310", "0.1,0.02,640", "0.1,0.04,1350", "0.1,0.06,2080",
+                                                   "0.1,0.08,2790", "0.1,0.1,3600"})
     plate += line + "\n";
   write(dir + "/plate.csv", plate);
-  const CliResult r = run_cli("calibrate --plate " + dir + "/plate.csv --out " + dir + "/out --min-ess 300 --no-plots", dir);
+  const CliResult r =
+      run_cli("calibrate --plate " + dir + "/plate.csv --out " + dir + "/out --min-ess 300 --no-plots", dir);
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   CHECK(r.err.find("only one plate radius") != std::string::npos);

@@ -34,15 +34,25 @@ TEST_CASE("terracal crm: bad scenes exit 2 naming the key, value and range", "[a
     std::vector<std::string> expect;
   };
   const std::vector<Case> cases = {
-      {"spacing too coarse for the bin", [](auto& j) { j["resolution"]["spacing"] = 0.03; }, {"bin.size", "too coarse"}},
-      {"spacing too coarse for the body", [](auto& j) { j["bodies"][0]["shape"]["radius"] = 0.015; }, {"shape.radius", "too coarse"}},
+      {"spacing too coarse for the bin",
+       [](auto& j) { j["resolution"]["spacing"] = 0.03; },
+       {"bin.size", "too coarse"}},
+      {"spacing too coarse for the body",
+       [](auto& j) { j["bodies"][0]["shape"]["radius"] = 0.015; },
+       {"shape.radius", "too coarse"}},
       {"h/d0 out of range", [](auto& j) { j["resolution"]["h_over_d0"] = 2.0; }, {"h_over_d0", "2", "[1, 1.6]"}},
-      {"marker velocity not a known rule", [](auto& j) { j["resolution"]["marker_velocity"] = "slip"; }, {"marker_velocity", "slip", "mirror"}},
+      {"marker velocity not a known rule",
+       [](auto& j) { j["resolution"]["marker_velocity"] = "slip"; },
+       {"marker_velocity", "slip", "mirror"}},
       {"step above CFL", [](auto& j) { j["resolution"]["time_step"] = 1e-3; }, {"time_step", "0.001", "CFL"}},
       {"nu >= 0.5", [](auto& j) { j["soil"]["poisson_ratio"] = 0.5; }, {"poisson_ratio", "0.5", "[0, 0.5)"}},
       {"non-positive density", [](auto& j) { j["soil"]["density"] = 0; }, {"density", "0", "(0,"}},
       {"non-positive modulus", [](auto& j) { j["soil"]["young_modulus"] = -1e6; }, {"young_modulus", "-1000000"}},
-      {"body outside the bin", [](auto& j) { j["bodies"][0]["position"] = {0.5, 0.03, 0.05}; }, {"position", "outside the bin"}},
+      {"body outside the bin",
+       [](auto& j) {
+         j["bodies"][0]["position"] = {0.5, 0.03, 0.05};
+       },
+       {"position", "outside the bin"}},
       {"unknown key", [](auto& j) { j["resolution"]["spacnig"] = 0.01; }, {"resolution.spacnig", "unknown key"}},
       {"unknown effect", [](auto& j) { j["effects"] = {"bulldozing"}; }, {"effects", "bulldozing", "active_domain"}},
       {"cohesion without its effect", [](auto& j) { j["soil"]["cohesion"] = 5000; }, {"soil.cohesion", "\"cohesion\""}},
@@ -53,7 +63,8 @@ TEST_CASE("terracal crm: bad scenes exit 2 naming the key, value and range", "[a
     c.edit(j);
     const std::string scene = dir.path.string() + "/scene.json";
     test::write(scene, j.dump());
-    const CliResult r = test::run_cli("crm --scene " + scene + " --out " + dir.path.string() + "/out --cache ''", dir.path);
+    const CliResult r =
+        test::run_cli("crm --scene " + scene + " --out " + dir.path.string() + "/out --cache ''", dir.path);
     INFO(r.err);
     CHECK(r.exit_code == 2);
     for (const auto& e : c.expect) CHECK(r.err.find(e) != std::string::npos);
@@ -67,13 +78,17 @@ TEST_CASE("terracal crm: a resumed run ends with exactly the files of an uninter
   j["duration"] = 0.006;
   const std::string full = dir.path.string() + "/full.json", half = dir.path.string() + "/half.json";
   test::write(full, j.dump());
-  const CliResult a = test::run_cli("crm --scene " + full + " --out " + dir.path.string() + "/a --cache '' --record-every 1", dir.path);
+  const CliResult a =
+      test::run_cli("crm --scene " + full + " --out " + dir.path.string() + "/a --cache '' --record-every 1", dir.path);
   REQUIRE(a.exit_code == 0);
   // The same scene stopped half-way (its checkpoint), then resumed with the full duration.
   j["duration"] = 0.003;
   test::write(half, j.dump());
-  REQUIRE(test::run_cli("crm --scene " + half + " --out " + dir.path.string() + "/b --cache '' --record-every 1", dir.path).exit_code == 0);
-  const CliResult b = test::run_cli("crm --scene " + full + " --out " + dir.path.string() + "/b --cache '' --record-every 1 --resume", dir.path);
+  REQUIRE(
+      test::run_cli("crm --scene " + half + " --out " + dir.path.string() + "/b --cache '' --record-every 1", dir.path)
+          .exit_code == 0);
+  const CliResult b = test::run_cli(
+      "crm --scene " + full + " --out " + dir.path.string() + "/b --cache '' --record-every 1 --resume", dir.path);
   INFO(b.err);
   REQUIRE(b.exit_code == 0);
   CHECK(test::read_file(dir.path.string() + "/a/bodies.csv") == test::read_file(dir.path.string() + "/b/bodies.csv"));

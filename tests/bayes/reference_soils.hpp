@@ -19,9 +19,11 @@ inline std::vector<ReferenceSoil> reference_soils() {
   std::vector<ReferenceSoil> soils;
   for (std::size_t i = 0; i < t.rows(); ++i) {
     ReferenceSoil s;
-    s.name = t.text(i, "soil") + (t.text(i, "moisture_percent").empty() ? "" : " " + t.text(i, "moisture_percent") + " %");
-    s.truth = {t.number(i, "Kc"), t.number(i, "Kphi"), t.number(i, "n"), t.number(i, "cohesion_Pa"),
-               t.number(i, "friction_deg"), t.optional_number(i, "janosi_k_m").value_or(0.01)};
+    s.name =
+        t.text(i, "soil") + (t.text(i, "moisture_percent").empty() ? "" : " " + t.text(i, "moisture_percent") + " %");
+    s.truth = {
+        t.number(i, "Kc"),          t.number(i, "Kphi"),         t.number(i, "n"),
+        t.number(i, "cohesion_Pa"), t.number(i, "friction_deg"), t.optional_number(i, "janosi_k_m").value_or(0.01)};
     soils.push_back(s);
   }
   return soils;

@@ -12,7 +12,8 @@ using namespace terracal::bayes;
 
 TEST_CASE("90 % credible intervals cover the truth in 80-98 % of replicates", "[bayes][coverage]") {
   const auto soils = test::reference_soils();
-  const auto it = std::find_if(soils.begin(), soils.end(), [](const test::ReferenceSoil& s) { return s.name == "LETE sand"; });
+  const auto it =
+      std::find_if(soils.begin(), soils.end(), [](const test::ReferenceSoil& s) { return s.name == "LETE sand"; });
   REQUIRE(it != soils.end());
   const ParamVector truth = it->truth;
   const SyntheticDesign design;  // 2 plates x 20 points, 4 shear loads x 30 angles, 2 % noise
@@ -21,7 +22,8 @@ TEST_CASE("90 % credible intervals cover the truth in 80-98 % of replicates", "[
   int converged = 0;
   for (int rep = 0; rep < replicates; ++rep) {
     Rng rng(5000 + rep);
-    const CalibrationProblem problem(synthesize_plate(truth, design, rng), synthesize_shear(truth, design, rng), default_priors());
+    const CalibrationProblem problem(synthesize_plate(truth, design, rng), synthesize_shear(truth, design, rng),
+                                     default_priors());
     CalibrationOptions opt;
     opt.seed = 100 + rep;
     opt.min_ess = 400;
@@ -35,7 +37,8 @@ TEST_CASE("90 % credible intervals cover the truth in 80-98 % of replicates", "[
   CHECK(converged == replicates);
   for (int i = 0; i < kNumParams; ++i) {
     const double rate = double(covered[i]) / replicates;
-    INFO(kShortNames[i] << ": 90 % interval covered the truth in " << covered[i] << " of " << replicates << " replicates");
+    INFO(kShortNames[i] << ": 90 % interval covered the truth in " << covered[i] << " of " << replicates
+                        << " replicates");
     CHECK(rate >= 0.80);
     CHECK(rate <= 0.98);
   }

@@ -50,7 +50,7 @@ TEST_CASE("diagnostics: summary statistics and type-7 quantiles", "[diagnostics]
   const VariableSummary s = summarize(c);
   CHECK(s.mean == Approx(50.5));
   CHECK(s.sd == Approx(std::sqrt(100.0 * 101.0 / 12.0)));  // unbiased sd of 1..N: sqrt(N(N+1)/12)
-  CHECK(s.q05 == Approx(1 + 0.05 * 99));                    // x[floor(h)] + frac * gap, h = p (N-1)
+  CHECK(s.q05 == Approx(1 + 0.05 * 99));                   // x[floor(h)] + frac * gap, h = p (N-1)
   CHECK(s.q50 == Approx(50.5));
   CHECK(s.q95 == Approx(1 + 0.95 * 99));
   CHECK(s.rhat > 1.5);  // a trend: both chains' halves differ, the point of splitting
@@ -144,7 +144,7 @@ TEST_CASE("diagnostics: malformed input is rejected", "[diagnostics]") {
   CHECK_THROWS_AS(ess_basic(Chains{{1, 2, 3}, {1, 2}}), std::invalid_argument);
   CHECK_THROWS_AS(summarize(Chains{{1, 2}}), std::invalid_argument);  // one chain: nothing to split or compare
   CHECK_THROWS_AS(ess_bulk(Chains{{1, 2}, {2, std::nan("")}}), std::invalid_argument);
-  CHECK_NOTHROW(rhat_split(Chains{{1, 2}, {2, 4}}));                   // 2 draws per chain: used whole
+  CHECK_NOTHROW(rhat_split(Chains{{1, 2}, {2, 4}}));  // 2 draws per chain: used whole
 }
 
 TEST_CASE("diagnostics: bulk ESS of a long AR(1) chain set (4 x 100 000 draws, rho 0.5)", "[diagnostics]") {

@@ -60,7 +60,8 @@ PlateData plate_from_text(const std::string& dir, const std::string& text) {
 
 }  // namespace
 
-TEST_CASE("Ke and every plastic sinkage are recovered exactly from noise-free cycles of two plates", "[bayes][elastic]") {
+TEST_CASE("Ke and every plastic sinkage are recovered exactly from noise-free cycles of two plates",
+          "[bayes][elastic]") {
   const test::ScratchDir dir("ke_exact");
   const ElasticFit fit = fit_elastic_stiffness(cycles_via_csv(dir.str(), 0.0, 1));
   REQUIRE(fit.fitted);
@@ -77,7 +78,8 @@ TEST_CASE("Ke and every plastic sinkage are recovered exactly from noise-free cy
       const double zp = zu - plate_force(r, zu, kSand[kKc], kSand[kKphi], kSand[kN]) / (kPi * r * r * kKe);
       int matches = 0;
       for (const auto& b : fit.branches) matches += b.radius == r && std::abs(b.plastic_sinkage - zp) < 1e-9;
-      INFO("r = " << r << " m, unloaded at " << zu << " m: expected z_p = " << zp << " m on its unload and reload branch");
+      INFO("r = " << r << " m, unloaded at " << zu << " m: expected z_p = " << zp
+                  << " m on its unload and reload branch");
       CHECK(matches == 2);
     }
 }
@@ -124,13 +126,17 @@ TEST_CASE("without unload rows Ke keeps Chrono's default and a note says it was 
   CHECK(any_note_contains(pb.notes(), "Elastic stiffness not fitted"));
 }
 
-TEST_CASE("bad unloading data: short branches are ignored, a rising force or no spare row keeps the default, "
-          "a deeper unload row is an input error", "[bayes][elastic]") {
+TEST_CASE(
+    "bad unloading data: short branches are ignored, a rising force or no spare row keeps the default, "
+    "a deeper unload row is an input error",
+    "[bayes][elastic]") {
   const test::ScratchDir dir("ke_bad");
-  const std::string head = "plate_radius_m,sinkage_m,force_N,phase\n0.1,0.01,300,load\n0.1,0.02,650,load\n0.1,0.03,1000,load\n";
+  const std::string head =
+      "plate_radius_m,sinkage_m,force_N,phase\n0.1,0.01,300,load\n0.1,0.02,650,load\n0.1,0.03,1000,load\n";
   // F = pi 0.1^2 4e7 (z - z_p) = 1.2566e6 N/m (z - 0.0292042 m) from the turning point at 3 cm; then
   // a second branch with a single row above lift-off.
-  const std::string unload3 = "0.1,0.03,1000,unload\n0.1,0.0298,748.6726,unload\n0.1,0.0296,497.3452,unload\n0.1,0.0294,246.0178,unload\n";
+  const std::string unload3 =
+      "0.1,0.03,1000,unload\n0.1,0.0298,748.6726,unload\n0.1,0.0296,497.3452,unload\n0.1,0.0294,246.0178,unload\n";
   {
     const ElasticFit f = fit_elastic_stiffness(
         plate_from_text(dir.str(), head + unload3 + "0.1,0.04,1400,load\n0.1,0.039,900,unload\n0.1,0.038,0,unload\n"));
@@ -148,7 +154,8 @@ TEST_CASE("bad unloading data: short branches are ignored, a rising force or no 
     CHECK(any_note_contains(f.notes, "not positive"));
   }
   {  // Two rows on one branch fix the slope but leave nothing to estimate its error from.
-    const ElasticFit f = fit_elastic_stiffness(plate_from_text(dir.str(), head + "0.1,0.0298,748.6726,unload\n0.1,0.0296,497.3452,unload\n"));
+    const ElasticFit f = fit_elastic_stiffness(
+        plate_from_text(dir.str(), head + "0.1,0.0298,748.6726,unload\n0.1,0.0296,497.3452,unload\n"));
     CHECK_FALSE(f.fitted);
     CHECK(f.ke == kDefaultElasticStiffness);
     CHECK(any_note_contains(f.notes, "no degree of freedom"));
@@ -163,12 +170,14 @@ TEST_CASE("bad unloading data: short branches are ignored, a rising force or no 
   }
 }
 
-TEST_CASE("terracal calibrate writes the fitted Ke into scm_params.json and the summary", "[bayes][elastic][calibrate]") {
+TEST_CASE("terracal calibrate writes the fitted Ke into scm_params.json and the summary",
+          "[bayes][elastic][calibrate]") {
   const test::ScratchDir scratch("ke_cli");
   const std::string dir = scratch.str();
   Rng rng(2026);
   write_plate_csv(dir + "/plate.csv", synthesize_plate(kSand, cycle_design(0.01), rng));
-  const test::CliResult r = test::run_cli("calibrate --plate " + dir + "/plate.csv --out " + dir + "/out --min-ess 300 --no-plots", dir);
+  const test::CliResult r =
+      test::run_cli("calibrate --plate " + dir + "/plate.csv --out " + dir + "/out --min-ess 300 --no-plots", dir);
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   const auto j = nlohmann::json::parse(test::read_file(dir + "/out/scm_params.json"));
@@ -195,14 +204,16 @@ TEST_CASE("terracal calibrate writes the fitted Ke into scm_params.json and the 
   SyntheticDesign loading_only = cycle_design(0.01);
   loading_only.unload_at.clear();
   write_plate_csv(dir + "/loading.csv", synthesize_plate(kSand, loading_only, rng));
-  const test::CliResult r2 = test::run_cli("calibrate --plate " + dir + "/loading.csv --out " + dir + "/out2 --min-ess 300 --no-plots", dir);
+  const test::CliResult r2 =
+      test::run_cli("calibrate --plate " + dir + "/loading.csv --out " + dir + "/out2 --min-ess 300 --no-plots", dir);
   INFO(r2.err);
   REQUIRE(r2.exit_code == 0);
   const auto j2 = nlohmann::json::parse(test::read_file(dir + "/out2/scm_params.json"));
   CHECK(j2["Soil parameters"]["Elastic stiffness"].get<double>() == kDefaultElasticStiffness);
   CHECK(j2["Posterior"]["Elastic stiffness"]["fixed"] == true);
   bool noted = false;
-  for (const auto& n : j2["Fit"]["notes"]) noted = noted || n.get<std::string>().find("Elastic stiffness not fitted") != std::string::npos;
+  for (const auto& n : j2["Fit"]["notes"])
+    noted = noted || n.get<std::string>().find("Elastic stiffness not fitted") != std::string::npos;
   CHECK(noted);
   CHECK(r2.out.find("Ke         fixed at 4e+07") != std::string::npos);
 }

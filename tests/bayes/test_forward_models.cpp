@@ -43,17 +43,21 @@ TEST_CASE("annulus torque is the integral of tau r dA over the annulus", "[bayes
   const double area = kPi * (r_out * r_out - r_in * r_in);
   const double tau_max = c + W / area * std::tan(phi * kPi / 180);
   for (double theta : {1e-4, 0.01, 0.05, 0.2, 1.0}) {
-    const double expected = integrate([&](double r) { return tau_max * (1 - std::exp(-r * theta / k)) * r * 2 * kPi * r; }, r_in, r_out);
+    const double expected =
+        integrate([&](double r) { return tau_max * (1 - std::exp(-r * theta / k)) * r * 2 * kPi * r; }, r_in, r_out);
     INFO("theta = " << theta);
     CHECK(annulus_torque(r_in, r_out, W, theta, c, phi, k) == Approx(expected).epsilon(1e-12));
   }
   // theta -> infinity: the fully developed torque 2 pi tau_max (R^3 - r^3) / 3.
-  CHECK(annulus_torque(r_in, r_out, W, 1e6, c, phi, k) == Approx(annulus_torque_developed(r_in, r_out, W, c, phi)).epsilon(1e-12));
-  CHECK(annulus_torque_developed(r_in, r_out, W, c, phi) == Approx(2 * kPi * tau_max * (std::pow(r_out, 3) - std::pow(r_in, 3)) / 3));
+  CHECK(annulus_torque(r_in, r_out, W, 1e6, c, phi, k) ==
+        Approx(annulus_torque_developed(r_in, r_out, W, c, phi)).epsilon(1e-12));
+  CHECK(annulus_torque_developed(r_in, r_out, W, c, phi) ==
+        Approx(2 * kPi * tau_max * (std::pow(r_out, 3) - std::pow(r_in, 3)) / 3));
 }
 
 TEST_CASE("plate force is pi r^2 (Kc/r + Kphi) z^n", "[bayes][forward]") {
-  CHECK(plate_force(0.2, 0.05, 990.0, 1528430.0, 1.1) == Approx(kPi * 0.04 * (990 / 0.2 + 1528430) * std::pow(0.05, 1.1)).epsilon(1e-14));
+  CHECK(plate_force(0.2, 0.05, 990.0, 1528430.0, 1.1) ==
+        Approx(kPi * 0.04 * (990 / 0.2 + 1528430) * std::pow(0.05, 1.1)).epsilon(1e-14));
   CHECK(plate_force(0.2, 0.0, 990.0, 1528430.0, 1.1) == 0.0);
 }
 
@@ -70,13 +74,17 @@ TEST_CASE("the shared-kernel predictions equal the row-by-row forward models", "
   const auto fp = pb.predict_all(0, p);
   REQUIRE(pb.set(0).kernels() == static_cast<std::size_t>(d.plate_points));  // sinkages shared by both plates
   for (std::size_t i = 0; i < fp.size(); ++i)
-    CHECK(fp[i] == Approx(plate_force(plate.points[i].radius, plate.points[i].sinkage, p[kKc], p[kKphi], p[kN])).epsilon(1e-14));
+    CHECK(fp[i] ==
+          Approx(plate_force(plate.points[i].radius, plate.points[i].sinkage, p[kKc], p[kKphi], p[kN])).epsilon(1e-14));
   const auto fs = pb.predict_all(1, p);
-  REQUIRE(pb.set(1).kernels() == static_cast<std::size_t>(d.shear_points) + 1);  // angles shared by the loads, + developed
+  REQUIRE(pb.set(1).kernels() ==
+          static_cast<std::size_t>(d.shear_points) + 1);  // angles shared by the loads, + developed
   for (std::size_t i = 0; i < fs.size(); ++i) {
     const auto& q = shear.points[i];
-    const double expected = q.developed ? annulus_torque_developed(q.inner_radius, q.outer_radius, q.normal_load, p[kCohesion], p[kFriction])
-                                        : annulus_torque(q.inner_radius, q.outer_radius, q.normal_load, q.angle, p[kCohesion], p[kFriction], p[kJanosi]);
+    const double expected = q.developed ? annulus_torque_developed(q.inner_radius, q.outer_radius, q.normal_load,
+                                                                   p[kCohesion], p[kFriction])
+                                        : annulus_torque(q.inner_radius, q.outer_radius, q.normal_load, q.angle,
+                                                         p[kCohesion], p[kFriction], p[kJanosi]);
     CHECK(fs[i] == Approx(expected).epsilon(1e-14));
   }
 }

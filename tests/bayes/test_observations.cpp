@@ -4,8 +4,8 @@
 
 #include <fstream>
 
-#include "bayes/observations.hpp"
 #include "../scratch_dir.hpp"
+#include "bayes/observations.hpp"
 
 using namespace terracal;
 using namespace terracal::bayes;
@@ -38,7 +38,8 @@ TEST_CASE("load / unload / reload: only loading beyond the previous maximum is f
   CHECK(d.radii == std::vector<double>{0.1, 0.2});
 }
 
-TEST_CASE("a noisy reload that has rejoined the virgin curve stays on it until the next unload", "[bayes][observations]") {
+TEST_CASE("a noisy reload that has rejoined the virgin curve stays on it until the next unload",
+          "[bayes][observations]") {
   // A CRM plate's force jitters by a few percent: after the reload passes the old largest force
   // (1000 N), a row at 980 N is still virgin loading, not a one-row elastic branch.
   std::vector<double> fitted;

@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
+#include "../scratch_dir.hpp"
 #include "bayes/plots.hpp"
 #include "core/errors.hpp"
 #include "core/gnuplot.hpp"
 #include "core/rng.hpp"
-#include "../scratch_dir.hpp"
 #include "tests/skip.hpp"
 
 namespace fs = std::filesystem;
@@ -82,7 +82,8 @@ TEST_CASE("plots: plot_pairs writes a PNG of pairwise marginals", "[plots]") {
   std::vector<std::vector<double>> draws;
   for (int k = 0; k < 5000; ++k) {  // more than the scatter limit: exercises thinning
     const double a = rng.normal(), b = rng.normal();
-    draws.push_back({2.0 + 0.3 * a, 0.8 + 0.05 * (0.7 * a + 0.7 * b), 30.0 + 2.0 * b, 1.1e3 * (1 + 0.1 * rng.normal())});
+    draws.push_back(
+        {2.0 + 0.3 * a, 0.8 + 0.05 * (0.7 * a + 0.7 * b), 30.0 + 2.0 * b, 1.1e3 * (1 + 0.1 * rng.normal())});
   }
   terracal::bayes::plot_pairs(png.string(), {"n [-]", "k_c [kN/m^(n+1)]", "phi [deg]", "c [Pa]"}, draws);
   REQUIRE(fs::exists(png));
@@ -95,8 +96,7 @@ TEST_CASE("plots: bad input and a missing folder throw RunError and leave no fil
   ScratchDir dir("bad_input");
   std::vector<FitSeries> series = two_plates();
   series[0].fit.pop_back();
-  CHECK_THROWS_AS(terracal::bayes::plot_fit((dir.path / "a.png").string(), "t", "x", "y", series),
-                  terracal::RunError);
+  CHECK_THROWS_AS(terracal::bayes::plot_fit((dir.path / "a.png").string(), "t", "x", "y", series), terracal::RunError);
   CHECK_THROWS_AS(terracal::bayes::plot_fit((dir.path / "no_folder" / "b.png").string(), "t", "x", "y", two_plates()),
                   terracal::RunError);
   CHECK_THROWS_AS(terracal::bayes::plot_pairs((dir.path / "c.png").string(), {"a", "b"}, {{1.0, 2.0}, {3.0}}),

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "bayes/posterior_h5.hpp"
 #include "../scratch_dir.hpp"
+#include "bayes/posterior_h5.hpp"
 #include "core/errors.hpp"
 
 namespace fs = std::filesystem;
@@ -37,16 +37,19 @@ std::vector<double> values(std::size_t n, double scale) {
 
 InferenceData small_idata() {
   InferenceData id;
-  id.groups.push_back(Group{"posterior",
-                            {Variable{"c", {"chain", "draw"}, {kChains, kDraws}, values(kChains * kDraws, 1e3), "Pa"},
-                             Variable{"phi", {"chain", "draw"}, {kChains, kDraws}, values(kChains * kDraws, 0.5), "rad"}}});
   id.groups.push_back(
-      Group{"sample_stats", {Variable{"lp", {"chain", "draw"}, {kChains, kDraws}, values(kChains * kDraws, -7.0), ""}}});
-  id.groups.push_back(
-      Group{"observed_data", {Variable{"sinkage", {"plate_obs"}, {kObs}, values(kObs, 0.01), "m"}}});
+      Group{"posterior",
+            {Variable{"c", {"chain", "draw"}, {kChains, kDraws}, values(kChains * kDraws, 1e3), "Pa"},
+             Variable{"phi", {"chain", "draw"}, {kChains, kDraws}, values(kChains * kDraws, 0.5), "rad"}}});
+  id.groups.push_back(Group{
+      "sample_stats", {Variable{"lp", {"chain", "draw"}, {kChains, kDraws}, values(kChains * kDraws, -7.0), ""}}});
+  id.groups.push_back(Group{"observed_data", {Variable{"sinkage", {"plate_obs"}, {kObs}, values(kObs, 0.01), "m"}}});
   id.groups.push_back(Group{"posterior_predictive",
-                            {Variable{"sinkage", {"chain", "draw", "plate_obs"}, {kChains, kDraws, kObs},
-                                      values(kChains * kDraws * kObs, 0.02), "m"}}});
+                            {Variable{"sinkage",
+                                      {"chain", "draw", "plate_obs"},
+                                      {kChains, kDraws, kObs},
+                                      values(kChains * kDraws * kObs, 0.02),
+                                      "m"}}});
   return id;
 }
 

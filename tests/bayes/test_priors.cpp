@@ -15,7 +15,8 @@ using namespace terracal::bayes;
 
 namespace {
 std::string priors_file(const std::string& text) {
-  const auto path = std::filesystem::temp_directory_path() / ("terracal_priors_" + std::to_string(::getpid()) + ".json");
+  const auto path =
+      std::filesystem::temp_directory_path() / ("terracal_priors_" + std::to_string(::getpid()) + ".json");
   std::ofstream(path) << text;
   return path.string();
 }
@@ -62,7 +63,8 @@ TEST_CASE("a fixed parameter stays fixed and an informative prior moves the post
   CHECK(res.summary[phi_slot].sd < 0.02);
 }
 
-TEST_CASE("one plate size with a prior on Kc: the run samples the prior along the unidentified direction", "[bayes][priors]") {
+TEST_CASE("one plate size with a prior on Kc: the run samples the prior along the unidentified direction",
+          "[bayes][priors]") {
   // Only K(r) = Kc/r + Kphi at r = 0.1 m is measured; Kc is then set by its prior alone, so the
   // posterior sd of Kc must equal the prior sd. (The least-squares covariance is singular here.)
   SyntheticDesign d;

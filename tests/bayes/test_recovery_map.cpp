@@ -32,10 +32,11 @@ TEST_CASE("MAP recovers every reference soil within 5 %", "[bayes][recovery]") {
     const CalibrationProblem problem(plate, shear, default_priors());
     const PointEstimate est = estimate_point(problem, PointEstimateOptions{.seed = 7});
     const ParamVector& p = est.map;
-    INFO(soil.name << ": Kc " << p[kKc] << " (" << soil.truth[kKc] << "), Kphi " << p[kKphi] << " (" << soil.truth[kKphi]
-                   << "), n " << p[kN] << " (" << soil.truth[kN] << "), c " << p[kCohesion] << " (" << soil.truth[kCohesion]
-                   << "), phi " << p[kFriction] << " (" << soil.truth[kFriction] << "), k " << p[kJanosi] << " ("
-                   << soil.truth[kJanosi] << ")\n" << est.ceres_report);
+    INFO(soil.name << ": Kc " << p[kKc] << " (" << soil.truth[kKc] << "), Kphi " << p[kKphi] << " ("
+                   << soil.truth[kKphi] << "), n " << p[kN] << " (" << soil.truth[kN] << "), c " << p[kCohesion] << " ("
+                   << soil.truth[kCohesion] << "), phi " << p[kFriction] << " (" << soil.truth[kFriction] << "), k "
+                   << p[kJanosi] << " (" << soil.truth[kJanosi] << ")\n"
+                   << est.ceres_report);
     for (double r : design.plate_radii)
       CHECK(rel(p[kKc] / r + p[kKphi], soil.truth[kKc] / r + soil.truth[kKphi]) < 0.05);
     CHECK(rel(p[kN], soil.truth[kN]) < 0.05);

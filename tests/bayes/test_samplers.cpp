@@ -304,8 +304,8 @@ TEST_CASE("DRAM: the second-stage acceptance keeps a skewed target exact", "[sam
 TEST_CASE("DRAM: Gibbs on the noise variance gives the Normal-inverse-gamma posterior", "[samplers][dram]") {
   const NormalInverseGamma nig;
   const Target t = nig.target();
-  const DramRun run = run_dram(t, nig.expectations(), vec({0}), vec({1}), MatrixXd::Constant(1, 1, 0.1),
-                               DramOptions{}, 2000, 20000, 4);
+  const DramRun run =
+      run_dram(t, nig.expectations(), vec({0}), vec({1}), MatrixXd::Constant(1, 1, 0.1), DramOptions{}, 2000, 20000, 4);
   check_expectations(nig.expectations(), run.values, 3000);
 }
 
@@ -368,8 +368,8 @@ TEST_CASE("DRAM: invalid set-ups are rejected", "[samplers][dram]") {
 TEST_CASE("ensemble: correlated Gaussian with scales 1e3 and 1e-2", "[samplers][ensemble]") {
   const CorrelatedGaussian g;
   const Target t = gaussian(g.mu, g.cov());
-  const EnsembleRun run = run_ensemble(t, g.expectations(), g.mu + vec({2e3, -2e-2}), vec({10, 1e-4}), VectorXd(),
-                                       16, 2000, 10000, 6);
+  const EnsembleRun run =
+      run_ensemble(t, g.expectations(), g.mu + vec({2e3, -2e-2}), vec({10, 1e-4}), VectorXd(), 16, 2000, 10000, 6);
   check_expectations(g.expectations(), run.values, 400);
 }
 
@@ -436,9 +436,9 @@ TEST_CASE("ensemble: invalid set-ups are rejected", "[samplers][ensemble]") {
   const BrokenGaussian broken;
   const Target t = broken.target();
   auto walkers = [](int n, double x1) { return std::vector<VectorXd>(n, vec({0, x1})); };
-  CHECK_THROWS_AS(EnsembleSampler(t, {}, walkers(3, 0), {}, Rng(1)), std::invalid_argument);   // fewer than 2*dim
-  CHECK_THROWS_AS(EnsembleSampler(t, {}, walkers(5, 0), {}, Rng(1)), std::invalid_argument);   // odd
-  CHECK_THROWS_AS(EnsembleSampler(t, {}, walkers(4, -1), {}, Rng(1)), std::invalid_argument);  // throws
+  CHECK_THROWS_AS(EnsembleSampler(t, {}, walkers(3, 0), {}, Rng(1)), std::invalid_argument);     // fewer than 2*dim
+  CHECK_THROWS_AS(EnsembleSampler(t, {}, walkers(5, 0), {}, Rng(1)), std::invalid_argument);     // odd
+  CHECK_THROWS_AS(EnsembleSampler(t, {}, walkers(4, -1), {}, Rng(1)), std::invalid_argument);    // throws
   CHECK_THROWS_AS(EnsembleSampler(t, {1.0}, walkers(4, 0), {}, Rng(1)), std::invalid_argument);  // a <= 1
   CHECK_NOTHROW(EnsembleSampler(t, {}, walkers(4, 0), {}, Rng(1)));
 }

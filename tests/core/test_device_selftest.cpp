@@ -6,8 +6,8 @@
 #include <cstdio>
 
 #include "core/device_selftest.hpp"
-#include "tests/skip.hpp"
 #include "core/rng.hpp"
+#include "tests/skip.hpp"
 
 using namespace terracal;
 

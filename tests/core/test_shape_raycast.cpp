@@ -58,8 +58,8 @@ BodyShape cube_mesh(double h, V c) {
 // r * bump(direction): a closed, irregular, star-shaped mesh.
 BodyShape icosphere(int levels, double r, bool bumpy) {
   const double p = (1 + std::sqrt(5.0)) / 2;
-  std::vector<V> v = {{-1, p, 0}, {1, p, 0}, {-1, -p, 0}, {1, -p, 0}, {0, -1, p}, {0, 1, p},
-                      {0, -1, -p}, {0, 1, -p}, {p, 0, -1}, {p, 0, 1}, {-p, 0, -1}, {-p, 0, 1}};
+  std::vector<V> v = {{-1, p, 0},  {1, p, 0},  {-1, -p, 0}, {1, -p, 0}, {0, -1, p},  {0, 1, p},
+                      {0, -1, -p}, {0, 1, -p}, {p, 0, -1},  {p, 0, 1},  {-p, 0, -1}, {-p, 0, 1}};
   std::vector<std::array<int, 3>> t = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
                                        {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
                                        {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
@@ -148,7 +148,7 @@ void check_against_sdf(const BodyShape& s, int n, std::uint64_t seed) {
   int hits = 0, misses = 0, inside = 0;
   for (int i = 0; i < n; ++i) {
     V o = random_in(rng, lo - pad, hi + pad);
-    if (i % 8 == 1) o = random_in(rng, lo, hi);  // often inside the solid
+    if (i % 8 == 1) o = random_in(rng, lo, hi);               // often inside the solid
     if (mesh) o = c + (1.2 * scale / norm(o - c)) * (o - c);  // outside the mesh's bounding sphere
     V d = random_in(rng, lo, hi) - o;
     if (i % 4 == 0) {  // axis-aligned, either sign
@@ -187,12 +187,12 @@ TEST_CASE("ShapeRaycaster: closed-form hits on box, cylinder, disc and annulus",
   const V up{0, 0, 1};
   {
     const ShapeRaycaster box(box_shape());
-    CHECK(box.first_hit({0.1, 0.05, -1}, up, 10) == Approx(0.9).margin(1e-12));           // z = -half_z
-    CHECK(box.first_hit({0.1, 0.05, -1}, 2.0 * up, 10) == Approx(0.45).margin(1e-12));    // |dir| = 2
-    CHECK(box.first_hit({0.31, 0.05, -1}, up, 10) == kInf);                               // beside it
-    CHECK(box.first_hit({0.1, 0.05, -1}, up, 0.8) == kInf);                               // too short
-    CHECK(box.first_hit({0.1, 0.05, 0}, up, 10) == 0);                                    // inside
-    CHECK(box.first_hit({0.1, 0.05, -1}, -1.0 * up, 10) == kInf);                         // pointing away
+    CHECK(box.first_hit({0.1, 0.05, -1}, up, 10) == Approx(0.9).margin(1e-12));         // z = -half_z
+    CHECK(box.first_hit({0.1, 0.05, -1}, 2.0 * up, 10) == Approx(0.45).margin(1e-12));  // |dir| = 2
+    CHECK(box.first_hit({0.31, 0.05, -1}, up, 10) == kInf);                             // beside it
+    CHECK(box.first_hit({0.1, 0.05, -1}, up, 0.8) == kInf);                             // too short
+    CHECK(box.first_hit({0.1, 0.05, 0}, up, 10) == 0);                                  // inside
+    CHECK(box.first_hit({0.1, 0.05, -1}, -1.0 * up, 10) == kInf);                       // pointing away
     CHECK(box.bounds_lo().z == -0.1);
     CHECK(box.bounds_hi().x == 0.3);
   }
@@ -201,18 +201,18 @@ TEST_CASE("ShapeRaycaster: closed-form hits on box, cylinder, disc and annulus",
     const ShapeRaycaster cyl(s);
     const double dx = 0.1;
     CHECK(cyl.first_hit({dx, 0.02, -1}, up, 10) - 1 == Approx(-std::sqrt(s.radius * s.radius - dx * dx)).margin(1e-12));
-    CHECK(cyl.first_hit({dx, 0.08, -1}, up, 10) == kInf);                              // beyond width / 2
+    CHECK(cyl.first_hit({dx, 0.08, -1}, up, 10) == kInf);                                     // beyond width / 2
     CHECK(cyl.first_hit({0.1, -1, 0.05}, {0, 1, 0}, 10) == Approx(1 - 0.075).margin(1e-12));  // end face
   }
   {
     const ShapeRaycaster disc(plate_shape(ShapeType::kDisc)), ann(plate_shape(ShapeType::kAnnulus));
     CHECK(disc.first_hit({0.05, 0.02, -1}, up, 10) == Approx(1 - 0.02).margin(1e-12));
     CHECK(disc.first_hit({-1, 0.03, 0.01}, {1, 0, 0}, 10) - 1 == Approx(-std::sqrt(0.04 - 0.03 * 0.03)).margin(1e-12));
-    CHECK(ann.first_hit({0.05, 0.02, -1}, up, 10) == kInf);                              // through the hole
+    CHECK(ann.first_hit({0.05, 0.02, -1}, up, 10) == kInf);  // through the hole
     CHECK(ann.first_hit({0.15, 0.0, -1}, up, 10) == Approx(1 - 0.02).margin(1e-12));
-    CHECK(ann.first_hit({-1, 0, 0}, {1, 0, 0}, 10) == Approx(0.8).margin(1e-12));         // outer rim
-    CHECK(ann.first_hit({0, 0, 0}, {1, 0, 0}, 10) == Approx(0.1).margin(1e-12));          // from the hole
-    CHECK(ann.first_hit({0.15, 0, 0}, {1, 0, 0}, 10) == 0);                               // inside
+    CHECK(ann.first_hit({-1, 0, 0}, {1, 0, 0}, 10) == Approx(0.8).margin(1e-12));  // outer rim
+    CHECK(ann.first_hit({0, 0, 0}, {1, 0, 0}, 10) == Approx(0.1).margin(1e-12));   // from the hole
+    CHECK(ann.first_hit({0.15, 0, 0}, {1, 0, 0}, 10) == 0);                        // inside
     CHECK(ann.first_hit({0, 0, 0}, {1, 0, 0}, 0.09) == kInf);
   }
 }

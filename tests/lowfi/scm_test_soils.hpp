@@ -38,7 +38,8 @@ inline lowfi::ScmSoil scm_lete_sand() {
   throw InputError("bekker_wong_soils.csv: no row 'LETE sand'");
 }
 
-inline lowfi::ScmSite scm_site(const lowfi::ScmSoil& soil, double grid, double dt, std::vector<std::string> effects = {}) {
+inline lowfi::ScmSite scm_site(const lowfi::ScmSoil& soil, double grid, double dt,
+                               std::vector<std::string> effects = {}) {
   lowfi::ScmSettings s;
   s.grid = grid;
   s.time_step = dt;

@@ -64,7 +64,9 @@ TEST_CASE("SCM plate rig: loading follows Bekker within 2 %, unloading has slope
       if (row.phase == "unload" && row.force > 0) unload.push_back({row.sinkage, row.force});
     REQUIRE(unload.size() >= 3);
     // The slope between a branch's first and last rows (sinkage, force).
-    auto slope_of = [](const std::vector<std::pair<double, double>>& b) { return (b.back().second - b.front().second) / (b.back().first - b.front().first); };
+    auto slope_of = [](const std::vector<std::pair<double, double>>& b) {
+      return (b.back().second - b.front().second) / (b.back().first - b.front().first);
+    };
     const double slope = slope_of(unload);
     INFO("unload slope " << slope << " N/m against Ke pi r^2 = " << soil.elastic_stiffness * M_PI * r * r);
     CHECK(rel(slope, soil.elastic_stiffness * M_PI * r * r) < 0.02);
@@ -80,9 +82,11 @@ TEST_CASE("SCM plate rig: loading follows Bekker within 2 %, unloading has slope
         reload.push_back({row.sinkage, row.force});
     REQUIRE(reload.size() >= 3);
     const double reload_slope = slope_of(reload);
-    INFO("reload slope " << reload_slope << " N/m from " << reload.front().first << " m (unload reached " << unload.back().first << " m)");
+    INFO("reload slope " << reload_slope << " N/m from " << reload.front().first << " m (unload reached "
+                         << unload.back().first << " m)");
     CHECK(rel(reload_slope, soil.elastic_stiffness * M_PI * r * r) < 0.02);
-    CHECK(std::abs(reload.front().first - unload.back().first) < 2 * t.max_sinkage / t.samples);  // touches where the unload left
+    CHECK(std::abs(reload.front().first - unload.back().first) <
+          2 * t.max_sinkage / t.samples);  // touches where the unload left
   }
 }
 
@@ -98,8 +102,8 @@ TEST_CASE("SCM annulus rig: torque against angle follows the analytic annulus wi
   double worst = 0;
   for (const auto& row : rows) {
     if (row.angle < 0.02) continue;
-    const double analytic = bayes::annulus_torque(t.inner_radius, t.outer_radius, row.normal_load, row.angle, soil.cohesion,
-                                                  soil.friction_deg, soil.janosi_k);
+    const double analytic = bayes::annulus_torque(t.inner_radius, t.outer_radius, row.normal_load, row.angle,
+                                                  soil.cohesion, soil.friction_deg, soil.janosi_k);
     worst = std::max(worst, rel(row.torque, analytic));
     ++checked;
   }
@@ -113,14 +117,16 @@ TEST_CASE("SCM annulus rig: torque against angle follows the analytic annulus wi
 // z = (W / (A (Kc/b + Kphi)))^(1/n). The CRM annulus shows the same (results/plate_bin_check,
 // twelfth study), which is why the bevameter and pipeline commands ramp the load by default
 // (--shear-load-ramp 0.5; ShearTest itself drops it unless told otherwise).
-TEST_CASE("SCM annulus under a ramped load rests at Bekker's static sinkage; a dropped one overshoots", "[lowfi][scm]") {
+TEST_CASE("SCM annulus under a ramped load rests at Bekker's static sinkage; a dropped one overshoots",
+          "[lowfi][scm]") {
   const lowfi::ScmSoil soil = test::scm_dry_sand();
   const auto site = annulus_site(soil);
   rigs::ShearTest t = annulus_test(1.0, 0.05);
   auto first_sinkage = [&](double ramp) {
     t.load_ramp = ramp;
     const auto rows = rigs::run_shear(site, t);
-    const auto heavy = std::find_if(rows.begin(), rows.end(), [](const rigs::ShearRow& r) { return r.normal_load == 800; });
+    const auto heavy =
+        std::find_if(rows.begin(), rows.end(), [](const rigs::ShearRow& r) { return r.normal_load == 800; });
     REQUIRE(heavy != rows.end());
     return std::pair{rows.front().sinkage, heavy->sinkage};  // 200 N, 800 N at the start of the turn
   };
@@ -129,8 +135,8 @@ TEST_CASE("SCM annulus under a ramped load rests at Bekker's static sinkage; a d
   const double area = M_PI * (t.outer_radius * t.outer_radius - t.inner_radius * t.inner_radius);
   const double k = soil.Kc / t.outer_radius + soil.Kphi;  // b: the ring's convex hull is the disc of the outer radius
   auto bekker = [&](double load) { return std::pow(load / (area * k), 1.0 / soil.n); };
-  INFO("200 N: ramped " << ramped200 << ", dropped " << dropped200 << ", Bekker " << bekker(200) << "; 800 N: ramped " << ramped800
-                        << ", dropped " << dropped800 << ", Bekker " << bekker(800));
+  INFO("200 N: ramped " << ramped200 << ", dropped " << dropped200 << ", Bekker " << bekker(200) << "; 800 N: ramped "
+                        << ramped800 << ", dropped " << dropped800 << ", Bekker " << bekker(800));
   CHECK(rel(ramped200, bekker(200)) < 0.03);
   CHECK(rel(ramped800, bekker(800)) < 0.03);
   CHECK(dropped800 > 1.15 * bekker(800));
@@ -164,18 +170,21 @@ TEST_CASE("calibrating on SCM-rig curves recovers the SCM soil within 5 %", "[lo
   rigs::write_plate_csv((dir.path / "plate.csv").string(), plate);
   rigs::write_shear_csv((dir.path / "shear.csv").string(), shear);
   const bayes::CalibrationProblem problem(bayes::load_plate_csv((dir.path / "plate.csv").string()),
-                                          bayes::load_shear_csv((dir.path / "shear.csv").string()), bayes::default_priors());
+                                          bayes::load_shear_csv((dir.path / "shear.csv").string()),
+                                          bayes::default_priors());
   const bayes::PointEstimate est = bayes::estimate_point(problem, bayes::PointEstimateOptions{.seed = 3});
   const auto& p = est.map;
-  INFO("Kc " << p[bayes::kKc] << ", Kphi " << p[bayes::kKphi] << ", n " << p[bayes::kN] << ", c " << p[bayes::kCohesion] << ", phi "
-             << p[bayes::kFriction] << ", k " << p[bayes::kJanosi] << "\n" << est.ceres_report);
+  INFO("Kc " << p[bayes::kKc] << ", Kphi " << p[bayes::kKphi] << ", n " << p[bayes::kN] << ", c " << p[bayes::kCohesion]
+             << ", phi " << p[bayes::kFriction] << ", k " << p[bayes::kJanosi] << "\n"
+             << est.ceres_report);
   for (double r : {0.1, 0.2}) CHECK(rel(p[bayes::kKc] / r + p[bayes::kKphi], soil.Kc / r + soil.Kphi) < 0.05);
   CHECK(rel(p[bayes::kN], soil.n) < 0.05);
   CHECK(rel(p[bayes::kFriction], soil.friction_deg) < 0.05);
   CHECK(rel(p[bayes::kJanosi], soil.janosi_k) < 0.05);
   CHECK(std::abs(p[bayes::kCohesion] - soil.cohesion) < 0.05 * soil.cohesion + 100);
   // The elastic stiffness comes from the unload-reload rows.
-  INFO("Ke " << problem.elastic().ke << " +- " << problem.elastic().sd << " from " << problem.elastic().rows << " rows");
+  INFO("Ke " << problem.elastic().ke << " +- " << problem.elastic().sd << " from " << problem.elastic().rows
+             << " rows");
   REQUIRE(problem.elastic().fitted);
   CHECK(rel(problem.elastic().ke, soil.elastic_stiffness) < 0.05);
 }

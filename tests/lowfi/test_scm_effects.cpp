@@ -14,8 +14,8 @@ double rel(double a, double b) { return std::abs(a - b) / std::abs(b); }
 
 // A 0.1 m plate pushed down at `speed` for `down` seconds, then (if lift > 0) lifted for `lift` s at
 // `lift_speed` (default `speed`).
-lowfi::ScmTerrain plate_terrain(const lowfi::ScmSoil& soil, std::vector<std::string> effects, double speed, double down, double lift,
-                                double lift_speed = 0) {
+lowfi::ScmTerrain plate_terrain(const lowfi::ScmSoil& soil, std::vector<std::string> effects, double speed, double down,
+                                double lift, double lift_speed = 0) {
   lowfi::ScmSettings s;
   s.grid = 0.005;
   s.effects = lowfi::parse_scm_effects(effects, "effects");
@@ -61,8 +61,8 @@ TEST_CASE("SCM bulldozing: the volume pushed down reappears around the plate", "
 TEST_CASE("SCM elastic unloading: the rut springs back by sigma / Ke when the plate leaves", "[lowfi][scm][effects]") {
   const lowfi::ScmSoil soil = test::scm_dry_sand();
   const double z = 0.05, speed = 0.1;
-  const double step_travel = speed * 1e-3;  // 0.1 mm per step
-  double deepest = 0;                       // where the plate's last pushing step held the soil
+  const double step_travel = speed * 1e-3;          // 0.1 mm per step
+  double deepest = 0;                               // where the plate's last pushing step held the soil
   for (const double lift_speed : {100.0, speed}) {  // 0.1 m in the first step of the lift; the pushing speed
     auto with = plate_terrain(soil, {"elastic_unloading"}, speed, z / speed, 0.05, lift_speed);
     auto without = plate_terrain(soil, {}, speed, z / speed, 0.05, lift_speed);
@@ -76,10 +76,11 @@ TEST_CASE("SCM elastic unloading: the rut springs back by sigma / Ke when the pl
       CHECK(std::abs(deepest - z) < 2 * step_travel);
     }
     const double spring_back = soil.bekker_pressure(deepest, 0.1) / soil.elastic_stiffness;  // 1.4 mm
-    INFO("lift at " << lift_speed << " m/s: centre surface with " << with.free_surface(0, 0) << ", without " << without.free_surface(0, 0)
-                    << "; deepest " << deepest << ", p/Ke = " << spring_back);
+    INFO("lift at " << lift_speed << " m/s: centre surface with " << with.free_surface(0, 0) << ", without "
+                    << without.free_surface(0, 0) << "; deepest " << deepest << ", p/Ke = " << spring_back);
     CHECK(std::abs(with.free_surface(0, 0) - (-deepest + spring_back)) < 0.02 * spring_back);
-    if (lift_speed <= speed) CHECK(std::abs(without.free_surface(0, 0) - with.free_surface(0, 0)) < step_travel);  // followed the plate up
+    if (lift_speed <= speed)
+      CHECK(std::abs(without.free_surface(0, 0) - with.free_surface(0, 0)) < step_travel);  // followed the plate up
   }
 }
 
@@ -96,7 +97,8 @@ TEST_CASE("SCM damping adds R v_n to the pressure of a plate sinking at constant
   CHECK(rel(extra, soil.damping * speed * area) < 1e-6);
 }
 
-TEST_CASE("SCM refuses a set whose Bekker stiffness is negative for the contact's width, naming the width", "[lowfi][scm][hard]") {
+TEST_CASE("SCM refuses a set whose Bekker stiffness is negative for the contact's width, naming the width",
+          "[lowfi][scm][hard]") {
   lowfi::ScmSoil soil = test::scm_dry_sand();
   soil.Kc = -3e5;  // Kc/b + Kphi < 0 below b = 0.196 m: the 0.1 m plate has no strength
   auto t = plate_terrain(soil, {}, 0.1, 0.5, 0);

@@ -50,8 +50,8 @@ TEST_CASE("SCM wheel against Wong-Reece on dry sand, slips 0.1-0.5", "[lowfi][sc
   for (double slip : {0.1, 0.3, 0.5}) {
     const auto scm = rigs::run_wheel(site, w, slip, run_of(4.0));
     const auto wr = lowfi::wong_reece(soil, {w.radius, w.width}, scm.load, slip);
-    INFO("slip " << slip << ": DBP SCM " << scm.dbp << " (sd " << scm.dbp_sd << ") WR " << wr.dbp << "; torque SCM " << scm.torque
-                 << " WR " << wr.torque << "; sinkage SCM " << scm.sinkage << " WR " << wr.sinkage);
+    INFO("slip " << slip << ": DBP SCM " << scm.dbp << " (sd " << scm.dbp_sd << ") WR " << wr.dbp << "; torque SCM "
+                 << scm.torque << " WR " << wr.torque << "; sinkage SCM " << scm.sinkage << " WR " << wr.sinkage);
     check_sane(scm, w);
     CHECK(rel(scm.torque, wr.torque) < 0.2);
     // The two models differ in sinkage by their rear stress (above): SCM is shallower, by less than half.
@@ -85,9 +85,9 @@ TEST_CASE("SCM wheel matches the rigid-wheel integrals under SCM's own assumptio
     const auto scm = rigs::run_wheel(site, w, slip, run_of(4.0));
     const auto ref = lowfi::wong_reece(soil, {w.radius, w.width}, scm.load, slip, scm_like);
     const auto rim = lowfi::wong_reece(soil, {w.radius, w.width}, scm.load, slip, rim_shear);
-    INFO("slip " << slip << ": DBP SCM " << scm.dbp << " (sd " << scm.dbp_sd << ") integral " << ref.dbp << " (rim shear " << rim.dbp
-                 << "); torque SCM " << scm.torque << " integral " << ref.torque << " (rim shear " << rim.torque << "); sinkage SCM "
-                 << scm.sinkage << " integral " << ref.sinkage);
+    INFO("slip " << slip << ": DBP SCM " << scm.dbp << " (sd " << scm.dbp_sd << ") integral " << ref.dbp
+                 << " (rim shear " << rim.dbp << "); torque SCM " << scm.torque << " integral " << ref.torque
+                 << " (rim shear " << rim.torque << "); sinkage SCM " << scm.sinkage << " integral " << ref.sinkage);
     check_sane(scm, w);
     CHECK(rel(scm.sinkage, ref.sinkage) < 0.03);
     CHECK(rel(scm.torque, ref.torque) < 0.03);
@@ -98,7 +98,8 @@ TEST_CASE("SCM wheel matches the rigid-wheel integrals under SCM's own assumptio
   }
 }
 
-TEST_CASE("SCM wheel hard cases: slip 0.9 and skid -0.5 stay finite and have the right signs", "[lowfi][scm][wheel][hard]") {
+TEST_CASE("SCM wheel hard cases: slip 0.9 and skid -0.5 stay finite and have the right signs",
+          "[lowfi][scm][wheel][hard]") {
   const lowfi::ScmSoil soil = test::scm_dry_sand();
   const auto site = test::scm_site(soil, 0.01, 1e-3, {"damping"});
   const auto w = design_wheel();
@@ -106,7 +107,8 @@ TEST_CASE("SCM wheel hard cases: slip 0.9 and skid -0.5 stay finite and have the
   const auto skid = rigs::run_wheel(site, w, -0.5, run_of(3.0));
   check_sane(high, w);
   check_sane(skid, w);
-  INFO("slip 0.9: DBP " << high.dbp << " torque " << high.torque << "; slip -0.5: DBP " << skid.dbp << " torque " << skid.torque);
+  INFO("slip 0.9: DBP " << high.dbp << " torque " << high.torque << "; slip -0.5: DBP " << skid.dbp << " torque "
+                        << skid.torque);
   // Driven at high slip: forward pull and a driving torque; skidding: the soil brakes the wheel.
   CHECK(high.dbp > 0);
   CHECK(high.torque > 0);
@@ -118,7 +120,8 @@ TEST_CASE("SCM wheel hard cases: slip 0.9 and skid -0.5 stay finite and have the
   CHECK(high.torque / w.radius < 1.05 * bound);
 }
 
-TEST_CASE("SCM wheel at standstill under load: sinkage converges, no drift, the soil carries the weight", "[lowfi][scm][wheel][hard]") {
+TEST_CASE("SCM wheel at standstill under load: sinkage converges, no drift, the soil carries the weight",
+          "[lowfi][scm][wheel][hard]") {
   const lowfi::ScmSoil soil = test::scm_dry_sand();
   // Without damping a body resting on SCM's elastic soil bounces for ever (only plastic flow
   // dissipates): Chrono's default damping is on, as in every wheel run of the pipeline.
@@ -129,8 +132,9 @@ TEST_CASE("SCM wheel at standstill under load: sinkage converges, no drift, the 
   check_sane(r, w);
   const auto& first_half_end = r.series[r.series.size() / 2];
   const auto& last = r.series.back();
-  INFO("sinkage at " << first_half_end.t << " s: " << first_half_end.sinkage << ", at " << last.t << " s: " << last.sinkage
-                     << "; vertical " << last.vertical << " N against weight " << r.load << "; x drift " << last.x - r.series.front().x);
+  INFO("sinkage at " << first_half_end.t << " s: " << first_half_end.sinkage << ", at " << last.t
+                     << " s: " << last.sinkage << "; vertical " << last.vertical << " N against weight " << r.load
+                     << "; x drift " << last.x - r.series.front().x);
   CHECK(std::abs(last.sinkage - first_half_end.sinkage) < 1e-4);
   CHECK(r.sinkage_sd < 1e-4);
   CHECK(rel(last.vertical, r.load) < 0.02);
@@ -144,7 +148,10 @@ TEST_CASE("SCM wheel at standstill under load: sinkage converges, no drift, the 
 // energy from nowhere, and from slip 0.5 up the wheel hopped, off the ground two thirds of the time
 // with peaks of six times its weight (results/scm_vs_wong_reece/hop.md). Now the soil stays where
 // the wheel last held it and the wheel rolls; elastic unloading changes nothing for a rolling wheel.
-TEST_CASE("SCM wheel on stiff sand at high slip without damping rolls steadily: the soil gives back no energy it did not take", "[lowfi][scm][wheel][hard]") {
+TEST_CASE(
+    "SCM wheel on stiff sand at high slip without damping rolls steadily: the soil gives back no energy it did not "
+    "take",
+    "[lowfi][scm][wheel][hard]") {
   const lowfi::ScmSoil soil = test::scm_lete_sand();
   const auto plain = test::scm_site(soil, 0.01, 1e-3);
   const auto unloading = test::scm_site(soil, 0.01, 1e-3, {"elastic_unloading"});
@@ -153,9 +160,9 @@ TEST_CASE("SCM wheel on stiff sand at high slip without damping rolls steadily: 
     const auto r = rigs::run_wheel(plain, w, slip, run_of(4.0));
     const auto u = rigs::run_wheel(unloading, w, slip, run_of(4.0));
     check_sane(r, w);
-    INFO("slip " << slip << ": sinkage " << r.sinkage << " m (with elastic unloading " << u.sinkage << "), DBP " << r.dbp << " N ("
-                 << u.dbp << "), vertical force sd " << r.vertical_sd / r.load << " of the load, off the ground "
-                 << r.airborne_fraction << "; " << rigs::unsteady_reason(r));
+    INFO("slip " << slip << ": sinkage " << r.sinkage << " m (with elastic unloading " << u.sinkage << "), DBP "
+                 << r.dbp << " N (" << u.dbp << "), vertical force sd " << r.vertical_sd / r.load
+                 << " of the load, off the ground " << r.airborne_fraction << "; " << rigs::unsteady_reason(r));
     CHECK(rigs::unsteady_reason(r).empty());
     CHECK(r.airborne_fraction == 0);
     CHECK(r.vertical_sd < 0.1 * r.load);
@@ -170,7 +177,8 @@ TEST_CASE("SCM wheel on stiff sand at high slip without damping rolls steadily: 
 // of the load. From heavy clay (1.4 mm of sinkage) to snow (0.2 m). Without damping the three stiffest
 // (heavy and lean clay of WES, Michigan sandy loam at 23 %), which the wheel barely or never yields,
 // are unsteady (the clays in hops of about 1.5 mm): the rig warns (results/scm_vs_wong_reece/hop.md).
-TEST_CASE("SCM wheel with Chrono's damping rolls steadily on every reference soil, slips -0.5 to 0.9", "[lowfi][scm][wheel][hard]") {
+TEST_CASE("SCM wheel with Chrono's damping rolls steadily on every reference soil, slips -0.5 to 0.9",
+          "[lowfi][scm][wheel][hard]") {
   std::vector<std::pair<std::string, lowfi::ScmSoil>> soils;
   const auto wong = test::wong_soils();
   for (std::size_t i = 0; i < wong.rows(); ++i) {
@@ -194,9 +202,10 @@ TEST_CASE("SCM wheel with Chrono's damping rolls steadily on every reference soi
       const auto r = rigs::run_wheel(site, w, slip, run_of(3.0));
       double vertical = 0;
       for (const auto& x : r.series) vertical += x.t >= 1.5 ? x.vertical : 0.0;
-      vertical /= double(std::count_if(r.series.begin(), r.series.end(), [](const rigs::WheelSample& x) { return x.t >= 1.5; }));
-      INFO(name << ", slip " << slip << ": sinkage " << r.sinkage << " m, DBP " << r.dbp << " N, vertical force sd " << r.vertical_sd / r.load
-                << " of the load, mean " << vertical << " N; " << rigs::unsteady_reason(r));
+      vertical /= double(
+          std::count_if(r.series.begin(), r.series.end(), [](const rigs::WheelSample& x) { return x.t >= 1.5; }));
+      INFO(name << ", slip " << slip << ": sinkage " << r.sinkage << " m, DBP " << r.dbp << " N, vertical force sd "
+                << r.vertical_sd / r.load << " of the load, mean " << vertical << " N; " << rigs::unsteady_reason(r));
       check_sane(r, w);
       CHECK(rigs::unsteady_reason(r).empty());
       CHECK(r.airborne_fraction == 0);
@@ -225,10 +234,12 @@ TEST_CASE("The wheel rig calls a wheel that leaves the ground unsteady, and a ro
   CHECK_THAT(rigs::steadiness_summary("SCM", {r}), Contains("SCM: unsteady"));
   r.vertical_sd = 20;
   r.airborne_fraction = 0.005;
-  CHECK_THAT(rigs::steadiness_summary("SCM", {r}), Contains("every run steady") && Contains("0.5 %") && Contains("2.0 %"));
+  CHECK_THAT(rigs::steadiness_summary("SCM", {r}),
+             Contains("every run steady") && Contains("0.5 %") && Contains("2.0 %"));
 }
 
-TEST_CASE("SCM wheel on the Moon and on very soft soil: finite, in equilibrium, sinkage ordered", "[lowfi][scm][wheel][hard]") {
+TEST_CASE("SCM wheel on the Moon and on very soft soil: finite, in equilibrium, sinkage ordered",
+          "[lowfi][scm][wheel][hard]") {
   const lowfi::ScmSoil sand = test::scm_dry_sand();
   const auto w = design_wheel();
   lowfi::ScmSettings earth_settings;
@@ -259,7 +270,8 @@ TEST_CASE("SCM wheel on the Moon and on very soft soil: finite, in equilibrium, 
   }
 }
 
-TEST_CASE("SCM step-size sweep: converges below the stability limit and says so above it", "[lowfi][scm][wheel][hard]") {
+TEST_CASE("SCM step-size sweep: converges below the stability limit and says so above it",
+          "[lowfi][scm][wheel][hard]") {
   const lowfi::ScmSoil soil = test::scm_dry_sand();
   const auto w = design_wheel();
   double reference = 0;
@@ -282,7 +294,8 @@ TEST_CASE("SCM step-size sweep: converges below the stability limit and says so 
   CHECK(refused >= 1);
 }
 
-TEST_CASE("SCM coarse ray pass changes nothing: a grousered wheel gives the same wrench with and without it", "[lowfi][scm][wheel]") {
+TEST_CASE("SCM coarse ray pass changes nothing: a grousered wheel gives the same wrench with and without it",
+          "[lowfi][scm][wheel]") {
   const lowfi::ScmSoil soil = test::scm_dry_sand();
   auto w = design_wheel();
   w.grouser_count = 12;

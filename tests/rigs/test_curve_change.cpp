@@ -59,13 +59,15 @@ TEST_CASE("curve_change: a curve whose x falls back, or sizes that differ, is re
 TEST_CASE("mean_curve: realisations sampled at other x average to the law they scatter about", "[rigs][checks]") {
   // Three runs of one law, 6 % above, on it, and 6 % below, each sampled at its own x: the mean is
   // the law, read at the first's x over the range all three cover.
-  const Curve up = power_curve(100, 1e-3, 1.06e5), mid = power_curve(120, 0.85e-3, 1e5), down = power_curve(90, 1.05e-3, 0.94e5);
+  const Curve up = power_curve(100, 1e-3, 1.06e5), mid = power_curve(120, 0.85e-3, 1e5),
+              down = power_curve(90, 1.05e-3, 0.94e5);
   const Curve mean = rigs::mean_curve({up, mid, down});
   // up's x run from 1 to 100 mm; mid covers 0.85-102 mm and down 1.05-94.5 mm: 2 ... 94 mm lie in all three.
   CHECK(mean.x.size() == 93);
   CHECK(mean.x.front() == up.x[1]);
   // Within the error of reading x^0.8 linearly between samples a millimetre apart.
-  for (std::size_t i = 0; i < mean.x.size(); ++i) CHECK(mean.y[i] == Approx(1e5 * std::pow(mean.x[i], 0.8)).epsilon(3e-3));
+  for (std::size_t i = 0; i < mean.x.size(); ++i)
+    CHECK(mean.y[i] == Approx(1e5 * std::pow(mean.x[i], 0.8)).epsilon(3e-3));
   CHECK(rigs::curve_change(mean, mid) < 1e-3);
   // The scatter is the largest pair: up against down, 12 % of the larger.
   CHECK(rigs::realisation_scatter({up, mid, down}) == Approx(0.12 / 1.06).epsilon(3e-3));

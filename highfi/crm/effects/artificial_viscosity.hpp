@@ -30,8 +30,8 @@ struct ArtificialViscosity : CrmEffect {
 
   template <class T>
   TERRACAL_HD_INLINE static void pair_force(const SphConstants<T>& k, const Constants<T>& c, const Vec3<T>& vi, T rho_i,
-                                     const Vec3<T>& vj, T rho_j, const Vec3<T>& rij, T r2, const Vec3<T>& grad,
-                                     Vec3<T>& acc) {
+                                            const Vec3<T>& vj, T rho_j, const Vec3<T>& rij, T r2, const Vec3<T>& grad,
+                                            Vec3<T>& acc) {
     const T vr = dot(vi - vj, rij);
     if (vr < T(0)) {
       // Pi = -alpha c mu / rho_mean with mu = h vr / (r^2 + 0.01 h^2), in one division.

@@ -73,30 +73,31 @@ struct CrmEffect {
   // (per unit neighbour mass); the marker pass applies it too, so bodies feel its reaction.
   template <class T, class C>
   TERRACAL_HD_INLINE static void pair_force(const SphConstants<T>&, const C&, const Vec3<T>& /*vi*/, T /*rho_i*/,
-                                     const Vec3<T>& /*vj*/, T /*rho_j*/, const Vec3<T>& /*rij*/, T /*r2*/,
-                                     const Vec3<T>& /*grad*/, Vec3<T>& /*acc*/) {}
+                                            const Vec3<T>& /*vj*/, T /*rho_j*/, const Vec3<T>& /*rij*/, T /*r2*/,
+                                            const Vec3<T>& /*grad*/, Vec3<T>& /*acc*/) {}
   // A term of a pair of soil particles only, added to the neighbour's share c.
   template <class T, class C>
   TERRACAL_HD_INLINE static void pair_soil(const SphConstants<T>&, const C&, const SoilSelf<T>&, const Neighbour<T>&,
-                                    SoilSums<T>&) {}
+                                           SoilSums<T>&) {}
   // The effect's own sums (kListed): neighbour j at pj with velocity vj, its share vw = V_j W_ij of
   // the support and its record (zero for a marker).
   template <class T, class C, class Own>
   TERRACAL_HD_INLINE static void listed(const SphConstants<T>&, const C&, const Vec3<T>& /*xi*/, const Vec4<T>& /*pj*/,
-                                 const Vec4<T>& /*vj*/, T /*vw*/, const Vec4<T>& /*record_j*/, Own&) {}
+                                        const Vec4<T>& /*vj*/, T /*vw*/, const Vec4<T>& /*record_j*/, Own&) {}
   // Per particle, after the sums: adds to the update's acceleration and drift, and writes the new
   // record from the one the stage started from (base) and the one it is evaluated at (eval).
   template <class T, class C, class Own>
   TERRACAL_HD_INLINE static void finish(const SphConstants<T>&, const C&, const Own&, const ParticleUpdate<T>&,
-                                 const Vec4<T>& /*record_eval*/, const Vec4<T>& /*record_base*/,
-                                 Vec3<T>& /*acc*/, Vec3<T>& /*drift*/, Vec4<T>& /*record_out*/) {}
+                                        const Vec4<T>& /*record_eval*/, const Vec4<T>& /*record_base*/,
+                                        Vec3<T>& /*acc*/, Vec3<T>& /*drift*/, Vec4<T>& /*record_out*/) {}
   // The marker pass: a soil neighbour j of a marker (kernel value w, its record) ...
   template <class T, class C, class Own>
   TERRACAL_HD_INLINE static void marker_pair(const SphConstants<T>&, const C&, T /*w*/, const Vec4<T>& /*record_j*/,
-                                      Own&) {}
+                                             Own&) {}
   // ... and the marker's total: adds to f, the force of the soil on the marker per unit mass squared.
   template <class T, class C, class Own>
-  TERRACAL_HD_INLINE static void marker_finish(const SphConstants<T>&, const C&, T /*rho_m*/, const Own&, Vec3<T>& /*f*/) {}
+  TERRACAL_HD_INLINE static void marker_finish(const SphConstants<T>&, const C&, T /*rho_m*/, const Own&,
+                                               Vec3<T>& /*f*/) {}
 };
 
 }  // namespace terracal

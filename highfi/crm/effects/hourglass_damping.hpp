@@ -19,8 +19,8 @@ struct HourglassDamping : CrmEffect {
     double alpha = 0.4;
   };
   static constexpr auto settings() {
-    return std::array{real_setting("alpha", &Settings::alpha, Range{0, 2, true, false},
-                                   "Laplacian viscosity nu = alpha h c_s / 10")};
+    return std::array{
+        real_setting("alpha", &Settings::alpha, Range{0, 2, true, false}, "Laplacian viscosity nu = alpha h c_s / 10")};
   }
 
   template <class T>
@@ -34,7 +34,7 @@ struct HourglassDamping : CrmEffect {
 
   template <class T>
   TERRACAL_HD_INLINE static void pair_soil(const SphConstants<T>& k, const Constants<T>& c, const SoilSelf<T>& me,
-                                    const Neighbour<T>& nb, SoilSums<T>& share) {
+                                           const Neighbour<T>& nb, SoilSums<T>& share) {
     const T h = k.kernel.h;
     const T lap = c.nu * (me.inv_rho + nb.inv_rho) * nb.kv.f * nb.r2 / (nb.r2 + T(0.01) * h * h);
     share.acc -= lap * nb.dv;

@@ -62,8 +62,8 @@ struct HourglassStiffness : CrmEffect {
   };
   // Neighbour n's share, from vw = V_n W_in and its record (u_n, 1/S_n), zero for a marker.
   template <class T>
-  TERRACAL_HD_INLINE static Sums<T> share(const SphConstants<T>& k, const Vec3<T>& xi, const Vec4<T>& pn, const Vec4<T>& vn,
-                                   T vw, const Vec4<T>& hg_n) {
+  TERRACAL_HD_INLINE static Sums<T> share(const SphConstants<T>& k, const Vec3<T>& xi, const Vec4<T>& pn,
+                                          const Vec4<T>& vn, T vw, const Vec4<T>& hg_n) {
     Sums<T> c;
     c.ws = vw;
     c.wv = vw * vn.xyz();
@@ -72,8 +72,9 @@ struct HourglassStiffness : CrmEffect {
     return c;
   }
   template <class T>
-  TERRACAL_HD_INLINE static void listed(const SphConstants<T>& k, const Constants<T>&, const Vec3<T>& xi, const Vec4<T>& pj,
-                                 const Vec4<T>& vj, T vw, const Vec4<T>& record_j, Sums<T>& sums) {
+  TERRACAL_HD_INLINE static void listed(const SphConstants<T>& k, const Constants<T>&, const Vec3<T>& xi,
+                                        const Vec4<T>& pj, const Vec4<T>& vj, T vw, const Vec4<T>& record_j,
+                                        Sums<T>& sums) {
     sums += share(k, xi, pj, vj, vw, record_j);
   }
 
@@ -81,8 +82,8 @@ struct HourglassStiffness : CrmEffect {
   // keeps none.
   template <class T>
   TERRACAL_HD_INLINE static void finish(const SphConstants<T>& k, const Constants<T>& c, const Sums<T>& hs,
-                                 const ParticleUpdate<T>& p, const Vec4<T>& record_eval, const Vec4<T>& record_base,
-                                 Vec3<T>& acc, Vec3<T>&, Vec4<T>& record_out) {
+                                        const ParticleUpdate<T>& p, const Vec4<T>& record_eval,
+                                        const Vec4<T>& record_base, Vec3<T>& acc, Vec3<T>&, Vec4<T>& record_out) {
     const SoilSelf<T>& me = p.me;
     acc += c.k * ((k.mass / me.rho) * hs.react - record_eval.xyz());
     if (p.sum.support >= k.free_surface_support && hs.ws > T(0)) {
@@ -109,12 +110,12 @@ struct HourglassStiffness : CrmEffect {
   };
   template <class T>
   TERRACAL_HD_INLINE static void marker_pair(const SphConstants<T>&, const Constants<T>&, T w, const Vec4<T>& record_j,
-                                      MarkerSums<T>& s) {
+                                             MarkerSums<T>& s) {
     s.react += (w * record_j.w) * record_j.xyz();
   }
   template <class T>
-  TERRACAL_HD_INLINE static void marker_finish(const SphConstants<T>&, const Constants<T>& c, T rho_m, const MarkerSums<T>& s,
-                                        Vec3<T>& f) {
+  TERRACAL_HD_INLINE static void marker_finish(const SphConstants<T>&, const Constants<T>& c, T rho_m,
+                                               const MarkerSums<T>& s, Vec3<T>& f) {
     f += (c.k / rho_m) * s.react;
   }
 };

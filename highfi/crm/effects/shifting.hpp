@@ -29,8 +29,9 @@ struct Shifting : CrmEffect {
   }
 
   template <class T, class Own>
-  TERRACAL_HD_INLINE static void finish(const SphConstants<T>&, const Constants<T>& c, const Own&, const ParticleUpdate<T>& u,
-                                 const Vec4<T>&, const Vec4<T>&, Vec3<T>&, Vec3<T>& drift, Vec4<T>&) {
+  TERRACAL_HD_INLINE static void finish(const SphConstants<T>&, const Constants<T>& c, const Own&,
+                                        const ParticleUpdate<T>& u, const Vec4<T>&, const Vec4<T>&, Vec3<T>&,
+                                        Vec3<T>& drift, Vec4<T>&) {
     drift += c.xsph * u.sum.drift;
   }
 };

@@ -32,7 +32,8 @@ inline int parity(const Vec4<double>& p) { return (lattice_index(p.x) + lattice_
 // Particles at least `margin` from the walls, the floor and the free surface.
 inline bool interior(const Vec4<double>& p, double margin) {
   const double size = kCells * kD0;
-  return p.x > margin && p.x < size - margin && p.y > margin && p.y < size - margin && p.z > margin && p.z < size - margin;
+  return p.x > margin && p.x < size - margin && p.y > margin && p.y < size - margin && p.z > margin &&
+         p.z < size - margin;
 }
 
 // Runs `steps` steps from the lattice with velocities v(position); returns the soil.

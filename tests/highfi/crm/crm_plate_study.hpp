@@ -13,8 +13,8 @@
 namespace terracal::test {
 
 struct PlateBin {
-  double side = 0.4, depth = 0.15;  // bin side (x = y) and soil depth [m]
-  double radius = 0.1, speed = 0.1; // plate radius [m] and push speed [m/s]
+  double side = 0.4, depth = 0.15;   // bin side (x = y) and soil depth [m]
+  double radius = 0.1, speed = 0.1;  // plate radius [m] and push speed [m/s]
 };
 
 // The scene at spacing d0; the plate's bottom face starts on the soil surface.
@@ -50,7 +50,11 @@ inline PlateForce plate_force_at_2cm(double d0, const PlateBin& b, CrmDevice dev
     if (sink > 0.025) break;
     if (sink < 0.015) continue;
     const double x = sink - 0.02, y = s.wrenches()[0].force.z;
-    n += 1; sx += x; sy += y; sxx += x * x; sxy += x * y;
+    n += 1;
+    sx += x;
+    sy += y;
+    sxx += x * x;
+    sxy += x * y;
   }
   const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
   PlateForce r;

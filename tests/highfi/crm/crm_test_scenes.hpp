@@ -12,8 +12,16 @@ namespace terracal::test {
 
 // A bin of `cells` x `cells` spacings filled `layers` deep with the bevameter study soil.
 inline nlohmann::json bed_scene_json(double d0, int cells, int layers, double settle = 0.1) {
-  return {{"soil", {{"density", 1700}, {"young_modulus", 1e6}, {"poisson_ratio", 0.3}, {"mu_s", 0.7}, {"mu_2", 0.7},
-                    {"I0", 0.03}, {"grain_diameter", 0.005}, {"cohesion", 0}, {"gravity", {0, 0, -9.81}}}},
+  return {{"soil",
+           {{"density", 1700},
+            {"young_modulus", 1e6},
+            {"poisson_ratio", 0.3},
+            {"mu_s", 0.7},
+            {"mu_2", 0.7},
+            {"I0", 0.03},
+            {"grain_diameter", 0.005},
+            {"cohesion", 0},
+            {"gravity", {0, 0, -9.81}}}},
           {"bin", {{"size", {cells * d0, cells * d0, (layers + 4) * d0}}, {"fill_height", layers * d0}}},
           {"resolution", {{"spacing", d0}, {"h_over_d0", 1.2}}},
           {"effects", {"artificial_viscosity"}},

@@ -20,7 +20,8 @@ void check_convergence(const std::vector<double>& spacings, const test::PlateBin
   for (double d0 : spacings) f.push_back(test::plate_force_at_2cm(d0, bin, device));
   const double d01 = std::abs(f[1].force - f[0].force), d12 = std::abs(f[2].force - f[1].force);
   const double rel = d12 / std::abs(f[2].force);
-  std::printf("plate convergence: |F2-F1| = %.2f N, |F3-F2| = %.2f N, finest two differ by %.1f %%\n", d01, d12, 100 * rel);
+  std::printf("plate convergence: |F2-F1| = %.2f N, |F3-F2| = %.2f N, finest two differ by %.1f %%\n", d01, d12,
+              100 * rel);
   for (const auto& x : f) CHECK(x.force > 0);
   CHECK(d12 < d01);
   CHECK(rel < 0.10);

@@ -61,8 +61,8 @@ TEST_CASE("CRM: soil momentum changes by the impulse of gravity and the walls", 
   const SoilStats after = s.stats();
   const Vec3<double> dp = after.momentum - before.momentum;
   const double err = norm(dp - impulse) / scale;
-  std::printf("momentum: dp = (%.6g, %.6g, %.6g), impulse = (%.6g, %.6g, %.6g), relative mismatch %.2e\n", dp.x, dp.y, dp.z,
-              impulse.x, impulse.y, impulse.z, err);
+  std::printf("momentum: dp = (%.6g, %.6g, %.6g), impulse = (%.6g, %.6g, %.6g), relative mismatch %.2e\n", dp.x, dp.y,
+              dp.z, impulse.x, impulse.y, impulse.z, err);
   CHECK(after.lost == 0);
   // Exact up to rounding: float64 on the CPU; float32 velocities on the GPU round each update.
   CHECK(err < (test::validation_device() == CrmDevice::kCpu ? 1e-9 : 1e-5));

@@ -18,7 +18,8 @@ namespace {
 nlohmann::json plate_scene(const std::string& precision) {
   nlohmann::json j = test::bed_scene_json(0.01, 14, 8);
   j["resolution"]["cpu_precision"] = precision;
-  j["effects"] = {"artificial_viscosity", "shifting", "hourglass_damping", "hourglass_stiffness"};  // every effect's kernel path
+  j["effects"] = {"artificial_viscosity", "shifting", "hourglass_damping",
+                  "hourglass_stiffness"};  // every effect's kernel path
   j["bodies"] = {{{"name", "plate"},
                   {"shape", {{"type", "disc"}, {"radius", 0.04}, {"thickness", 0.02}}},
                   {"position", {0.07, 0.07, 0.08 + 0.012}},

@@ -30,7 +30,8 @@ Outcome run(const nlohmann::json& j, const std::string& name, long steps = kStep
   HostSoil bed = initial_bed(sc);
   for (std::size_t i = 0; i < bed.size(); ++i) {
     bed.s0[i] = {0, 0, 0, 0};
-    bed.vel[i] = {kick.x + stir * std::sin(12.9898 * i), kick.y + stir * std::sin(78.233 * i), kick.z + stir * std::sin(37.719 * i), 0};
+    bed.vel[i] = {kick.x + stir * std::sin(12.9898 * i), kick.y + stir * std::sin(78.233 * i),
+                  kick.z + stir * std::sin(37.719 * i), 0};
   }
   keep = std::make_unique<CrmSolver>(sc, test::validation_device(), &bed);
   for (long k = 0; k < steps; ++k) keep->step();
@@ -43,9 +44,10 @@ Outcome run(const nlohmann::json& j, const std::string& name, long steps = kStep
       o.max_x = std::max(o.max_x, s.pos[i].x);
       o.top = std::max(o.top, s.pos[i].z);
     }
-  std::printf("%-28s %ld steps of %.3g s: nonfinite %ld, lost %ld, max speed %.3e m/s, KE %.3e J, front x %.4f, top %.4f\n",
-              name.c_str(), steps, keep->time_step(), o.stats.nonfinite, o.stats.lost, o.stats.max_speed,
-              o.stats.kinetic_energy, o.max_x, o.top);
+  std::printf(
+      "%-28s %ld steps of %.3g s: nonfinite %ld, lost %ld, max speed %.3e m/s, KE %.3e J, front x %.4f, top %.4f\n",
+      name.c_str(), steps, keep->time_step(), o.stats.nonfinite, o.stats.lost, o.stats.max_speed,
+      o.stats.kinetic_energy, o.max_x, o.top);
   return o;
 }
 
@@ -87,7 +89,7 @@ TEST_CASE("CRM hard case: a cohesive block stands, a dry one slumps", "[highfi][
   wet["effects"] = {"artificial_viscosity", "cohesion"};
   const Outcome c = run(wet, "cohesive block c = 5 kPa", kSteps, 0.0);
   CHECK(c.stats.nonfinite == 0);
-  CHECK(c.max_x < 0.05 + 0.01);   // the face has not moved by more than half a spacing beyond its particles
+  CHECK(c.max_x < 0.05 + 0.01);  // the face has not moved by more than half a spacing beyond its particles
   CHECK(c.top > 0.06 - 0.01);
   CHECK(c.stats.max_speed < 1e-2);
   // The control: without cohesion the same block must slump (so the check above can fail).

@@ -63,8 +63,10 @@ TEST_CASE("CRM: hourglass_damping damps the checkerboard mode at the rate of the
   const double kept = checkerboard_amplitude(run(off, mode, steps), margin) / kAmplitude;
   const double damped = checkerboard_amplitude(run(on, mode, steps), margin) / kAmplitude;
   const double expected = std::exp(-rate * t);
-  std::printf("checkerboard mode after %.4g s: %.4f of its amplitude without the effect, %.4f with (predicted %.4f, "
-              "rate %.1f 1/s)\n", t, kept, damped, expected, rate);
+  std::printf(
+      "checkerboard mode after %.4g s: %.4f of its amplitude without the effect, %.4f with (predicted %.4f, "
+      "rate %.1f 1/s)\n",
+      t, kept, damped, expected, rate);
   CHECK(kept == Approx(1).margin(0.02));
   CHECK(expected < 0.7);  // the check below is not trivially met
   CHECK(damped == Approx(expected).epsilon(0.03));
@@ -97,8 +99,10 @@ TEST_CASE("CRM: hourglass_damping leaves a linear velocity field alone", "[highf
   }
   for (std::size_t i = 0; i < c.size(); ++i)
     if (interior(c.pos[i], margin)) mode_change = std::max(mode_change, std::abs(c.vel[i].z - d.vel[i].z));
-  std::printf("one step, %ld interior particles: the effect changes a linear field (speeds up to %.3g m/s) by %.3g m/s, "
-              "the checkerboard (0.01 m/s) by %.3g m/s\n", n, speed, linear_change, mode_change);
+  std::printf(
+      "one step, %ld interior particles: the effect changes a linear field (speeds up to %.3g m/s) by %.3g m/s, "
+      "the checkerboard (0.01 m/s) by %.3g m/s\n",
+      n, speed, linear_change, mode_change);
   REQUIRE(n > 100);
   // A damping that did not vanish on linear fields would change them by about as much as the mode.
   CHECK(mode_change > 1e-4);

@@ -68,9 +68,10 @@ TEST_CASE("CRM: hourglass_stiffness makes the checkerboard mode oscillate at its
   const double kept = checkerboard_amplitude(run(off, mode, 2 * quarter), margin) / kAmplitude;
   const double at_quarter = checkerboard_amplitude(run(on, mode, quarter), margin) / kAmplitude;
   const double at_half = checkerboard_amplitude(run(on, mode, 2 * quarter), margin) / kAmplitude;
-  std::printf("checkerboard mode: omega %.1f rad/s predicted; after %.4g s %.4f of its velocity (cos %.4f), after %.4g s "
-              "%.4f (cos %.4f); without the effect %.4f\n", omega, t, at_quarter, std::cos(omega * t), 2 * t, at_half,
-              std::cos(2 * omega * t), kept);
+  std::printf(
+      "checkerboard mode: omega %.1f rad/s predicted; after %.4g s %.4f of its velocity (cos %.4f), after %.4g s "
+      "%.4f (cos %.4f); without the effect %.4f\n",
+      omega, t, at_quarter, std::cos(omega * t), 2 * t, at_half, std::cos(2 * omega * t), kept);
   CHECK(kept == Approx(1).margin(0.02));  // without the effect it is a zero-energy mode
   CHECK(at_quarter == Approx(std::cos(omega * t)).margin(0.05));
   CHECK(at_half == Approx(std::cos(2 * omega * t)).margin(0.05));
@@ -95,12 +96,17 @@ TEST_CASE("CRM: hourglass_stiffness leaves no hourglass displacement under a lin
   for (std::size_t i = 0; i < a.size(); ++i)
     if (interior(a.pos[i], margin)) {
       ++n;
-      linear_u = std::max(linear_u, std::sqrt(dot(a.record<HourglassStiffness>()[i].xyz(), a.record<HourglassStiffness>()[i].xyz())));
+      linear_u = std::max(
+          linear_u, std::sqrt(dot(a.record<HourglassStiffness>()[i].xyz(), a.record<HourglassStiffness>()[i].xyz())));
     }
   for (std::size_t i = 0; i < b.size(); ++i)
-    if (interior(b.pos[i], margin)) mode_u = std::max(mode_u, std::sqrt(dot(b.record<HourglassStiffness>()[i].xyz(), b.record<HourglassStiffness>()[i].xyz())));
-  std::printf("after %d steps, %ld interior particles: hourglass displacement %.3g m under a linear field, %.3g m under "
-              "the checkerboard (0.01 m/s)\n", steps, n, linear_u, mode_u);
+    if (interior(b.pos[i], margin))
+      mode_u = std::max(
+          mode_u, std::sqrt(dot(b.record<HourglassStiffness>()[i].xyz(), b.record<HourglassStiffness>()[i].xyz())));
+  std::printf(
+      "after %d steps, %ld interior particles: hourglass displacement %.3g m under a linear field, %.3g m under "
+      "the checkerboard (0.01 m/s)\n",
+      steps, n, linear_u, mode_u);
   REQUIRE(n > 100);
   CHECK(mode_u > 1e-5);
   CHECK(linear_u < 1e-4 * mode_u);  // round-off: the GPU runs in float32
@@ -121,9 +127,11 @@ std::pair<double, double> held_strip(bool stiffness) {
   j["bodies"] = {{{"name", "strip"},
                   {"shape", {{"type", "box"}, {"size", {0.2, 0.2, 0.06}}}},
                   {"position", {0.4, 0.1, 0.3 + 0.03 + 0.005}},
-                  {"motion", {{"type", "prescribed"},
-                              {"schedule", {{{"duration", push}, {"linear_velocity", {0, 0, -0.1}}},
-                                            {{"duration", hold}, {"linear_velocity", {0, 0, 0}}}}}}}}};
+                  {"motion",
+                   {{"type", "prescribed"},
+                    {"schedule",
+                     {{{"duration", push}, {"linear_velocity", {0, 0, -0.1}}},
+                      {{"duration", hold}, {"linear_velocity", {0, 0, 0}}}}}}}}};
   const CrmScene sc = test::scene_from(j);
   const HostSoil bed = settled_bed(sc, test::validation_device(), {});
   CrmSolver s(sc, test::validation_device(), &bed);
@@ -141,8 +149,10 @@ std::pair<double, double> held_strip(bool stiffness) {
     return sum / n;
   };
   const double pushed = mean_force(push), held = mean_force(push + hold);
-  std::printf("strip footing, hourglass_stiffness %s: %.0f N at the end of the push, %.0f N after %.1f s held (%.0f %%), "
-              "%ld particles lost\n", stiffness ? "on" : "off", pushed, held, hold, 100 * held / pushed, s.stats().lost);
+  std::printf(
+      "strip footing, hourglass_stiffness %s: %.0f N at the end of the push, %.0f N after %.1f s held (%.0f %%), "
+      "%ld particles lost\n",
+      stiffness ? "on" : "off", pushed, held, hold, 100 * held / pushed, s.stats().lost);
   return {pushed, held};
 }
 
@@ -157,8 +167,8 @@ TEST_CASE("CRM: with hourglass_stiffness a held strip footing keeps its force", 
 }
 
 TEST_CASE("CRM: hourglass_stiffness is validated, keyed and checkpointed", "[highfi][crm]") {
-  test::lattice_mode::check_effect_setting<HourglassStiffness>([](bool on, double v) { return unloaded_bed(on, v); },
-                                                               0.03, 0.05, {0.0, -1.0, 0.2}, "hourglass_stiffness.beta");
+  test::lattice_mode::check_effect_setting<HourglassStiffness>(
+      [](bool on, double v) { return unloaded_bed(on, v); }, 0.03, 0.05, {0.0, -1.0, 0.2}, "hourglass_stiffness.beta");
 
   // The hourglass displacement is part of the state: a checkpoint carries it.
   const CrmScene on = test::scene_from(unloaded_bed(true, 0.03));

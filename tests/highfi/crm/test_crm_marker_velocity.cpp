@@ -39,20 +39,20 @@ void check_normal(const Vec4<double>& got, const Vec4<double>& want) {
 TEST_CASE("CRM markers: each marker's normal points to the soil, with its depth below the wall", "[highfi][crm]") {
   CrmBin bin;
   bin.size = {1.0, 0.8, 0.5};
-  check_normal(bin_marker_normal(bin, {0.5, 0.4, -0.025}), {0, 0, 1, 0.025});        // floor
-  check_normal(bin_marker_normal(bin, {-0.075, 0.4, 0.2}), {1, 0, 0, 0.075});        // wall x = 0
-  check_normal(bin_marker_normal(bin, {0.5, 0.825, 0.2}), {0, -1, 0, 0.025});        // wall y = size.y
-  check_normal(bin_marker_normal(bin, {-0.03, -0.04, 0.2}), {0.6, 0.8, 0, 0.05});    // vertical edge
-  CHECK(bin_marker_normal(bin, {0.5, 0.4, 0.1}).w == 0);                             // in the soil: none
+  check_normal(bin_marker_normal(bin, {0.5, 0.4, -0.025}), {0, 0, 1, 0.025});      // floor
+  check_normal(bin_marker_normal(bin, {-0.075, 0.4, 0.2}), {1, 0, 0, 0.075});      // wall x = 0
+  check_normal(bin_marker_normal(bin, {0.5, 0.825, 0.2}), {0, -1, 0, 0.025});      // wall y = size.y
+  check_normal(bin_marker_normal(bin, {-0.03, -0.04, 0.2}), {0.6, 0.8, 0, 0.05});  // vertical edge
+  CHECK(bin_marker_normal(bin, {0.5, 0.4, 0.1}).w == 0);                           // in the soil: none
 
   BodyShape disc;
   disc.type = ShapeType::kDisc;
   disc.radius = 0.1;
-  disc.width = 0.04;  // thickness, along body z
+  disc.width = 0.04;                                                                      // thickness, along body z
   check_normal(body_marker_normal(disc, {0.02, 0.01, -0.015}, 0.01), {0, 0, -1, 0.005});  // bottom face
   check_normal(body_marker_normal(disc, {0, 0.094, 0.0}, 0.01), {0, 1, 0, 0.006});        // rim
-  CHECK(body_marker_normal(disc, {0.0, 0.0, 0.03}, 0.01).w == 0);                          // outside
-  check_normal(body_marker_normal(disc, {0.0, 0.0, 0.0}, 0.01), {0, 0, 0, 0.02});          // mid-plane: depth only
+  CHECK(body_marker_normal(disc, {0.0, 0.0, 0.03}, 0.01).w == 0);                         // outside
+  check_normal(body_marker_normal(disc, {0.0, 0.0, 0.0}, 0.01), {0, 0, 0, 0.02});         // mid-plane: depth only
 
   BodyShape wheel;
   wheel.type = ShapeType::kCylinder;
@@ -110,15 +110,17 @@ ShearProfile shear_profile(const char* rule) {
   s.step();
   const HostSoil after = s.soil();
   ShearProfile p{layer_shear_stress(after, 0), layer_shear_stress(after, 1), layer_shear_stress(after, 5)};
-  std::printf("marker velocity %-12s sigma_xz after one step: layer 0 %.4f, layer 1 %.4f, interior %.4f Pa "
-              "(ratios %.3f, %.3f)\n",
-              rule, p.first, p.second, p.interior, p.first / p.interior, p.second / p.interior);
+  std::printf(
+      "marker velocity %-12s sigma_xz after one step: layer 0 %.4f, layer 1 %.4f, interior %.4f Pa "
+      "(ratios %.3f, %.3f)\n",
+      rule, p.first, p.second, p.interior, p.first / p.interior, p.second / p.interior);
   return p;
 }
 
 }  // namespace
 
-TEST_CASE("CRM markers: the mirror image gives the soil at the floor the shear rate of a linear flow", "[highfi][crm]") {
+TEST_CASE("CRM markers: the mirror image gives the soil at the floor the shear rate of a linear flow",
+          "[highfi][crm]") {
   const ShearProfile image = shear_profile("mirror_image");
   const ShearProfile adami = shear_profile("mirror");
   // The interior sees G gamma dt under either rule.
@@ -171,8 +173,8 @@ double top_layer_compression(const char* rule, int steps) {
 
 TEST_CASE("CRM markers: a plate does not compress soil it has not reached under the contact rule", "[highfi][crm]") {
   const double adami = top_layer_compression("mirror", 100), contact = top_layer_compression("mirror_contact", 100);
-  CHECK(adami > 1e-4);                   // Adami's mirror compresses across the gap
-  CHECK(std::abs(contact) < 1e-6);       // the contact rule does not
+  CHECK(adami > 1e-4);              // Adami's mirror compresses across the gap
+  CHECK(std::abs(contact) < 1e-6);  // the contact rule does not
 }
 
 TEST_CASE("CRM markers: marker_velocity is validated and keyed", "[highfi][crm]") {

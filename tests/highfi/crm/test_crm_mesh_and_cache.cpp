@@ -33,7 +33,8 @@ fs::path write_cube_obj(const fs::path& dir, double a) {
   const fs::path f = dir / "cube.obj";
   std::ofstream o(f);
   o << "# cube\n";
-  for (int k = 0; k < 8; ++k) o << "v " << ((k & 1) ? a : -a) << ' ' << ((k & 2) ? a : -a) << ' ' << ((k & 4) ? a : -a) << '\n';
+  for (int k = 0; k < 8; ++k)
+    o << "v " << ((k & 1) ? a : -a) << ' ' << ((k & 2) ? a : -a) << ' ' << ((k & 4) ? a : -a) << '\n';
   o << "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
   return f;
 }
@@ -57,7 +58,8 @@ TEST_CASE("CRM: a box given as an OBJ mesh acts like the built-in box", "[highfi
   const fs::path obj = write_cube_obj(dir, 0.03);
   const CrmScene sc = test::scene_from([&] {
     nlohmann::json j = test::bed_scene_json(0.01, 14, 8);
-    j["bodies"] = {{{"name", "m"}, {"shape", {{"type", "mesh"}, {"file", obj.string()}}}, {"position", {0.07, 0.07, 0.15}}}};
+    j["bodies"] = {
+        {{"name", "m"}, {"shape", {{"type", "mesh"}, {"file", obj.string()}}}, {"position", {0.07, 0.07, 0.15}}}};
     return j;
   }());
   BodyShape box;
@@ -93,8 +95,8 @@ TEST_CASE("CRM: a settled bed is cached per soil and read back exactly", "[highf
   REQUIRE(again.size() == first.size());
   bool same = true;
   for (std::size_t i = 0; i < first.size(); ++i)
-    same = same && first.pos[i].x == again.pos[i].x && first.pos[i].z == again.pos[i].z && first.s0[i].z == again.s0[i].z &&
-           first.ids[i] == again.ids[i];
+    same = same && first.pos[i].x == again.pos[i].x && first.pos[i].z == again.pos[i].z &&
+           first.s0[i].z == again.s0[i].z && first.ids[i] == again.ids[i];
   CHECK(same);
   // Settling changed the bed: the cache holds a settled state, not the initial lattice.
   const HostSoil lattice = initial_bed(sc);

@@ -36,9 +36,10 @@ TEST_CASE("CRM: a prescribed body follows a velocity schedule", "[highfi][crm]")
   const double z_unloaded = s.bodies()[0].position.z, f_unloaded = s.wrenches()[0].force.z;
   for (int k = 0; k < 50; ++k) s.step();
   const double z_held = s.bodies()[0].position.z;
-  std::printf("schedule: plate at %.5f m (loaded, expected %.5f), %.5f m (unloaded, expected %.5f), held at %.5f m; "
-              "force %.2f N loaded (peak %.2f N), %.2f N after pulling back 3 mm\n",
-              z_loaded, z0 - 0.02, z_unloaded, z0 - 0.017, z_held, f_loaded, peak, f_unloaded);
+  std::printf(
+      "schedule: plate at %.5f m (loaded, expected %.5f), %.5f m (unloaded, expected %.5f), held at %.5f m; "
+      "force %.2f N loaded (peak %.2f N), %.2f N after pulling back 3 mm\n",
+      z_loaded, z0 - 0.02, z_unloaded, z0 - 0.017, z_held, f_loaded, peak, f_unloaded);
   // Within one step's travel of the exact integral (the switch falls inside a step).
   const double one_step = 0.3 * s.time_step();
   CHECK(std::abs(z_loaded - (z0 - 0.02)) < one_step);

@@ -25,7 +25,8 @@ TEST_CASE("CRM: the jittered start moves particles by at most the amplitude, rep
   double largest = 0, mean_z = 0;
   bool same = true;
   for (std::size_t i = 0; i < a.size(); ++i) {
-    const double dx = a.pos[i].x - lattice.pos[i].x, dy = a.pos[i].y - lattice.pos[i].y, dz = a.pos[i].z - lattice.pos[i].z;
+    const double dx = a.pos[i].x - lattice.pos[i].x, dy = a.pos[i].y - lattice.pos[i].y,
+                 dz = a.pos[i].z - lattice.pos[i].z;
     largest = std::max({largest, std::abs(dx), std::abs(dy), std::abs(dz)});
     mean_z += dz / double(a.size());
     same = same && a.pos[i].x == b.pos[i].x && a.pos[i].z == b.pos[i].z;
@@ -81,8 +82,8 @@ TEST_CASE("CRM: the motion a jittered start sets going dies out", "[highfi][crm]
   const double late = rms_speed();
   REQUIRE(solver.stats().nonfinite == 0);
   INFO("rms speed " << early << " m/s at 0.05 s, " << late << " m/s at 0.6 s");
-  CHECK(early > 0.005);         // the jitter sets the bed moving (a lattice bed: under 0.001 m/s)
-  CHECK(late < 0.1 * early);    // and that motion dies out
+  CHECK(early > 0.005);       // the jitter sets the bed moving (a lattice bed: under 0.001 m/s)
+  CHECK(late < 0.1 * early);  // and that motion dies out
   CHECK(late < 0.003);
   // It comes to rest at its height: the surface within a third of a spacing of the fill height.
   CHECK(std::abs(bed_surface_height(solver.soil(), sc) - 16 * d0) < d0 / 3);

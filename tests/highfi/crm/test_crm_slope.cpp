@@ -39,7 +39,11 @@ double surface_angle(const HostSoil& soil, int* fitted) {
     z /= kColumnsY;
     if (z < 0.25 * kHeight || z > 0.75 * kHeight) continue;
     const double x = (ix + 0.5) * kD0;
-    n += 1; sx += x; sz += z; sxx += x * x; sxz += x * z;
+    n += 1;
+    sx += x;
+    sz += z;
+    sxx += x * x;
+    sxz += x * z;
   }
   *fitted = int(n);
   if (n < 3) return 0;
@@ -78,10 +82,11 @@ Slope slump(double mu_s) {
   r.kinetic_energy = st.kinetic_energy;
   r.lost = st.lost;
   r.nonfinite = st.nonfinite;
-  std::printf("slump mu_s=%.2f: surface slope %.1f deg (%.1f deg at 0.9 s) against atan(mu_s) = %.1f deg, %d columns "
-              "fitted; kinetic energy %.3g J (peak %.3g J)\n",
-              mu_s, r.angle_deg, r.earlier_angle_deg, std::atan(mu_s) * 180.0 / M_PI, r.fitted, r.kinetic_energy,
-              r.peak_energy);
+  std::printf(
+      "slump mu_s=%.2f: surface slope %.1f deg (%.1f deg at 0.9 s) against atan(mu_s) = %.1f deg, %d columns "
+      "fitted; kinetic energy %.3g J (peak %.3g J)\n",
+      mu_s, r.angle_deg, r.earlier_angle_deg, std::atan(mu_s) * 180.0 / M_PI, r.fitted, r.kinetic_energy,
+      r.peak_energy);
   return r;
 }
 
