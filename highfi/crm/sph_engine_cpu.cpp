@@ -66,17 +66,8 @@ struct CpuBackend {
     std::fill(out, out + 6 * bodies, 0.0);
     for (long m = 0; m < nm; ++m) {
       const int b = int(mk.local[m].w);
-      const Vec3<double> f{double(mk.force[m].x), double(mk.force[m].y), double(mk.force[m].z)};
       const Vec3<double> c{double(poses[b].center.x), double(poses[b].center.y), double(poses[b].center.z)};
-      const Vec3<double> x{double(mk.pos[m].x), double(mk.pos[m].y), double(mk.pos[m].z)};
-      const Vec3<double> t = cross(x - c, f);
-      double* o = out + 6 * b;
-      o[0] += f.x;
-      o[1] += f.y;
-      o[2] += f.z;
-      o[3] += t.x;
-      o[4] += t.y;
-      o[5] += t.z;
+      add_marker_wrench(mk, m, c, out + 6 * b);
     }
   }
 

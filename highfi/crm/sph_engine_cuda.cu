@@ -81,15 +81,7 @@ __global__ void wrench_kernel(MarkerArrays<T> mk, long nm, const BodyPose<T>* po
     const Vec3<double> c{double(poses[b].center.x), double(poses[b].center.y), double(poses[b].center.z)};
     for (long m = blockIdx.x * long(blockDim.x) + threadIdx.x; m < nm; m += long(blockDim.x) * gridDim.x) {
       if (int(mk.local[m].w) != b) continue;
-      const Vec4<T> f4 = mk.force[m], x4 = mk.pos[m];
-      const Vec3<double> f{double(f4.x), double(f4.y), double(f4.z)};
-      const Vec3<double> t = cross(Vec3<double>{double(x4.x), double(x4.y), double(x4.z)} - c, f);
-      acc[0] += f.x;
-      acc[1] += f.y;
-      acc[2] += f.z;
-      acc[3] += t.x;
-      acc[4] += t.y;
-      acc[5] += t.z;
+      add_marker_wrench(mk, m, c, acc);
     }
     for (int q = 0; q < 6; ++q) {
       const double s = warp_sum(acc[q]);

@@ -113,6 +113,21 @@ struct BodyPose {
   int moving = 0;
 };
 
+// Adds marker m's force and its torque about `center` to acc = (force, torque), in double: the body
+// wrench both backends sum (the CPU in marker order, the GPU in per-thread shares).
+template <typename T>
+TERRACAL_HD inline void add_marker_wrench(const MarkerArrays<T>& mk, long m, const Vec3<double>& center, double* acc) {
+  const Vec4<T> f4 = mk.force[m], x4 = mk.pos[m];
+  const Vec3<double> f{double(f4.x), double(f4.y), double(f4.z)};
+  const Vec3<double> t = cross(Vec3<double>{double(x4.x), double(x4.y), double(x4.z)} - center, f);
+  acc[0] += f.x;
+  acc[1] += f.y;
+  acc[2] += f.z;
+  acc[3] += t.x;
+  acc[4] += t.y;
+  acc[5] += t.z;
+}
+
 // Active domain: a box around a moving body plus a margin; soil outside every box is frozen.
 template <typename T>
 struct ActiveBox {
