@@ -10,6 +10,7 @@
 #include "bayes/calibration_outputs.hpp"
 #include "bayes/posterior_h5.hpp"
 #include "core/atomic_file.hpp"
+#include "core/checksum.hpp"
 #include "core/errors.hpp"
 #include "core/gnuplot.hpp"
 #include "terracal_version.hpp"
@@ -42,9 +43,7 @@ std::string data_text(const CalibrationData& d) {
 std::string fingerprint(const CalibrationData& d, const CalibrationSettings& s) {
   const std::string text = fmt::format("{}|{}|{}|{}|{}|{}|{}|{}", TERRACAL_VERSION, data_text(d), s.seed, s.chains,
                                        s.min_ess, s.max_draws, sampler_name(s.sampler), noise_name(s.noise));
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
-  return fmt::format("{:016x}", h);
+  return fnv1a64_hex(text);
 }
 
 void validate(const CalibrationSettings& s) {
@@ -68,7 +67,11 @@ CalibrationOptions sampler_options(const CalibrationData& data, const Calibratio
   opt.checkpoint_path = s.out_dir + "/.checkpoint.cbor";
   opt.fingerprint = fingerprint(data, s);
   opt.progress = [](const CalibrationProgress& p) {
-    if (p.stage == "warm-up")
+    if (p.stage == "resumed")
+      spdlog::info("{}", p.message);
+    else if (p.stage == "restarted")
+      spdlog::warn("{}", p.message);
+    else if (p.stage == "warm-up")
       spdlog::info("warm-up done; sampling until R-hat and ESS targets are met");
     else
       spdlog::info("{} draws per chain: max R-hat {:.4f}, min bulk ESS {:.0f}", p.draws_per_chain, p.max_rhat,
@@ -133,11 +136,12 @@ CalibrationOutcome run_calibration(const CalibrationData& data, const Calibratio
   if (problem.dim() == 0) throw InputError("every parameter is fixed (by the priors and the data); nothing to infer");
 
   fs::create_directories(s.out_dir);
+  for (const auto& name : remove_stale_temporaries(s.out_dir))
+    spdlog::info("removed {}/{}, left by an interrupted write", s.out_dir, name);
   const CalibrationOptions opt = sampler_options(data, s);
   spdlog::info("calibrating: {} plate points{}", problem.set(0).size(),
                data.shear ? fmt::format(", {} shear points", problem.set(1).size()) : std::string(", no shear data"));
   const CalibrationResult res = calibrate(problem, opt);
-  if (res.resumed) spdlog::info("resumed from the checkpoint in {}", s.out_dir);
   for (const auto& note : res.notes) spdlog::warn("{}", note);
 
   remove_earlier_outputs(s.out_dir);

@@ -27,6 +27,18 @@ void render(const std::string& dir, const std::string& script, const std::string
     spdlog::warn("{} not drawn: {}", what, e.what());
   }
 }
+// Moves a drawn plot from the work folder to `dir` through the shared write path, then removes the
+// work folder. A plot that was not drawn was already reported by render().
+void publish(const std::string& work, const std::string& name, const std::string& dir) {
+  try {
+    if (std::filesystem::exists(work + "/" + name)) commit_file(work + "/" + name, dir + "/" + name);
+  } catch (const RunError& e) {
+    spdlog::warn("{} not written: {}", name, e.what());
+  }
+  std::error_code ec;
+  std::filesystem::remove_all(work, ec);
+}
+
 const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd",
                           "#8c564b", "#e377c2", "#7f7f7f", "#17becf"};
 }  // namespace
@@ -110,10 +122,7 @@ void plot_bevameter(const std::string& dir, const BevameterCurves& c, const lowf
   }
   s += "unset multiplot\n";
   render(work, s, "bevameter.png");
-  std::error_code ec;
-  if (std::filesystem::exists(work + "/bevameter.png"))
-    std::filesystem::rename(work + "/bevameter.png", dir + "/bevameter.png", ec);
-  std::filesystem::remove_all(work, ec);
+  publish(work, "bevameter.png", dir);
 }
 
 void plot_wheel_models(const std::string& dir,
@@ -139,10 +148,7 @@ void plot_wheel_models(const std::string& dir,
   }
   s += "unset multiplot\n";
   render(work, s, "wheel.png");
-  std::error_code ec;
-  if (std::filesystem::exists(work + "/wheel.png"))
-    std::filesystem::rename(work + "/wheel.png", dir + "/wheel.png", ec);
-  std::filesystem::remove_all(work, ec);
+  publish(work, "wheel.png", dir);
 }
 
 }  // namespace terracal::app

@@ -59,6 +59,7 @@ void CalibrationProblem::fix(int i, double value, const std::string& why) {
 }
 
 void CalibrationProblem::add_plate(const PlateData& plate) {
+  notes_.insert(notes_.end(), plate.notes.begin(), plate.notes.end());
   ObservationSet s;
   s.kind = ObservationSet::Kind::kPlate;
   s.name = "plate";
@@ -82,6 +83,7 @@ void CalibrationProblem::add_plate(const PlateData& plate) {
 }
 
 void CalibrationProblem::add_shear(const ShearData& shear) {
+  notes_.insert(notes_.end(), shear.notes.begin(), shear.notes.end());
   ObservationSet s;
   s.kind = ObservationSet::Kind::kShear;
   s.name = "shear";

@@ -13,7 +13,7 @@
 
 #include "bayes/dram.hpp"
 #include "bayes/ensemble.hpp"
-#include "core/atomic_file.hpp"
+#include "core/checkpoint_file.hpp"
 #include "core/errors.hpp"
 
 namespace terracal::bayes {
@@ -158,35 +158,59 @@ struct Checkpoint {
   nlohmann::json sampler;
 };
 
+// Version 2: sealed by core/checkpoint_file (version 1 was bare CBOR).
+const CheckpointKind kMcmcCheckpoint{"terracal-mcmc-checkpoint", 2};
+
 void write_checkpoint(const std::string& path, const std::string& fingerprint, const Checkpoint& cp) {
   nlohmann::json j;
-  j["format"] = "terracal-mcmc-checkpoint-1";
-  j["fingerprint"] = fingerprint;
   j["warmup_done"] = cp.warmup_done;
   j["sampler"] = cp.sampler;
   j["records"] = nlohmann::json::array();
   for (const auto& r : cp.records)
     j["records"].push_back({{"values", r.values}, {"lp", r.lp}, {"accepted", r.accepted}});
   const std::vector<std::uint8_t> bytes = nlohmann::json::to_cbor(j);
-  write_text_atomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  write_checkpoint_file(path, kMcmcCheckpoint, fingerprint,
+                        std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
-// The checkpoint at `path` if it exists and was written for the same data and options.
-bool read_checkpoint(const std::string& path, const std::string& fingerprint, Checkpoint& cp) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return false;
-  const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const nlohmann::json j = nlohmann::json::from_cbor(bytes, true, false);
-  if (j.is_discarded() || j.value("format", "") != "terracal-mcmc-checkpoint-1" ||
-      j.value("fingerprint", "") != fingerprint)
-    return false;
-  cp.warmup_done = j.at("warmup_done").get<bool>();
-  cp.sampler = j.at("sampler");
-  cp.records.clear();
+// The records of a checkpoint's payload; throws when they do not fit `chains` chains of `nv` variables.
+std::vector<ChainRecord> decode_records(const nlohmann::json& j, std::size_t chains, std::size_t nv) {
+  std::vector<ChainRecord> records;
   for (const auto& r : j.at("records"))
-    cp.records.push_back({r.at("values").get<std::vector<double>>(), r.at("lp").get<std::vector<double>>(),
-                          r.at("accepted").get<std::vector<double>>()});
-  return true;
+    records.push_back({r.at("values").get<std::vector<double>>(), r.at("lp").get<std::vector<double>>(),
+                       r.at("accepted").get<std::vector<double>>()});
+  if (records.size() != chains) throw std::runtime_error(fmt::format("{} chains, expected {}", records.size(), chains));
+  for (const auto& r : records)
+    if (r.lp.size() != records[0].lp.size() || r.accepted.size() != r.lp.size() || r.values.size() != nv * r.lp.size())
+      throw std::runtime_error("chains of different lengths");
+  return records;
+}
+
+// Restores `cp` and the sampler from the checkpoint at `path`. Returns what to tell the user: empty
+// when there is no checkpoint; otherwise `resumed` says whether the run continues from it.
+std::string restore_checkpoint(const std::string& path, const std::string& fingerprint, std::size_t nv, Checkpoint& cp,
+                               MultiChain& sampler, bool& resumed) {
+  resumed = false;
+  const CheckpointRead read = read_checkpoint_file(path, kMcmcCheckpoint, fingerprint);
+  if (read.state == CheckpointState::kMissing) return {};
+  std::string why = read.why;
+  if (read.state == CheckpointState::kValid) {
+    try {
+      const nlohmann::json j = nlohmann::json::from_cbor(read.payload);
+      Checkpoint loaded;
+      loaded.warmup_done = j.at("warmup_done").get<bool>();
+      loaded.sampler = j.at("sampler");
+      loaded.records = decode_records(j, cp.records.size(), nv);
+      sampler.load(loaded.sampler);
+      cp = std::move(loaded);
+      resumed = true;
+      return fmt::format("resuming from {}: {}, {} draws per chain", path,
+                         cp.warmup_done ? "warm-up done" : "in warm-up", cp.records[0].lp.size());
+    } catch (const std::exception& e) {  // sealed intact, yet not this sampler's state
+      why = std::string("its content does not fit this calibration: ") + e.what();
+    }
+  }
+  return fmt::format("checkpoint {} ignored, the calibration starts over: {}", path, why);
 }
 
 }  // namespace
@@ -215,7 +239,7 @@ bool sampling_done(const CalibrationOptions& opt, const Checkpoint& cp, Calibrat
     stuck = stuck || some_chain_is_stuck(ch);
   }
   if (stuck) max_rhat = std::numeric_limits<double>::infinity();
-  if (opt.progress) opt.progress({"sampling", res.draws, max_rhat, min_ess});
+  if (opt.progress) opt.progress({"sampling", res.draws, max_rhat, min_ess, {}});
   if (max_rhat < opt.max_rhat && min_ess >= opt.min_ess) {
     res.converged = true;
     res.termination = fmt::format("converged: max R-hat {:.4f} < {}, min bulk ESS {:.0f} >= {}", max_rhat, opt.max_rhat,
@@ -267,17 +291,22 @@ CalibrationResult calibrate(const CalibrationProblem& pb, const CalibrationOptio
                     "converge; fix a parameter or give an informative prior",
                     res.point.unconstrained_directions));
   const auto starts = dispersed_starts(pb, res.point, count, opt.seed, res.notes);
-  std::unique_ptr<MultiChain> sampler;
-  if (opt.sampler == SamplerKind::kDram)
-    sampler = std::make_unique<DramChains>(target, starts, res.point.noise_var, res.point.covariance, opt.seed);
-  else
-    sampler = std::make_unique<Ensemble>(target, starts, res.point.noise_var, opt.seed);
+  auto make_sampler = [&]() -> std::unique_ptr<MultiChain> {
+    if (opt.sampler == SamplerKind::kDram)
+      return std::make_unique<DramChains>(target, starts, res.point.noise_var, res.point.covariance, opt.seed);
+    return std::make_unique<Ensemble>(target, starts, res.point.noise_var, opt.seed);
+  };
+  std::unique_ptr<MultiChain> sampler = make_sampler();
 
   Checkpoint cp;
   cp.records.resize(count);
-  if (!opt.checkpoint_path.empty() && read_checkpoint(opt.checkpoint_path, opt.fingerprint, cp)) {
-    sampler->load(cp.sampler);
-    res.resumed = true;
+  if (!opt.checkpoint_path.empty()) {
+    const std::string said =
+        restore_checkpoint(opt.checkpoint_path, opt.fingerprint, res.names.size(), cp, *sampler, res.resumed);
+    if (!res.resumed && !said.empty()) sampler = make_sampler();  // a failed load may have left a partial state
+    if (!said.empty() && opt.progress)
+      opt.progress(
+          {res.resumed ? "resumed" : "restarted", res.resumed ? long(cp.records[0].lp.size()) : 0, 0, 0, said});
   }
   auto save = [&] {
     if (opt.checkpoint_path.empty()) return;
@@ -288,7 +317,7 @@ CalibrationResult calibrate(const CalibrationProblem& pb, const CalibrationOptio
     sampler->advance(opt.warmup, true, nullptr);
     cp.warmup_done = true;
     save();
-    if (opt.progress) opt.progress({"warm-up", 0, 0, 0});
+    if (opt.progress) opt.progress({"warm-up", 0, 0, 0, {}});
   }
 
   res.chains = count;

@@ -7,7 +7,8 @@
 //      max_rhat and bulk ESS of at least min_ess, or the draw cap (reported as not converged).
 // A checkpoint after warm-up and after every block holds the chains' complete state, RNG
 // included: a killed run started again with the same checkpoint ends with exactly the draws of
-// an uninterrupted one.
+// an uninterrupted one. A corrupt or foreign checkpoint (core/checkpoint_file.hpp) is reported
+// through `progress` ("restarted") and the run starts over.
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -22,9 +23,12 @@ namespace terracal::bayes {
 enum class SamplerKind { kDram, kEnsemble };
 
 struct CalibrationProgress {
-  std::string stage;  // "warm-up" or "sampling"
+  // "resumed" or "restarted" (a checkpoint was found; `message` says what of it), then "warm-up"
+  // and "sampling" (after each block).
+  std::string stage;
   long draws_per_chain = 0;
   double max_rhat = 0, min_ess = 0;
+  std::string message;
 };
 
 struct CalibrationOptions {
@@ -37,7 +41,7 @@ struct CalibrationOptions {
   int block = 500;              // iterations per chain between convergence checks / checkpoints
   long max_draws = 100000;      // per chain; reaching it ends the run as not converged
   std::string checkpoint_path;  // empty: no checkpoint
-  std::string fingerprint;      // identifies data + options; a checkpoint with another is ignored
+  std::string fingerprint;      // identifies data + options; a checkpoint with another is reported and ignored
   int global_evaluations = 20000;
   std::function<void(const CalibrationProgress&)> progress;  // called after warm-up and each block
 };

@@ -55,32 +55,84 @@ void check_plate_point(const PlatePoint& p, std::size_t i, const PointLocator& w
   reject_millimetres(where(i, "sinkage_m"), "sinkage_m", p.sinkage, kMaxPlausibleSinkage, "plate sinkage");
 }
 
-// Per plate radius, what the points so far have reached: which loading points lie on the virgin
-// curve that the Bekker law describes (PlatePoint::fitted) depends on it.
+// Per plate, what its rows so far have reached: which rows lie on the virgin curve that the Bekker
+// law describes (PlatePoint::fitted), and what the next row may be, depend on it.
 struct PlateHistory {
   double deepest = 0;           // the deepest sinkage so far
   double strongest = 0;         // the largest force so far
   bool back_on_virgin = false;  // this reload is back on the virgin curve
+  const PlatePoint* previous = nullptr;
+  const PlatePoint* deepest_row = nullptr;
 };
 
-void mark_fitted(PlatePoint& p, std::size_t i, const PointLocator& where, PlateHistory& h) {
-  // Unloading raises the plate: a deeper unload row contradicts its label, and the elastic
-  // stiffness would be fitted to a virgin-loading point.
+// The rows of a plate are its test's history (an unload or reload branch is a run of consecutive
+// rows), so they must come in the order of the test: loading deepens the plate beyond every earlier
+// row, unloading raises it, a reload follows an unload and deepens it again. Throws naming the first
+// row that breaks this, and the row it contradicts.
+void check_test_order(const PlatePoint& p, std::size_t i, const PointLocator& where, const PlateHistory& h) {
+  const std::string in_order =
+      "the rows of a plate must be in the order of the test (sort them by time); where the plate was unloaded, "
+      "label the rows with the phase column (load, unload, reload)";
+  const PlatePoint* prev = h.previous;
+  if (p.phase == PlatePhase::kLoad && h.deepest_row && p.sinkage < h.deepest)
+    throw InputError(
+        fmt::format("{}: load row at sinkage {} m is shallower than line {} of the plate r = {} m ({} m); "
+                    "loading deepens the plate: expected at least {} m; {}",
+                    where(i, "sinkage_m"), p.sinkage, h.deepest_row->line, p.radius, h.deepest, h.deepest, in_order));
   if (p.phase == PlatePhase::kUnload && p.sinkage > h.deepest)
     throw InputError(
         fmt::format("{}: unload row at sinkage {} m is deeper than the deepest sinkage so far of the plate "
-                    "r = {} m ({} m); expected at most {} m (is the phase column right?)",
-                    where(i, "sinkage_m"), p.sinkage, p.radius, h.deepest, h.deepest));
-  // A reload first climbs its elastic branch (in SCM up the unload line to the old deepest
-  // point); it is back on the virgin curve once its force passes the largest force so far.
-  // Once there it stays there until the next unload: a noisy force (a CRM curve) that dips below
-  // the old largest force is still virgin loading, not a new elastic branch of one row.
+                    "r = {} m ({} m); expected at most {} m (is the phase column right? {})",
+                    where(i, "sinkage_m"), p.sinkage, p.radius, h.deepest, h.deepest, in_order));
+  if (p.phase == PlatePhase::kUnload && prev && prev->phase == PlatePhase::kUnload && p.sinkage > prev->sinkage)
+    throw InputError(
+        fmt::format("{}: unload row at sinkage {} m is deeper than the unload row before it (line {}, "
+                    "{} m); unloading raises the plate: expected at most {} m; {}",
+                    where(i, "sinkage_m"), p.sinkage, prev->line, prev->sinkage, prev->sinkage, in_order));
+  if (p.phase == PlatePhase::kReload && (!prev || prev->phase == PlatePhase::kLoad))
+    throw InputError(fmt::format(
+        "{}: reload row{} of the plate r = {} m without an unload row before it; expected a "
+        "reload to follow an unload; {}",
+        where(i, "phase"), prev ? fmt::format(" after the load row of line {}", prev->line) : "", p.radius, in_order));
+  if (p.phase == PlatePhase::kReload && prev->phase == PlatePhase::kReload && p.sinkage < prev->sinkage)
+    throw InputError(
+        fmt::format("{}: reload row at sinkage {} m is shallower than the reload row before it (line {}, "
+                    "{} m); reloading deepens the plate: expected at least {} m; {}",
+                    where(i, "sinkage_m"), p.sinkage, prev->line, prev->sinkage, prev->sinkage, in_order));
+}
+
+void mark_fitted(PlatePoint& p, std::size_t i, const PointLocator& where, PlateHistory& h) {
+  check_test_order(p, i, where, h);
+  // Every loading row below the surface is on the virgin curve (the order check keeps it at or
+  // beyond the deepest sinkage so far). A reload first climbs its elastic branch (in SCM up the
+  // unload line to the old deepest point); it is back on the virgin curve once it is deeper than
+  // before and its force passes the largest force so far. Once there it stays there until the next
+  // unload: a noisy force (a CRM curve) that dips below the old largest force is still virgin
+  // loading, not a new elastic branch of one row.
   if (p.phase == PlatePhase::kUnload) h.back_on_virgin = false;
-  p.fitted = p.phase != PlatePhase::kUnload && p.sinkage > 0 && p.sinkage > h.deepest &&
-             (p.phase != PlatePhase::kReload || h.back_on_virgin || p.force >= h.strongest);
+  if (p.phase == PlatePhase::kLoad)
+    p.fitted = p.sinkage > 0;
+  else
+    p.fitted = p.phase == PlatePhase::kReload && p.sinkage > 0 && p.sinkage > h.deepest &&
+               (h.back_on_virgin || p.force >= h.strongest);
   if (p.phase == PlatePhase::kReload && p.fitted) h.back_on_virgin = true;
+  if (!h.deepest_row || p.sinkage > h.deepest) h.deepest_row = &p;
   h.deepest = std::max(h.deepest, p.sinkage);
   if (p.phase != PlatePhase::kReload || p.fitted) h.strongest = std::max(h.strongest, p.force);
+  h.previous = &p;
+}
+
+// The indices of the points grouped by plate radius, plates in the order they first appear, each
+// plate's rows in their own order: plates may be interleaved in a file, a plate's rows may not.
+std::vector<std::size_t> grouped_by_plate(const std::vector<PlatePoint>& points) {
+  std::vector<double> plates;
+  for (const auto& p : points)
+    if (std::find(plates.begin(), plates.end(), p.radius) == plates.end()) plates.push_back(p.radius);
+  std::vector<std::size_t> order;
+  for (double r : plates)
+    for (std::size_t i = 0; i < points.size(); ++i)
+      if (points[i].radius == r) order.push_back(i);
+  return order;
 }
 
 void check_shear_point(const ShearPoint& p, std::size_t i, const PointLocator& where, double torque_noise) {
@@ -125,12 +177,10 @@ PlateData make_plate_data(std::vector<PlatePoint> points, const std::string& sou
   PlateData d;
   d.path = source;
   const double force_noise = kZeroNoise * largest_magnitude(points, &PlatePoint::force);
-  std::map<double, PlateHistory> history;  // per plate radius
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    check_plate_point(points[i], i, where, force_noise);
-    mark_fitted(points[i], i, where, history[points[i].radius]);
-  }
-  d.points = std::move(points);
+  for (std::size_t i = 0; i < points.size(); ++i) check_plate_point(points[i], i, where, force_noise);
+  std::map<double, PlateHistory> history;  // per plate radius; in file order, so the first bad row is named
+  for (std::size_t i = 0; i < points.size(); ++i) mark_fitted(points[i], i, where, history[points[i].radius]);
+  for (std::size_t i : grouped_by_plate(points)) d.points.push_back(points[i]);
   // The plate sizes are those with fitted rows: a radius that only has zero-sinkage or unloading
   // rows says nothing about Kc/r + Kphi.
   std::map<double, double> fitted_max_force;
@@ -146,6 +196,14 @@ PlateData make_plate_data(std::vector<PlatePoint> points, const std::string& sou
   }
   if (d.fitted_count() == 0)
     throw InputError(fmt::format("{}: no loading rows with sinkage > 0; nothing to fit the Bekker law to", source));
+  const auto at_surface = std::count_if(d.points.begin(), d.points.end(), [](const PlatePoint& p) {
+    return p.phase != PlatePhase::kUnload && p.sinkage == 0;
+  });
+  if (at_surface > 0)
+    d.notes.push_back(
+        fmt::format("{}: {} loading row(s) at sinkage 0, where the Bekker pressure is 0 whatever the "
+                    "parameters: not fitted",
+                    source, at_surface));
   return d;
 }
 
@@ -153,11 +211,20 @@ ShearData make_shear_data(std::vector<ShearPoint> points, const std::string& sou
   ShearData d;
   d.path = source;
   const double torque_noise = kZeroNoise * largest_magnitude(points, &ShearPoint::torque);
+  std::size_t at_rest = 0;
   for (std::size_t i = 0; i < points.size(); ++i) {
     check_shear_point(points[i], i, where, torque_noise);
-    if (!points[i].developed && points[i].angle == 0) continue;  // zero displacement: the torque model is 0
+    if (!points[i].developed && points[i].angle == 0) {  // zero displacement: the torque model is 0
+      ++at_rest;
+      continue;
+    }
     d.points.push_back(points[i]);
   }
+  if (at_rest > 0)
+    d.notes.push_back(
+        fmt::format("{}: {} row(s) at shear angle 0, where the Janosi torque is 0 whatever the "
+                    "parameters: not fitted",
+                    source, at_rest));
   if (d.points.empty())
     throw InputError(fmt::format("{}: no rows with a shear angle > 0 or a developed torque", source));
   if (std::all_of(d.points.begin(), d.points.end(), [](const ShearPoint& p) { return p.torque == 0; }))

@@ -20,7 +20,8 @@ struct PlatePoint {
 struct PlateData {
   std::string path;
   std::vector<PlatePoint> points;
-  std::vector<double> radii;  // the distinct plate radii, ascending
+  std::vector<double> radii;       // the distinct plate radii, ascending
+  std::vector<std::string> notes;  // rows kept out of the fit and why, for the user
   int fitted_count() const;
 };
 
@@ -34,6 +35,7 @@ struct ShearPoint {
 struct ShearData {
   std::string path;
   std::vector<ShearPoint> points;
+  std::vector<std::string> notes;  // rows kept out of the data set and why, for the user
 };
 
 // Where point i's value of a column came from, for messages ("plate.csv:12, column 'force_N' (3)").
@@ -41,11 +43,15 @@ using PointLocator = std::function<std::string(std::size_t point, const std::str
 
 // Validate points from any source (a file, or a rig's curves in memory) into a data set. Bad input
 // throws InputError naming the place (`where`), value and what was expected: negative or zero radii,
-// negative sinkage, sinkage or radii that look like millimetres, an unload row deeper than its
-// plate's deepest sinkage so far, no loading rows. `source` names the data set as a whole.
+// negative sinkage, sinkage or radii that look like millimetres, no loading rows, and a plate whose
+// rows are not in the order of its test (a loading row shallower than an earlier row of its plate, an
+// unload row deeper than the one before it or than the deepest sinkage so far, a reload that follows
+// no unload). Plates may be interleaved: the data set holds each plate's rows together, in their
+// order. Every row is kept; those the Bekker fit cannot use (sinkage 0) are counted in `notes`.
+// `source` names the data set as a whole.
 PlateData make_plate_data(std::vector<PlatePoint> points, const std::string& source, const PointLocator& where);
-// Shear points at angle 0 (not developed) carry no information (the torque model is 0 there) and are
-// left out of the data set; every other bad point throws.
+// Shear points at angle 0 (not developed) carry no information (the torque model is 0 there): they
+// are left out of the data set and counted in `notes`; every bad point throws.
 ShearData make_shear_data(std::vector<ShearPoint> points, const std::string& source, const PointLocator& where);
 
 // Read a curve file and validate it as above; besides, missing columns, non-numeric or non-finite

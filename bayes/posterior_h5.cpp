@@ -13,6 +13,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
+#include "core/quiet_hdf5_errors.hpp"
 #include "terracal_version.hpp"
 
 namespace terracal::bayes {
@@ -20,26 +21,6 @@ namespace {
 
 // ---------------------------------------------------------------------------------------------
 // HDF5 plumbing: error messages, handles that close themselves.
-
-// HDF5 prints its error stack to stderr by default. We turn a failure into a RunError that
-// carries the relevant part of that stack instead, so printing is switched off while we work.
-class QuietHdf5Errors {
- public:
-  QuietHdf5Errors() {
-    if (H5Eget_auto2(H5E_DEFAULT, &func_, &data_) < 0) {
-      func_ = nullptr;
-      data_ = nullptr;
-    }
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  }
-  ~QuietHdf5Errors() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
-  QuietHdf5Errors(const QuietHdf5Errors&) = delete;
-  QuietHdf5Errors& operator=(const QuietHdf5Errors&) = delete;
-
- private:
-  H5E_auto2_t func_ = nullptr;
-  void* data_ = nullptr;
-};
 
 // The outermost message (what the API call failed to do) and the innermost one (why: often the
 // errno text, e.g. "No such file or directory"). The middle of the stack is library internals.

@@ -1,8 +1,11 @@
 #include "core/atomic_file.hpp"
 
+#include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <charconv>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +17,34 @@ namespace terracal {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// fsync of a file or a folder by path; "" on success, else the reason.
+std::string sync_path(const std::string& path, bool folder) {
+  const int fd = ::open(path.c_str(), (folder ? O_DIRECTORY : 0) | O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return std::strerror(errno);
+  std::string err;
+  // EINVAL: the file system cannot sync (some pseudo and network file systems); nothing more to do.
+  if (::fsync(fd) != 0 && errno != EINVAL) err = std::strerror(errno);
+  ::close(fd);
+  return err;
+}
+
+// The PID of a temporary's name `.NAME.tmp.PID`, or 0 when `name` is not one.
+long temporary_pid(const std::string& name) {
+  const auto at = name.rfind(".tmp.");
+  if (name.empty() || name[0] != '.' || at == std::string::npos || at == 0) return 0;
+  const char* first = name.data() + at + 5;
+  const char* last = name.data() + name.size();
+  long pid = 0;
+  const auto [ptr, ec] = std::from_chars(first, last, pid);
+  return ec == std::errc() && ptr == last && pid > 0 ? pid : 0;
+}
+
+bool process_running(long pid) { return ::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM; }
+
+}  // namespace
+
 std::string temporary_path_for(const std::string& final_path) {
   const fs::path p(final_path);
   const std::string name = p.filename().string();
@@ -24,12 +55,19 @@ std::string temporary_path_for(const std::string& final_path) {
 
 void commit_file(const std::string& tmp, const std::string& final_path) {
   std::error_code ec;
-  fs::rename(tmp, final_path, ec);
-  if (ec) {
+  std::string why = sync_path(tmp, false);
+  if (why.empty()) {
+    fs::rename(tmp, final_path, ec);
+    if (ec) why = ec.message();
+  }
+  if (!why.empty()) {
     std::error_code ignored;
     fs::remove(tmp, ignored);  // do not leave the temporary behind either
-    throw RunError("cannot move '" + tmp + "' to '" + final_path + "': " + ec.message());
+    throw RunError("cannot move '" + tmp + "' to '" + final_path + "': " + why);
   }
+  const fs::path folder = fs::path(final_path).parent_path();
+  why = sync_path(folder.empty() ? std::string(".") : folder.string(), true);
+  if (!why.empty()) throw RunError("wrote '" + final_path + "' but cannot flush its folder to disk: " + why);
 }
 
 void write_text_atomically(const std::string& path, std::string_view content) {
@@ -49,6 +87,19 @@ void write_text_atomically(const std::string& path, std::string_view content) {
     }
   }
   commit_file(tmp, path);
+}
+
+std::vector<std::string> remove_stale_temporaries(const std::string& dir) {
+  std::vector<std::string> removed;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    const long pid = temporary_pid(name);
+    if (pid == 0 || pid == static_cast<long>(::getpid()) || process_running(pid)) continue;
+    std::error_code rm;
+    if (fs::remove(e.path(), rm)) removed.push_back(name);
+  }
+  return removed;
 }
 
 }  // namespace terracal

@@ -3,12 +3,15 @@
 #include <hdf5.h>
 #include <hdf5_hl.h>
 
+#include <cmath>
 #include <cstdint>
 
 #include <fmt/format.h>
 
 #include "core/atomic_file.hpp"
+#include "core/checksum.hpp"
 #include "core/errors.hpp"
+#include "core/quiet_hdf5_errors.hpp"
 
 namespace terracal {
 namespace {
@@ -26,7 +29,35 @@ void put(hid_t f, const char* name, const std::vector<Vec4<double>>& v, const st
     throw RunError(fmt::format("writing '{}' to checkpoint {} failed", name, file.string()));
 }
 
+// A string attribute of the root group, or InputError naming it.
+std::string string_attribute(hid_t f, const char* name, const std::filesystem::path& file) {
+  hsize_t dims = 0;
+  H5T_class_t cls;
+  size_t size = 0;
+  if (H5LTget_attribute_info(f, "/", name, &dims, &cls, &size) < 0 || cls != H5T_STRING || size > 4096)
+    throw InputError(
+        fmt::format("checkpoint {}: attribute '{}' is missing or not a short string", file.string(), name));
+  std::string text(size + 1, '\0');
+  if (H5LTget_attribute_string(f, "/", name, text.data()) < 0)
+    throw InputError(fmt::format("checkpoint {}: cannot read attribute '{}'", file.string(), name));
+  return text.c_str();
+}
+
+// The rows of a dataset of shape (rows, cols); InputError unless it exists with exactly that shape
+// (a corrupt particle count must not make a read run past the buffer).
+void require_shape(hid_t f, const char* name, hsize_t rows, hsize_t cols, const std::filesystem::path& file) {
+  hsize_t dims[2] = {0, 0};
+  H5T_class_t cls;
+  size_t size = 0;
+  int rank = 0;
+  if (H5LTget_dataset_ndims(f, name, &rank) < 0 || rank != (cols > 0 ? 2 : 1) ||
+      H5LTget_dataset_info(f, name, dims, &cls, &size) < 0 || dims[0] != rows || (cols > 0 && dims[1] != cols))
+    throw InputError(
+        fmt::format("checkpoint {}: dataset '{}' is missing or not of {} rows", file.string(), name, rows));
+}
+
 void get(hid_t f, const char* name, std::vector<Vec4<double>>& v, std::size_t n, const std::filesystem::path& file) {
+  require_shape(f, name, n, 4, file);
   v.resize(n);
   if (n == 0) return;
   if (H5LTread_dataset_double(f, name, reinterpret_cast<double*>(v.data())) < 0)
@@ -40,6 +71,35 @@ void for_each_record_kind(F&& f) {
     using E = typename decltype(tag)::type;
     if constexpr (E::kRecord) f(std::string("soil_") + E::kRecordName, kRecordSlot<E>);
   });
+}
+
+// Raised whenever the datasets or attributes change meaning; a checkpoint of another version is
+// refused (a cached bed is then settled again, a run starts over).
+constexpr int kCrmCheckpointVersion = 2;
+
+// FNV-1a over everything a checkpoint restores, computed from the in-memory state: the writer
+// stores it, the reader recomputes it from what it read, so a changed byte in any dataset or
+// attribute shows as a mismatch.
+std::string state_checksum(const CrmCheckpoint& c) {
+  Fnv1a64 h;
+  auto add_rows = [&](const std::vector<Vec4<double>>& v) {
+    for (const auto& r : v) {
+      const double x[4] = {r.x, r.y, r.z, r.w};
+      h.add(x, sizeof x);
+    }
+  };
+  add_rows(c.soil.pos);
+  add_rows(c.soil.vel);
+  add_rows(c.soil.s0);
+  add_rows(c.soil.s1);
+  for (const auto& r : c.soil.records) add_rows(r);
+  h.add(c.soil.ids.data(), c.soil.ids.size() * sizeof(int));
+  for (const BodyState& s : c.bodies)
+    for (double x : {s.position.x, s.position.y, s.position.z, s.orientation.w, s.orientation.x, s.orientation.y,
+                     s.orientation.z, s.velocity.x, s.velocity.y, s.velocity.z, s.omega.x, s.omega.y, s.omega.z})
+      h.add(&x, sizeof x);
+  h.add(fmt::format("|{:.17g}|{}|{}", c.time, c.steps, c.fingerprint));
+  return h.hex();
 }
 
 }  // namespace
@@ -70,14 +130,22 @@ void write_crm_checkpoint(const std::filesystem::path& file, const CrmCheckpoint
     H5LTset_attribute_double(f.id, "/", "steps", &steps, 1);
     H5LTset_attribute_double(f.id, "/", "particles", &count, 1);
     H5LTset_attribute_string(f.id, "/", "fingerprint", c.fingerprint.c_str());
+    const int version = kCrmCheckpointVersion;
+    H5LTset_attribute_int(f.id, "/", "format_version", &version, 1);
+    H5LTset_attribute_string(f.id, "/", "checksum", state_checksum(c).c_str());
   }
   commit_file(tmp, file);
 }
 
 CrmCheckpoint read_crm_checkpoint(const std::filesystem::path& file) {
   if (!std::filesystem::exists(file)) throw InputError(fmt::format("checkpoint {} does not exist", file.string()));
+  const QuietHdf5Errors quiet;
   H5File f{H5Fopen(file.string().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT)};
   if (f.id < 0) throw InputError(fmt::format("checkpoint {} is not an HDF5 file", file.string()));
+  int version = 0;
+  if (H5LTget_attribute_int(f.id, "/", "format_version", &version) < 0 || version != kCrmCheckpointVersion)
+    throw InputError(fmt::format("checkpoint {}: format version {}, this terracal reads version {}", file.string(),
+                                 version, kCrmCheckpointVersion));
   CrmCheckpoint c;
   double t = 0, steps = 0, count = 0;
   if (H5LTget_attribute_double(f.id, "/", "time", &t) < 0 || H5LTget_attribute_double(f.id, "/", "steps", &steps) < 0 ||
@@ -85,9 +153,9 @@ CrmCheckpoint read_crm_checkpoint(const std::filesystem::path& file) {
     throw InputError(fmt::format("checkpoint {}: missing time/steps/particles attributes", file.string()));
   c.time = t;
   c.steps = long(steps);
-  char fp[64] = {0};
-  H5LTget_attribute_string(f.id, "/", "fingerprint", fp);
-  c.fingerprint = fp;
+  c.fingerprint = string_attribute(f.id, "fingerprint", file);
+  if (!(count >= 0 && count < 1e12 && count == std::floor(count)))
+    throw InputError(fmt::format("checkpoint {}: particle count {} is not a count", file.string(), count));
   const std::size_t n = std::size_t(count);
   get(f.id, "soil_pos", c.soil.pos, n, file);
   get(f.id, "soil_vel", c.soil.vel, n, file);
@@ -96,19 +164,30 @@ CrmCheckpoint read_crm_checkpoint(const std::filesystem::path& file) {
   for_each_record_kind([&](const std::string& name, int slot) {
     if (H5LTfind_dataset(f.id, name.c_str()) == 1) get(f.id, name.c_str(), c.soil.records[slot], n, file);
   });
+  require_shape(f.id, "soil_ids", n, 0, file);
   c.soil.ids.resize(n);
-  if (n) H5LTread_dataset_int(f.id, "soil_ids", c.soil.ids.data());
+  if (n && H5LTread_dataset_int(f.id, "soil_ids", c.soil.ids.data()) < 0)
+    throw InputError(fmt::format("checkpoint {}: cannot read dataset 'soil_ids'", file.string()));
   hsize_t dims[2] = {0, 0};
   H5T_class_t cls;
   size_t sz;
-  if (H5LTget_dataset_info(f.id, "bodies", dims, &cls, &sz) >= 0 && dims[0] > 0) {
+  int rank = 0;
+  // No 'bodies' dataset reads as no bodies; the checksum tells whether there should have been some.
+  const bool has_bodies = H5LTfind_dataset(f.id, "bodies") == 1;
+  if (has_bodies && (H5LTget_dataset_ndims(f.id, "bodies", &rank) < 0 || rank != 2))
+    throw InputError(fmt::format("checkpoint {}: dataset 'bodies' is missing or not a table", file.string()));
+  if (has_bodies && H5LTget_dataset_info(f.id, "bodies", dims, &cls, &sz) >= 0 && dims[0] > 0) {
     std::vector<double> b(dims[0] * 13);
-    H5LTread_dataset_double(f.id, "bodies", b.data());
+    if (dims[1] != 13 || H5LTread_dataset_double(f.id, "bodies", b.data()) < 0)
+      throw InputError(fmt::format("checkpoint {}: cannot read dataset 'bodies'", file.string()));
     for (hsize_t i = 0; i < dims[0]; ++i) {
       const double* p = b.data() + 13 * i;
       c.bodies.push_back({{p[0], p[1], p[2]}, {p[3], p[4], p[5], p[6]}, {p[7], p[8], p[9]}, {p[10], p[11], p[12]}});
     }
   }
+  if (string_attribute(f.id, "checksum", file) != state_checksum(c))
+    throw InputError(
+        fmt::format("checkpoint {}: checksum mismatch: the file changed after it was written", file.string()));
   return c;
 }
 
@@ -136,12 +215,7 @@ std::string crm_fingerprint(const CrmScene& sc, CrmDevice device, bool include_b
         d += fmt::format(" {} {} {} {} {} {} {}", g.duration, g.linear_velocity.x, g.linear_velocity.y,
                          g.linear_velocity.z, g.angular_velocity.x, g.angular_velocity.y, g.angular_velocity.z);
     }
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char ch : d) {
-    h ^= ch;
-    h *= 1099511628211ull;
-  }
-  return fmt::format("{:016x}", h);
+  return fnv1a64_hex(d);
 }
 
 }  // namespace terracal

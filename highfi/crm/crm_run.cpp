@@ -1,5 +1,7 @@
 #include "highfi/crm/crm_run.hpp"
 
+#include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -81,11 +83,15 @@ HostSoil settled_bed(const CrmScene& scene, CrmDevice device, const fs::path& ca
   const std::string key = crm_fingerprint(bed, device, false);
   const fs::path file = cache_dir.empty() ? fs::path() : cache_dir / ("bed_" + key + ".h5");
   if (!file.empty() && fs::exists(file)) {
-    CrmCheckpoint c = read_crm_checkpoint(file);
-    if (c.fingerprint == key) {
+    try {
+      CrmCheckpoint c = read_crm_checkpoint(file);
+      if (c.fingerprint != key)
+        throw InputError(fmt::format("it belongs to another bed (fingerprint {})", c.fingerprint));
       spdlog::info("settled bed from the cache: {}", file.string());
       if (from_cache) *from_cache = true;
       return std::move(c.soil);
+    } catch (const InputError& e) {  // a damaged cache entry costs a settling, never the run
+      spdlog::warn("cached bed {} is not usable ({}): settling the bed again", file.string(), e.what());
     }
   }
   const HostSoil start = settling_start(bed);
@@ -156,23 +162,44 @@ void write_crm_snapshot(const fs::path& file, const CrmSolver& solver) {
 }
 
 namespace {
-// Restores the solver from the checkpoint of the same scene and device (InputError otherwise) and
-// returns the rows of bodies.csv up to the checkpoint's time.
-std::vector<std::string> resume_run(CrmSolver& solver, const fs::path& ckpt, const std::string& fingerprint,
-                                    const fs::path& bodies_csv) {
-  CrmCheckpoint c = read_crm_checkpoint(ckpt);
-  if (c.fingerprint != fingerprint)
-    throw InputError(fmt::format("--resume: {} belongs to a different scene or device (fingerprint {} != {})",
-                                 ckpt.string(), c.fingerprint, fingerprint));
-  solver.restore(c.soil, c.bodies, c.time, c.steps);
-  std::vector<std::string> rows;
+// The rows of bodies.csv up to time `until`; InputError for a row whose time is not a number.
+std::vector<std::string> rows_until(const fs::path& bodies_csv, double until) {
   std::ifstream in(bodies_csv);
+  if (!in) throw InputError(fmt::format("{} is missing", bodies_csv.string()));
+  std::vector<std::string> rows;
   std::string line;
-  std::getline(in, line);
-  while (std::getline(in, line))
-    if (std::stod(line.substr(0, line.find(','))) <= c.time + 0.5 * solver.time_step()) rows.push_back(line);
-  spdlog::info("resumed from {} at t = {} s, step {}", ckpt.string(), c.time, c.steps);
+  std::getline(in, line);  // the header
+  for (int line_no = 2; std::getline(in, line); ++line_no) {
+    double t = 0;
+    const auto end = line.find(',');
+    const auto [ptr, ec] = std::from_chars(line.data(), line.data() + std::min(end, line.size()), t);
+    if (ec != std::errc() || end == std::string::npos || ptr != line.data() + end)
+      throw InputError(fmt::format("{}:{}: the time is not a number", bodies_csv.string(), line_no));
+    if (t <= until) rows.push_back(line);
+  }
   return rows;
+}
+
+// Restores the solver from the checkpoint of the same scene and device and returns the rows of
+// bodies.csv up to the checkpoint's time. A missing, damaged or foreign checkpoint (or bodies.csv)
+// is reported and the run starts from the beginning: nothing is restored and no rows come back.
+std::vector<std::string> resume_run(CrmSolver& solver, const fs::path& ckpt, const std::string& fingerprint,
+                                    const fs::path& bodies_csv, bool& resumed) {
+  resumed = false;
+  try {
+    CrmCheckpoint c = read_crm_checkpoint(ckpt);
+    if (c.fingerprint != fingerprint)
+      throw InputError(fmt::format("it belongs to a different scene or device (fingerprint {}, this run {})",
+                                   c.fingerprint, fingerprint));
+    std::vector<std::string> rows = rows_until(bodies_csv, c.time + 0.5 * solver.time_step());
+    solver.restore(c.soil, c.bodies, c.time, c.steps);
+    spdlog::info("resuming from {} at t = {} s, step {}", ckpt.string(), c.time, c.steps);
+    resumed = true;
+    return rows;
+  } catch (const InputError& e) {
+    spdlog::warn("--resume: {} cannot be resumed ({}): the run starts from the beginning", ckpt.string(), e.what());
+    return {};
+  }
 }
 
 void fill_summary(const CrmSolver& solver, long first_step, double wall_seconds, CrmRunSummary& sum) {
@@ -216,7 +243,8 @@ CrmRunSummary run_crm_scene(const CrmScene& scene, const CrmRunOptions& o) {
   std::vector<std::string> rows;
   std::vector<std::pair<double, std::string>> snapshots;
   const std::string header = "time_s,body,fx_N,fy_N,fz_N,tx_Nm,ty_Nm,tz_Nm,x_m,y_m,z_m,vx_mps,vy_mps,vz_mps";
-  if (o.resume) rows = resume_run(solver, ckpt, fingerprint, o.out / "bodies.csv");
+  bool resumed = false;
+  if (o.resume) rows = resume_run(solver, ckpt, fingerprint, o.out / "bodies.csv", resumed);
   auto write_rows = [&] {
     std::string text = header + "\n";
     for (const auto& r : rows) text += r + "\n";
@@ -248,7 +276,7 @@ CrmRunSummary run_crm_scene(const CrmScene& scene, const CrmRunOptions& o) {
   Progress progress("run", scene.duration, scene.output.progress_seconds);
   progress.start(solver);
   const long first = solver.steps();
-  if (scene.output.vtu_every > 0 && !o.resume) snapshot();
+  if (scene.output.vtu_every > 0 && !resumed) snapshot();
   while (solver.time() < scene.duration - 0.5 * solver.time_step()) {
     solver.step();
     const long k = solver.steps();

@@ -22,6 +22,7 @@
 #include "highfi/crm_scene.hpp"
 #include "highfi/crm_solver.hpp"
 #endif
+#include "core/checksum.hpp"
 #include "core/json_file.hpp"
 
 using namespace terracal;
@@ -41,13 +42,11 @@ std::vector<std::string> split(const std::string& text) {
 
 // FNV-1a over the bytes of the state as the engine returns it (doubles).
 struct Digest {
-  std::uint64_t h = 1469598103934665603ull;
+  terracal::Fnv1a64 h;
   void add(const std::vector<Vec4<double>>& v) {
     for (const auto& r : v) {
       const double f[4] = {r.x, r.y, r.z, r.w};
-      unsigned char bytes[sizeof f];
-      std::memcpy(bytes, f, sizeof f);
-      for (unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;
+      h.add(f, sizeof f);
     }
   }
 };
@@ -97,6 +96,6 @@ int main(int argc, char** argv) {
                    soil.s1[i].z, soil.s1[i].w);
   const SoilStats st = s.stats();
   std::printf("# particles %zu, lost %ld, frozen %ld, kinetic energy %.17g, state digest %016llx\n", soil.size(),
-              st.lost, st.frozen, st.kinetic_energy, static_cast<unsigned long long>(d.h));
+              st.lost, st.frozen, st.kinetic_energy, static_cast<unsigned long long>(d.h.value()));
   return 0;
 }

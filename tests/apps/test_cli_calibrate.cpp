@@ -7,7 +7,10 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -128,13 +131,49 @@ TEST_CASE("a killed calibration resumes and ends with exactly the draws of an un
   REQUIRE(fs::exists(checkpoint));
   REQUIRE_FALSE(fs::exists(out + "/scm_params.json"));  // nothing under a final name yet
 
+  // Copies of the killed run's folder with the checkpoint damaged: one byte flipped, cut short, replaced.
+  const std::string good = read_file(checkpoint);
+  auto damaged_copy = [&](const std::string& name, std::string bytes) {
+    fs::copy(out, dir + "/" + name, fs::copy_options::recursive);
+    std::ofstream(dir + "/" + name + "/.checkpoint.cbor", std::ios::binary) << bytes;
+    return dir + "/" + name;
+  };
+  std::string flipped = good;
+  flipped[good.size() / 2] = static_cast<char>(flipped[good.size() / 2] ^ 0x01);
+  const std::vector<std::pair<std::string, std::string>> damaged = {
+      {damaged_copy("flipped", flipped), "checksum mismatch"},
+      {damaged_copy("cut", good.substr(0, good.size() - 100)), "cut off"},
+      {damaged_copy("foreign",
+                    "\xa2\x66"
+                    "format"),
+       "not a terracal checkpoint"}};
+  // A temporary left by a writer that died (its process is gone) is removed by the next run.
+  const pid_t gone = fork();
+  if (gone == 0) _exit(0);
+  waitpid(gone, nullptr, 0);
+  const std::string stale = out + "/.scm_params.json.tmp." + std::to_string(gone);
+  write(stale, "partial");
+
   const CliResult resumed = run_cli(calibrate_args(out, extra), dir);
   INFO(resumed.err);
   REQUIRE(resumed.exit_code == 0);
-  CHECK(resumed.err.find("resumed from the checkpoint") != std::string::npos);
+  CHECK(resumed.err.find("resuming from " + checkpoint) != std::string::npos);
+  CHECK(resumed.err.find("removed") != std::string::npos);
+  CHECK_FALSE(fs::exists(stale));
   for (const char* f : {"scm_params.json", "posterior.h5", "summary.txt"}) {
     INFO(f);
     CHECK(read_file(dir + "/full/" + f) == read_file(out + "/" + f));
+  }
+  // A damaged or foreign checkpoint is named and ignored: the run starts over and ends as the full run.
+  for (const auto& [folder, why] : damaged) {
+    const CliResult r = run_cli(calibrate_args(folder, extra), dir);
+    INFO(folder << ": " << r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.err.find("checkpoint " + folder + "/.checkpoint.cbor ignored, the calibration starts over") !=
+          std::string::npos);
+    CHECK(r.err.find(why) != std::string::npos);
+    CHECK(read_file(dir + "/full/summary.txt") == read_file(folder + "/summary.txt"));
+    CHECK_FALSE(fs::exists(folder + "/.checkpoint.cbor"));
   }
 }
 

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <filesystem>
+#include <fstream>
 #include <functional>
 
 #include <nlohmann/json.hpp>
@@ -87,10 +88,26 @@ TEST_CASE("terracal crm: a resumed run ends with exactly the files of an uninter
   REQUIRE(
       test::run_cli("crm --scene " + half + " --out " + dir.path.string() + "/b --cache '' --record-every 1", dir.path)
           .exit_code == 0);
-  const CliResult b = test::run_cli(
-      "crm --scene " + full + " --out " + dir.path.string() + "/b --cache '' --record-every 1 --resume", dir.path);
+  // A copy of the half-way folder with one byte of its checkpoint flipped.
+  const std::string root = dir.path.string();
+  std::filesystem::copy(root + "/b", root + "/c", std::filesystem::copy_options::recursive);
+  std::string bytes = test::read_file(root + "/c/checkpoint.h5");
+  bytes[bytes.size() / 2] = static_cast<char>(bytes[bytes.size() / 2] ^ 0x01);
+  std::ofstream(root + "/c/checkpoint.h5", std::ios::binary) << bytes;
+
+  const CliResult b =
+      test::run_cli("crm --scene " + full + " --out " + root + "/b --cache '' --record-every 1 --resume", dir.path);
   INFO(b.err);
   REQUIRE(b.exit_code == 0);
-  CHECK(test::read_file(dir.path.string() + "/a/bodies.csv") == test::read_file(dir.path.string() + "/b/bodies.csv"));
-  CHECK(test::read_file(dir.path.string() + "/a/bodies.csv").size() > 100);
+  CHECK(b.err.find("resuming from " + root + "/b/checkpoint.h5") != std::string::npos);
+  CHECK(test::read_file(root + "/a/bodies.csv") == test::read_file(root + "/b/bodies.csv"));
+  CHECK(test::read_file(root + "/a/bodies.csv").size() > 100);
+  // The damaged checkpoint is named, the run starts over, and ends as the uninterrupted one.
+  const CliResult c =
+      test::run_cli("crm --scene " + full + " --out " + root + "/c --cache '' --record-every 1 --resume", dir.path);
+  INFO(c.err);
+  REQUIRE(c.exit_code == 0);
+  CHECK(c.err.find(root + "/c/checkpoint.h5 cannot be resumed") != std::string::npos);
+  CHECK(c.err.find("the run starts from the beginning") != std::string::npos);
+  CHECK(test::read_file(root + "/a/bodies.csv") == test::read_file(root + "/c/bodies.csv"));
 }

@@ -1,5 +1,6 @@
 // Plate phases and plate sizes as the calibrator sees them (docs/formats.md, "plate.csv"): the Bekker law is
-// fitted to loading beyond the previous maximum sinkage, and only plates with such rows count.
+// fitted to loading beyond the previous maximum sinkage, and only plates with such rows count. Every row is
+// used or the file is refused naming the row: a plate's rows out of the order of its test are refused.
 #include <catch2/catch.hpp>
 
 #include <fstream>
@@ -30,12 +31,14 @@ TEST_CASE("load / unload / reload: only loading beyond the previous maximum is f
   const PlateData d = load_rows("phases",
                                 "0.1,0.01,300,load\n0.1,0.02,650,load\n0.1,0.03,1000,load\n"
                                 "0.1,0.025,400,unload\n0.1,0.02,100,unload\n"
-                                "0.1,0.022,200,load\n0.1,0.026,500,reload\n0.1,0.035,1200,reload\n"
+                                "0.1,0.022,200,reload\n0.1,0.026,500,reload\n0.1,0.035,1200,reload\n"
                                 "0.2,0.01,1100,\n0.2,0.02,2300,\n"
                                 "0.3,0,0,load\n",  // a plate with no sinkage: no information
                                 fitted);
   CHECK(fitted == std::vector<double>{0.01, 0.02, 0.03, 0.035, 0.01, 0.02});
   CHECK(d.radii == std::vector<double>{0.1, 0.2});
+  REQUIRE(d.notes.size() == 1);  // the row at sinkage 0 is kept out of the fit, and that is said
+  CHECK(d.notes[0].find("1 loading row(s) at sinkage 0") != std::string::npos);
 }
 
 TEST_CASE("a noisy reload that has rejoined the virgin curve stays on it until the next unload",
@@ -69,4 +72,66 @@ TEST_CASE("values a hair below zero are noise, clearly negative ones a sign erro
   CHECK(load_shear_csv(path).points.size() == 3);
   std::ofstream(path) << head << "0.1,0.2,98,0.001,-2\n0.1,0.2,98,0.05,10\n0.1,0.2,98,0.1,12\n";
   CHECK_THROWS_WITH(load_shear_csv(path), Catch::Contains("torque_Nm") && Catch::Contains("negative"));
+}
+
+TEST_CASE("plate rows out of the order of their test are refused naming the row, never dropped",
+          "[bayes][observations]") {
+  std::vector<double> fitted;
+  const std::string in_order =
+      "0.1,0.01,300,load\n0.1,0.02,650,load\n0.1,0.03,1000,load\n0.1,0.04,1400,load\n"
+      "0.2,0.01,1100,load\n0.2,0.02,2300,load\n0.2,0.03,3600,load\n";
+  const PlateData good = load_rows("order_good", in_order, fitted);
+  CHECK(fitted.size() == 7);  // every loading row below the surface is fitted
+  // Reversed and shuffled: refused at the first row that breaks the order, naming it and the row it contradicts.
+  const std::string reversed =
+      "0.1,0.04,1400,load\n0.1,0.03,1000,load\n0.1,0.02,650,load\n0.1,0.01,300,load\n"
+      "0.2,0.03,3600,load\n0.2,0.02,2300,load\n0.2,0.01,1100,load\n";
+  CHECK_THROWS_WITH(load_rows("order_reversed", reversed, fitted), Catch::Contains("plate.csv:3, column 'sinkage_m'") &&
+                                                                       Catch::Contains("shallower than line 2") &&
+                                                                       Catch::Contains("order of the test"));
+  const std::string shuffled =
+      "0.2,0.02,2300,load\n0.1,0.03,1000,load\n0.1,0.01,300,load\n0.2,0.01,1100,load\n"
+      "0.1,0.04,1400,load\n0.2,0.03,3600,load\n0.1,0.02,650,load\n";
+  CHECK_THROWS_WITH(load_rows("order_shuffled", shuffled, fitted),
+                    Catch::Contains("plate.csv:4, column 'sinkage_m'") && Catch::Contains("shallower than line 3"));
+  // Interleaved plates are fine: each plate's rows are in order; the data set is the grouped one.
+  const std::string interleaved =
+      "0.1,0.01,300,load\n0.2,0.01,1100,load\n0.1,0.02,650,load\n0.2,0.02,2300,load\n"
+      "0.1,0.03,1000,load\n0.2,0.03,3600,load\n0.1,0.04,1400,load\n";
+  const PlateData mixed = load_rows("order_interleaved", interleaved, fitted);
+  REQUIRE(mixed.points.size() == good.points.size());
+  for (std::size_t i = 0; i < good.points.size(); ++i) {
+    CHECK(mixed.points[i].radius == good.points[i].radius);
+    CHECK(mixed.points[i].sinkage == good.points[i].sinkage);
+    CHECK(mixed.points[i].fitted == good.points[i].fitted);
+  }
+  // A hold (two rows at one sinkage) is loading too: both rows are fitted.
+  load_rows("order_hold", "0.1,0.01,300,load\n0.1,0.02,650,load\n0.1,0.02,640,load\n0.1,0.03,1000,load\n", fitted);
+  CHECK(fitted == std::vector<double>{0.01, 0.02, 0.02, 0.03});
+}
+
+TEST_CASE("unload and reload rows must follow the test's history", "[bayes][observations]") {
+  std::vector<double> fitted;
+  const std::string load = "0.1,0.01,300,load\n0.1,0.02,650,load\n0.1,0.03,1000,load\n";
+  CHECK_THROWS_WITH(load_rows("reload_first", "0.1,0.01,300,load\n0.1,0.015,400,reload\n", fitted),
+                    Catch::Contains("plate.csv:3, column 'phase'") && Catch::Contains("without an unload row"));
+  CHECK_THROWS_WITH(load_rows("unload_sinks", load + "0.1,0.025,400,unload\n0.1,0.027,300,unload\n", fitted),
+                    Catch::Contains("plate.csv:6") && Catch::Contains("deeper than the unload row before it (line 5"));
+  CHECK_THROWS_WITH(
+      load_rows("reload_rises", load + "0.1,0.02,100,unload\n0.1,0.025,500,reload\n0.1,0.022,300,reload\n", fitted),
+      Catch::Contains("plate.csv:7") && Catch::Contains("shallower than the reload row before it"));
+  // A row labelled load below the deepest sinkage after an unload was a reload: refused, not skipped.
+  CHECK_THROWS_WITH(load_rows("load_after_unload", load + "0.1,0.02,100,unload\n0.1,0.025,500,load\n", fitted),
+                    Catch::Contains("plate.csv:6") && Catch::Contains("label the rows with the phase column"));
+}
+
+TEST_CASE("shear rows at angle 0 are kept out of the data set and counted", "[bayes][observations]") {
+  const test::ScratchDir dir("shear_at_rest");
+  const std::string path = dir.str() + "/shear.csv";
+  std::ofstream(path) << "inner_radius_m,outer_radius_m,normal_load_N,angle_rad,torque_Nm\n"
+                      << "0.1,0.2,98,0,0\n0.1,0.2,98,0.05,10\n0.1,0.2,98,0.1,12\n0.1,0.2,196,0,0.1\n";
+  const ShearData d = load_shear_csv(path);
+  CHECK(d.points.size() == 2);
+  REQUIRE(d.notes.size() == 1);
+  CHECK(d.notes[0].find("2 row(s) at shear angle 0") != std::string::npos);
 }

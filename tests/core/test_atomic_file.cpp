@@ -1,11 +1,13 @@
 #include <catch2/catch.hpp>
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <vector>
 
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
@@ -44,5 +46,25 @@ TEST_CASE("atomic_file: write replaces the file whole, a failure leaves nothing"
   std::size_t entries = 0;
   for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++entries;
   CHECK(entries == 1);  // no temporaries left behind
+  fs::remove_all(dir);
+}
+
+TEST_CASE("atomic_file: the temporaries of writers that died are removed, no other file", "[core][atomic_file]") {
+  const fs::path dir = fs::temp_directory_path() / ("terracal_test_stale_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const pid_t gone = fork();  // a process that has ended: its PID names no running writer
+  if (gone == 0) _exit(0);
+  waitpid(gone, nullptr, 0);
+  const std::string dead = ".summary.txt.tmp." + std::to_string(gone);
+  const std::string mine = ".summary.txt.tmp." + std::to_string(::getpid());  // a write in progress
+  for (const std::string& name :
+       {dead, mine, std::string(".notes.tmp.abc"), std::string("summary.txt"), std::string("result.tmp.1")})
+    std::ofstream(dir / name) << "x";
+  const std::vector<std::string> removed = terracal::remove_stale_temporaries(dir.string());
+  CHECK(removed == std::vector<std::string>{dead});
+  CHECK_FALSE(fs::exists(dir / dead));
+  for (const char* kept : {".notes.tmp.abc", "summary.txt", "result.tmp.1"}) CHECK(fs::exists(dir / kept));
+  CHECK(fs::exists(dir / mine));
   fs::remove_all(dir);
 }
