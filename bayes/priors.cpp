@@ -1,13 +1,17 @@
 #include "bayes/priors.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include "core/errors.hpp"
 #include "core/json_file.hpp"
+#include "core/text_check.hpp"
 
 namespace terracal::bayes {
 namespace {
@@ -41,8 +45,27 @@ bool physically_allowed(int i, double x) {
 double get_number(const nlohmann::json& j, const std::string& path, const std::string& key, const char* field) {
   if (!j.contains(field)) throw InputError(fmt::format("{}: key '{}': missing field '{}'", path, key, field));
   if (!j[field].is_number())
-    throw InputError(fmt::format("{}: key '{}.{}': {} is not a number", path, key, field, j[field].dump()));
+    throw InputError(fmt::format("{}: key '{}.{}': {} is not a number", path, key, field, shorten(j[field].dump())));
   return j[field].get<double>();
+}
+
+// The fields each type of prior reads. Any other field is refused: a misspelt "uper" would
+// otherwise leave the default bound in place without a word.
+std::vector<std::string> fields_of(const std::string& type) {
+  if (type == "uniform") return {"type", "lower", "upper"};
+  if (type == "normal" || type == "lognormal") return {"type", "mean", "sd", "lower", "upper"};
+  if (type == "fixed") return {"type", "value"};
+  return {};  // not a type: refused by the caller, which names the types
+}
+
+void refuse_unknown_fields(const nlohmann::json& spec, const std::string& path, const std::string& key,
+                           const std::string& type) {
+  const std::vector<std::string> fields = fields_of(type);
+  if (fields.empty()) return;
+  for (const auto& [field, value] : spec.items())
+    if (std::find(fields.begin(), fields.end(), field) == fields.end())
+      throw InputError(fmt::format("{}: key {}: unknown key for a {} prior; expected {}", path,
+                                   excerpt(key + "." + field), type, fmt::join(fields, ", ")));
 }
 
 }  // namespace
@@ -102,16 +125,22 @@ Priors load_priors(const std::string& path) {
   const nlohmann::json j = read_json_file(path, "priors file");
   if (!j.is_object()) throw InputError(fmt::format("{}: expected a JSON object keyed by parameter name", path));
   Priors p = default_priors();
+  std::array<std::string, kNumParams> named_by;  // a short and a Chrono name for one parameter: refused
   for (const auto& [key, spec] : j.items()) {
     const int i = param_index(key);
     if (i < 0)
-      throw InputError(fmt::format(
-          "{}: unknown key '{}'; expected one of Kc, Kphi, n, c, phi, k (or their Chrono names)", path, key));
+      throw InputError(fmt::format("{}: unknown key {}; expected one of Kc, Kphi, n, c, phi, k (or their Chrono names)",
+                                   path, excerpt(key)));
+    if (!named_by[i].empty())
+      throw InputError(fmt::format("{}: keys '{}' and '{}' both give the prior of {}; expected one of them", path,
+                                   named_by[i], key, kShortNames[i]));
+    named_by[i] = key;
     if (!spec.is_object() || !spec.contains("type") || !spec["type"].is_string())
       throw InputError(fmt::format("{}: key '{}': expected an object with a string field 'type'", path, key));
     Prior& pr = p[i];
     pr.user_given = true;
     const std::string type = spec["type"];
+    refuse_unknown_fields(spec, path, key, type);
     if (spec.contains("lower")) pr.lower = get_number(spec, path, key, "lower");
     if (spec.contains("upper")) pr.upper = get_number(spec, path, key, "upper");
     if (type == "uniform") {
@@ -130,8 +159,8 @@ Priors load_priors(const std::string& path) {
       continue;
     } else {
       throw InputError(
-          fmt::format("{}: key '{}.type': '{}' is not a prior type; expected uniform, normal, lognormal or fixed", path,
-                      key, type));
+          fmt::format("{}: key '{}.type': {} is not a prior type; expected uniform, normal, lognormal or fixed", path,
+                      key, excerpt(type)));
     }
     if (!(pr.lower < pr.upper))
       throw InputError(fmt::format("{}: key '{}': lower {} must be below upper {}", path, key, pr.lower, pr.upper));
