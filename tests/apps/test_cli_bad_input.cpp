@@ -85,7 +85,7 @@ TEST_CASE("bad shear input and bad options: exit 2 naming what is wrong", "[cli]
       {"priors: open lower bound", "priors.json", R"({"k": {"type": "uniform", "lower": 0, "upper": 0.1}})", "--priors",
        "'k.lower': 0 is outside the physical range (0, 10]"},
       {"priors: number out of range", "priors.json", R"({"c": {"type": "uniform", "lower": 0, "upper": 1e400}})",
-       "--priors", "priors.json: the priors file is not valid JSON"},
+       "--priors", "priors.json:1:48: key 'c.upper': '1e400' is out of range"},
       {"priors: everything fixed", "priors.json",
        R"({"Kc": {"type": "fixed", "value": 0}, "Kphi": {"type": "fixed", "value": 1e6}, )"
        R"("n": {"type": "fixed", "value": 1}})",
