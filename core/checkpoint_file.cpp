@@ -47,8 +47,8 @@ CheckpointRead fail(CheckpointState state, std::string why) { return {state, {},
 
 void write_checkpoint_file(const std::string& path, const CheckpointKind& kind, std::string_view fingerprint,
                            std::string_view payload) {
-  std::string bytes = fmt::format("{} {} {} {} {} {}\n", kMagic, kind.format, kind.version, fingerprint,
-                                  payload.size(), checksum(kind.format, kind.version, fingerprint, payload));
+  std::string bytes = fmt::format("{} {} {} {} {} {}\n", kMagic, kind.format, kind.version, fingerprint, payload.size(),
+                                  checksum(kind.format, kind.version, fingerprint, payload));
   bytes += payload;
   write_text_atomically(path, bytes);
 }
@@ -73,9 +73,8 @@ CheckpointRead read_checkpoint_file(const std::string& path, const CheckpointKin
     return fail(CheckpointState::kForeign,
                 fmt::format("format version {}, this terracal reads version {}", h.version, kind.version));
   if (h.fingerprint != fingerprint)
-    return fail(CheckpointState::kForeign,
-                "written for other inputs or options (fingerprint " + h.fingerprint + ", this run " +
-                    std::string(fingerprint) + ")");
+    return fail(CheckpointState::kForeign, "written for other inputs or options (fingerprint " + h.fingerprint +
+                                               ", this run " + std::string(fingerprint) + ")");
   return {CheckpointState::kValid, std::string(payload), {}};
 }
 
