@@ -256,4 +256,25 @@ void write_pvd(const fs::path& file, const std::vector<std::pair<double, std::st
   write_text_atomically(file.string(), text);
 }
 
+std::vector<std::pair<double, std::string>> read_pvd(const fs::path& file) {
+  std::vector<std::pair<double, std::string>> entries;
+  std::ifstream in(file);
+  std::string line;
+  for (int line_no = 1; std::getline(in, line); ++line_no) {
+    if (line.find("<DataSet ") == std::string::npos) continue;
+    // Our own writer's attributes: timestep="T" ... file="NAME" (names with no characters to escape).
+    const auto t = line.find("timestep=\""), f = line.find("file=\"");
+    const auto t_end = t == std::string::npos ? t : line.find('"', t + 10);
+    const auto f_end = f == std::string::npos ? f : line.find('"', f + 6);
+    double time = 0;
+    const bool ok = t_end != std::string::npos && f_end != std::string::npos &&
+                    std::from_chars(line.data() + t + 10, line.data() + t_end, time).ptr == line.data() + t_end;
+    if (!ok)
+      throw InputError(file.string() + ":" + std::to_string(line_no) +
+                       ": not a DataSet entry of a terracal collection");
+    entries.emplace_back(time, line.substr(f + 6, f_end - f - 6));
+  }
+  return entries;
+}
+
 }  // namespace terracal

@@ -33,4 +33,9 @@ void write_vtu_points(const std::filesystem::path& file, const std::vector<doubl
 // the order given. Throws InputError for an empty file name, RunError when the write fails.
 void write_pvd(const std::filesystem::path& file, const std::vector<std::pair<double, std::string>>& entries);
 
+// The (time, file name) entries of a collection that write_pvd wrote, in order; empty when the file
+// does not exist. A resumed run continues the collection of the run it resumes. Throws InputError for
+// an entry it cannot read (naming the file and the line).
+std::vector<std::pair<double, std::string>> read_pvd(const std::filesystem::path& file);
+
 }  // namespace terracal

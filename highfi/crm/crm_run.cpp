@@ -180,22 +180,37 @@ std::vector<std::string> rows_until(const fs::path& bodies_csv, double until) {
   return rows;
 }
 
-// Restores the solver from the checkpoint of the same scene and device and returns the rows of
-// bodies.csv up to the checkpoint's time. A missing, damaged or foreign checkpoint (or bodies.csv)
-// is reported and the run starts from the beginning: nothing is restored and no rows come back.
-std::vector<std::string> resume_run(CrmSolver& solver, const fs::path& ckpt, const std::string& fingerprint,
-                                    const fs::path& bodies_csv, bool& resumed) {
-  resumed = false;
+// The ParaView collection of the run being resumed, up to time `until` (a snapshot written after the
+// checkpoint is written again by the resumed run).
+std::vector<std::pair<double, std::string>> snapshots_until(const fs::path& pvd, double until) {
+  std::vector<std::pair<double, std::string>> kept;
+  for (const auto& entry : read_pvd(pvd))
+    if (entry.first <= until) kept.push_back(entry);
+  return kept;
+}
+
+// What a resumed run carries on from the run it resumes.
+struct Resumed {
+  bool resumed = false;
+  std::vector<std::string> rows;                          // of bodies.csv, up to the checkpoint
+  std::vector<std::pair<double, std::string>> snapshots;  // of soil.pvd, up to the checkpoint
+};
+
+// Restores the solver from OUT/checkpoint.h5 of the same scene and device, and the outputs up to its
+// time. A missing, damaged or foreign checkpoint (or bodies.csv, soil.pvd) is reported and the run
+// starts from the beginning: nothing is restored.
+Resumed resume_run(CrmSolver& solver, const fs::path& out, const std::string& fingerprint) {
+  const fs::path ckpt = out / "checkpoint.h5";
   try {
     CrmCheckpoint c = read_crm_checkpoint(ckpt);
     if (c.fingerprint != fingerprint)
       throw InputError(fmt::format("it belongs to a different scene or device (fingerprint {}, this run {})",
                                    c.fingerprint, fingerprint));
-    std::vector<std::string> rows = rows_until(bodies_csv, c.time + 0.5 * solver.time_step());
+    const double until = c.time + 0.5 * solver.time_step();
+    Resumed r{true, rows_until(out / "bodies.csv", until), snapshots_until(out / "soil.pvd", until)};
     solver.restore(c.soil, c.bodies, c.time, c.steps);
     spdlog::info("resuming from {} at t = {} s, step {}", ckpt.string(), c.time, c.steps);
-    resumed = true;
-    return rows;
+    return r;
   } catch (const InputError& e) {
     spdlog::warn("--resume: {} cannot be resumed ({}): the run starts from the beginning", ckpt.string(), e.what());
     return {};
@@ -243,8 +258,9 @@ CrmRunSummary run_crm_scene(const CrmScene& scene, const CrmRunOptions& o) {
   std::vector<std::string> rows;
   std::vector<std::pair<double, std::string>> snapshots;
   const std::string header = "time_s,body,fx_N,fy_N,fz_N,tx_Nm,ty_Nm,tz_Nm,x_m,y_m,z_m,vx_mps,vy_mps,vz_mps";
-  bool resumed = false;
-  if (o.resume) rows = resume_run(solver, ckpt, fingerprint, o.out / "bodies.csv", resumed);
+  const Resumed from = o.resume ? resume_run(solver, o.out, fingerprint) : Resumed{};
+  rows = from.rows;
+  snapshots = from.snapshots;
   auto write_rows = [&] {
     std::string text = header + "\n";
     for (const auto& r : rows) text += r + "\n";
@@ -276,7 +292,7 @@ CrmRunSummary run_crm_scene(const CrmScene& scene, const CrmRunOptions& o) {
   Progress progress("run", scene.duration, scene.output.progress_seconds);
   progress.start(solver);
   const long first = solver.steps();
-  if (scene.output.vtu_every > 0 && !resumed) snapshot();
+  if (scene.output.vtu_every > 0 && !from.resumed) snapshot();
   while (solver.time() < scene.duration - 0.5 * solver.time_step()) {
     solver.step();
     const long k = solver.steps();

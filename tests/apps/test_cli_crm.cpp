@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/vtu_writer.hpp"
 #include "tests/apps/cli_runner.hpp"
 #include "tests/highfi/crm/crm_test_scenes.hpp"
 #include "tests/scratch_dir.hpp"
@@ -77,6 +78,7 @@ TEST_CASE("terracal crm: a resumed run ends with exactly the files of an uninter
   ScratchDir dir("crm_resume");
   nlohmann::json j = good_scene();
   j["duration"] = 0.006;
+  j["output"] = {{"vtu_every", 3}};  // snapshots before and after the checkpoint: one collection
   const std::string full = dir.path.string() + "/full.json", half = dir.path.string() + "/half.json";
   test::write(full, j.dump());
   const CliResult a =
@@ -102,6 +104,8 @@ TEST_CASE("terracal crm: a resumed run ends with exactly the files of an uninter
   CHECK(b.err.find("resuming from " + root + "/b/checkpoint.h5") != std::string::npos);
   CHECK(test::read_file(root + "/a/bodies.csv") == test::read_file(root + "/b/bodies.csv"));
   CHECK(test::read_file(root + "/a/bodies.csv").size() > 100);
+  CHECK(test::read_file(root + "/a/soil.pvd") == test::read_file(root + "/b/soil.pvd"));
+  CHECK(terracal::read_pvd(root + "/a/soil.pvd").size() >= 3);
   // The damaged checkpoint is named, the run starts over, and ends as the uninterrupted one.
   const CliResult c =
       test::run_cli("crm --scene " + full + " --out " + root + "/c --cache '' --record-every 1 --resume", dir.path);

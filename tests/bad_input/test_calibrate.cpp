@@ -13,15 +13,21 @@ const std::string kShearHeader = "inner_radius_m,outer_radius_m,normal_load_N,an
 
 // A plate.csv case: the file, then calibrate on it with the demo's shear curves.
 BadInput plate(const std::string& name, const std::string& csv, std::vector<std::string> phrases) {
-  return {name, {{"plate.csv", csv}}, "calibrate --plate {dir}/plate.csv --shear {demo}/shear.csv --out {out}",
+  return {name,
+          {{"plate.csv", csv}},
+          "calibrate --plate {dir}/plate.csv --shear {demo}/shear.csv --out {out}",
           std::move(phrases)};
 }
 BadInput shear(const std::string& name, const std::string& csv, std::vector<std::string> phrases) {
-  return {name, {{"shear.csv", csv}}, "calibrate --plate {demo}/plate.csv --shear {dir}/shear.csv --out {out}",
+  return {name,
+          {{"shear.csv", csv}},
+          "calibrate --plate {demo}/plate.csv --shear {dir}/shear.csv --out {out}",
           std::move(phrases)};
 }
 BadInput priors(const std::string& name, const std::string& json, std::vector<std::string> phrases) {
-  return {name, {{"priors.json", json}}, "calibrate --plate {demo}/plate.csv --priors {dir}/priors.json --out {out}",
+  return {name,
+          {{"priors.json", json}},
+          "calibrate --plate {demo}/plate.csv --priors {dir}/priors.json --out {out}",
           std::move(phrases)};
 }
 BadInput option(const std::string& args, std::vector<std::string> phrases) {
@@ -106,9 +112,10 @@ std::vector<BadInput> priors_cases() {
              {"key 'Kphi.uper': unknown key for a uniform prior; expected type, lower, upper"}),
       priors("a field the prior type does not take", R"({"Kc": {"type": "fixed", "value": 0, "upper": 1}})",
              {"key 'Kc.upper': unknown key for a fixed prior; expected type, value"}),
-      priors("one parameter under two names",
-             R"({"Kphi": {"type": "uniform", "lower": 0, "upper": 1e7}, "Bekker Kphi": {"type": "fixed", "value": 1e6}})",
-             {"keys 'Bekker Kphi' and 'Kphi' both give the prior of Kphi"}),
+      priors(
+          "one parameter under two names",
+          R"({"Kphi": {"type": "uniform", "lower": 0, "upper": 1e7}, "Bekker Kphi": {"type": "fixed", "value": 1e6}})",
+          {"keys 'Bekker Kphi' and 'Kphi' both give the prior of Kphi"}),
       priors("not JSON", "{\"n\": {\"type\": \"normal\",\n \"mean\": }", {"{dir}/priors.json:2:10", "not valid JSON"}),
   };
 }

@@ -19,9 +19,14 @@ TEST_CASE("bad input, command line: unknown commands and options", "[cli][bad_in
        "calibrate --plat x.csv --out {out}",
        {"terracal calibrate: unknown option '--plat' (did you mean '--plate'?)",
         "'terracal calibrate --help' lists the options"}},
-      {"misspelt option with =", {}, "calibrate --plate=x.csv --sed=3 --out {out}",
+      {"misspelt option with =",
+       {},
+       "calibrate --plate=x.csv --sed=3 --out {out}",
        {"unknown option '--sed' (did you mean '--seed'?)"}},
-      {"unknown option", {}, "calibrate --frobnicate 3 --out {out}", {"terracal calibrate: unknown option '--frobnicate';"}},
+      {"unknown option",
+       {},
+       "calibrate --frobnicate 3 --out {out}",
+       {"terracal calibrate: unknown option '--frobnicate';"}},
   };
   terracal::test::check_bad_inputs("bad_cmdline", cases);
 }
