@@ -2,43 +2,64 @@
 // poses, motion programs and mass properties.
 #include "highfi/crm/crm_body_json.hpp"
 
+#include <charconv>
 #include <cmath>
-#include <fstream>
 #include <sstream>
+#include <type_traits>
 
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
 #include "core/quat.hpp"
+#include "core/text_check.hpp"
 
 namespace terracal {
 
 namespace {
 
-// Wavefront OBJ: `v x y z` and `f a b c` (polygons fanned into triangles; a/b/c and negative indices allowed).
+// One number of an OBJ line; InputError naming the file, line and token otherwise.
+template <class T>
+T obj_number(const std::string& token, const std::filesystem::path& file, int line_no, const char* expected) {
+  T v{};
+  const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), v);
+  bool ok = ec == std::errc() && ptr == token.data() + token.size();
+  if constexpr (std::is_floating_point_v<T>) ok = ok && std::isfinite(v);
+  if (!ok) throw InputError(fmt::format("{}:{}: {} is not {}", file.string(), line_no, excerpt(token), expected));
+  return v;
+}
+
+// Wavefront OBJ: `v x y z` and `f a b c` (polygons fanned into triangles; a/b/c and negative indices
+// allowed); other statements (vt, vn, o, g, s, usemtl, ...) do not change the shape and are skipped.
 void read_obj(const std::filesystem::path& file, BodyShape& shape, const std::string& key) {
-  std::ifstream in(file);
-  if (!in) throw InputError(fmt::format("{}: cannot open the mesh file '{}'", key, file.string()));
+  std::string bytes;
+  try {
+    bytes = read_input_bytes(file.string(), "mesh file");
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: {}", key, e.what()));
+  }
+  std::istringstream in{std::string(check_utf8_text(file.string(), bytes))};
   std::string line;
-  int lineno = 0;
-  while (std::getline(in, line)) {
-    ++lineno;
+  for (int line_no = 1; std::getline(in, line); ++line_no) {
     std::istringstream ls(line);
-    std::string tag;
+    std::string tag, tok;
     ls >> tag;
     if (tag == "v") {
-      Vec3<double> v;
-      if (!(ls >> v.x >> v.y >> v.z))
-        throw InputError(fmt::format("{}:{}: bad vertex line '{}'", file.string(), lineno, line));
-      shape.vertices.push_back(v);
+      double x[3];
+      for (double& c : x) {
+        if (!(ls >> tok))
+          throw InputError(
+              fmt::format("{}:{}: a vertex needs 3 coordinates: {}", file.string(), line_no, excerpt(line)));
+        c = obj_number<double>(tok, file, line_no, "a finite coordinate");
+      }
+      shape.vertices.push_back({x[0], x[1], x[2]});
     } else if (tag == "f") {
       std::vector<int> idx;
-      std::string tok;
       while (ls >> tok) {
-        const int k = std::stoi(tok.substr(0, tok.find('/')));
+        const int k =
+            obj_number<int>(tok.substr(0, tok.find('/')), file, line_no, "a vertex number (1, 2, ... or -1, -2, ...)");
         idx.push_back(k > 0 ? k - 1 : int(shape.vertices.size()) + k);
       }
-      if (idx.size() < 3) throw InputError(fmt::format("{}:{}: a face needs 3 vertices", file.string(), lineno));
+      if (idx.size() < 3) throw InputError(fmt::format("{}:{}: a face needs 3 vertices", file.string(), line_no));
       for (std::size_t q = 1; q + 1 < idx.size(); ++q) shape.triangles.push_back({idx[0], idx[q], idx[q + 1]});
     }
   }
