@@ -5,7 +5,9 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "apps/cli_checks.hpp"
 #include "apps/commands.hpp"
+#include "apps/out_dir.hpp"
 #include "apps/terrain_options.hpp"
 #include "core/errors.hpp"
 #include "highfi/crm/crm_run.hpp"
@@ -31,9 +33,10 @@ Command add_crm(CLI::App& app) {
   sub->add_option("--cache", a->cache, "folder of settled beds ('' = no cache)")->capture_default_str();
   sub->add_flag("--resume", a->resume, "continue from OUT/checkpoint.h5");
   sub->add_option("--record-every", a->record_every, "steps between rows of bodies.csv")
-      ->check(CLI::Range(1L, 1L << 40))
+      ->transform(whole_in(1, 1LL << 40))
       ->capture_default_str();
   return [a] {
+    const OutDir out = prepare_out_dir("--out", a->out);
     const CrmScene scene = load_crm_scene(a->scene);
     CrmRunOptions o;
     o.out = a->out;

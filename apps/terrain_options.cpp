@@ -39,7 +39,7 @@ void add_crm_settling_options(CLI::App* sub, TerrainOptions& o) {
       ->capture_default_str();
   sub->add_option("--settle-seed", o.settle_seed,
                   "seed of --settle-jitter: another seed, another realisation of the bed")
-      ->check(CLI::Range(0L, CrmRanges::kMaxSettleSeed))
+      ->transform(whole_in(0, CrmRanges::kMaxSettleSeed))
       ->capture_default_str();
   const auto damping = HourglassDamping::settings()[0];
   sub->add_option("--hourglass-damping", o.hourglass_damping,
