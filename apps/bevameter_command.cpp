@@ -53,6 +53,7 @@ Command add_bevameter(CLI::App& app) {
     if (shear && plan.shear_loads.empty())
       throw InputError("--shear-loads: required for the shear test (normal loads in N, e.g. 245,490,736)");
     const SoilChoice soil = choose_soil(a->solver, a->terrain);
+    check_bevameter(soil, a->terrain, plan, plate, shear);
     std::filesystem::create_directories(a->out);
     const BevameterCurves c = run_bevameter(soil, a->terrain, plan, plate, shear);
     if (plate) rigs::write_plate_csv(a->out + "/plate.csv", c.plate);

@@ -1,6 +1,8 @@
 #include <map>
 #include <memory>
 
+#include <fmt/format.h>
+
 #include "apps/calibration_run.hpp"
 #include "apps/cli_checks.hpp"
 #include "apps/commands.hpp"
@@ -31,14 +33,16 @@ Command add_calibrate(CLI::App& app) {
       ->required();
   using R = CalibrationRanges;
   add_seed_option(sub, s.seed, "random seed: the same seed gives byte-identical outputs");
-  sub->add_option("--chains", s.chains, "independent MCMC chains")
-      ->transform(whole_in(R::kMinChains, R::kMaxChains))
+  sub->add_option("--chains", s.chains, fmt::format("independent MCMC chains, {} to {}", R::kMinChains, R::kMaxChains))
+      ->transform(whole_number<int>())
       ->capture_default_str();
   sub->add_option("--min-ess", s.min_ess, "bulk effective sample size required for every parameter")
       ->check(in_range(R::kMinEss))
       ->capture_default_str();
-  sub->add_option("--max-draws", s.max_draws, "draw cap per chain; reaching it is reported as not converged")
-      ->transform(whole_in(R::kMinDraws, R::kMaxDraws))
+  sub->add_option("--max-draws", s.max_draws,
+                  fmt::format("draw cap per chain ({} to {}); reaching it is reported as not converged", R::kMinDraws,
+                              R::kMaxDraws))
+      ->transform(whole_number<long>())
       ->capture_default_str();
   sub->add_option("--priors", f.priors_json, "priors file (JSON): bounds, normal/lognormal priors, fixed parameters")
       ->check(CLI::ExistingFile);

@@ -4,6 +4,7 @@
 // a real number in a range (in_range, off_or_in_range), a whole number (whole_in), a seed
 // (seed_value), a comma list of numbers (list_in_range) and a name (add_choice).
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -23,6 +24,12 @@ CLI::Validator off_or_in_range(const Range& r);
 // saying what it expected: this refuses anything but plain digits, naming the value and the range,
 // and hands CLI11 the number in plain decimal. A transform: add it with ->transform().
 CLI::Validator whole_in(long long lo, long long hi);
+// A whole number that fits the option's type T, for settings whose range is checked, with a message
+// of its own, where the setting is validated (--chains, --max-draws: run_calibration).
+template <class T>
+CLI::Validator whole_number() {
+  return whole_in(std::numeric_limits<T>::min(), std::numeric_limits<T>::max());
+}
 // A random seed: a whole number in [0, 2^64 - 1], the range of the seeds' type (std::uint64_t).
 CLI::Validator seed_value();
 // A comma-separated list of numbers (as parse_list reads them), each in r.

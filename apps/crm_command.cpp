@@ -7,6 +7,7 @@
 
 #include "apps/cli_checks.hpp"
 #include "apps/commands.hpp"
+#include "apps/memory_check.hpp"
 #include "apps/out_dir.hpp"
 #include "apps/terrain_options.hpp"
 #include "core/errors.hpp"
@@ -38,9 +39,15 @@ Command add_crm(CLI::App& app) {
   return [a] {
     const OutDir out = prepare_out_dir("--out", a->out);
     const CrmScene scene = load_crm_scene(a->scene);
+    if (a->resume && !std::filesystem::exists(std::filesystem::path(a->out) / "checkpoint.h5"))
+      throw InputError(
+          fmt::format("--resume: {}/checkpoint.h5 does not exist; expected the --out of an interrupted run", a->out));
     CrmRunOptions o;
     o.out = a->out;
     o.device = resolve_device(a->device);
+    check_crm_memory(scene, o.device,
+                     fmt::format("{}: key 'resolution.spacing' {} m", a->scene, scene.numerics.spacing),
+                     "a coarser resolution.spacing or a smaller bin.size");
     o.cache_dir = a->cache;
     o.resume = a->resume;
     o.record_every = a->record_every;

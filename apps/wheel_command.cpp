@@ -58,6 +58,8 @@ Command add_wheel(CLI::App& app) {
     run.duration = a->duration;
     run.average_from = a->average_from;
     const SoilChoice soil = choose_soil(a->terrain, a->options);
+    check_wheel_sweep(a->terrain, soil, a->options, wheel, slips, run);
+    warn_about_sweep(wheel, slips);
     std::filesystem::create_directories(a->out);
     std::string site;
     const auto results = run_wheel_sweep(a->terrain, soil, a->options, wheel, slips, run, &site);
