@@ -10,6 +10,7 @@
 #include "apps/bevameter_options.hpp"
 #include "apps/cli_checks.hpp"
 #include "apps/commands.hpp"
+#include "apps/out_dir.hpp"
 #include "apps/report_plots.hpp"
 #include "apps/soil_choice.hpp"
 #include "core/atomic_file.hpp"
@@ -45,12 +46,14 @@ Command add_bevameter(CLI::App& app) {
   sub->add_flag("!--no-plots", a->plots, "skip the PNG plot");
   add_terrain_options(sub, a->terrain, true, true);
   return [a] {
+    const OutDir out = prepare_out_dir("--out", a->out);
     const bool plate = a->test != BevameterTest::kShear, shear = a->test != BevameterTest::kPlate;
     BevameterPlan plan = a->plan;
     apply_bevameter_lists(a->lists, plan);
     if (shear && plan.shear_loads.empty())
       throw InputError("--shear-loads: required for the shear test (normal loads in N, e.g. 245,490,736)");
     const SoilChoice soil = choose_soil(a->solver, a->terrain);
+    check_bevameter(soil, a->terrain, plan, plate, shear);
     std::filesystem::create_directories(a->out);
     const BevameterCurves c = run_bevameter(soil, a->terrain, plan, plate, shear);
     if (plate) rigs::write_plate_csv(a->out + "/plate.csv", c.plate);

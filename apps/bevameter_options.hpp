@@ -20,8 +20,8 @@ struct BevameterLists {
 // --shear-load-ramp and --shear-step (defaults: the values in `plan` and `lists`).
 void add_bevameter_options(CLI::App* sub, BevameterPlan& plan, BevameterLists& lists);
 
-// The lists into `plan`: plate radii, INNER,OUTER annulus radii, normal loads (> 0 N); InputError
-// naming the option otherwise.
+// The lists into `plan`: plate radii, INNER,OUTER annulus radii, normal loads; InputError naming the
+// option for text that is no list of numbers (their ranges: BevameterRanges, check_bevameter).
 void apply_bevameter_lists(const BevameterLists& lists, BevameterPlan& plan);
 
 }  // namespace terracal::app

@@ -1,9 +1,12 @@
 #include <map>
 #include <memory>
 
+#include <fmt/format.h>
+
 #include "apps/calibration_run.hpp"
 #include "apps/cli_checks.hpp"
 #include "apps/commands.hpp"
+#include "apps/out_dir.hpp"
 
 namespace terracal::app {
 
@@ -28,11 +31,18 @@ Command add_calibrate(CLI::App& app) {
       ->check(CLI::ExistingFile);
   sub->add_option("--out", s.out_dir, "output folder (scm_params.json, posterior.h5, summary.txt, PNG plots)")
       ->required();
-  sub->add_option("--seed", s.seed, "random seed: the same seed gives byte-identical outputs")->capture_default_str();
-  sub->add_option("--chains", s.chains, "independent MCMC chains, 4 to 256")->capture_default_str();
-  sub->add_option("--min-ess", s.min_ess, "bulk effective sample size required for every parameter (> 0)")
+  using R = CalibrationRanges;
+  add_seed_option(sub, s.seed, "random seed: the same seed gives byte-identical outputs");
+  sub->add_option("--chains", s.chains, fmt::format("independent MCMC chains, {} to {}", R::kMinChains, R::kMaxChains))
+      ->transform(whole_number<int>())
       ->capture_default_str();
-  sub->add_option("--max-draws", s.max_draws, "draw cap per chain (>= 10); reaching it is reported as not converged")
+  sub->add_option("--min-ess", s.min_ess, "bulk effective sample size required for every parameter")
+      ->check(in_range(R::kMinEss))
+      ->capture_default_str();
+  sub->add_option("--max-draws", s.max_draws,
+                  fmt::format("draw cap per chain ({} to {}); reaching it is reported as not converged", R::kMinDraws,
+                              R::kMaxDraws))
+      ->transform(whole_number<long>())
       ->capture_default_str();
   sub->add_option("--priors", f.priors_json, "priors file (JSON): bounds, normal/lognormal priors, fixed parameters")
       ->check(CLI::ExistingFile);
@@ -44,7 +54,10 @@ Command add_calibrate(CLI::App& app) {
                                                         {"absolute", bayes::NoiseModel::kAbsolute}};
   add_choice(sub, "--noise", s.noise, noises, "noise model: relative (sd grows with the signal) or absolute");
   sub->add_flag("!--no-plots", s.plots, "skip the PNG plots");
-  return [a] { return run_calibration(read_calibration_files(a->files), a->settings).converged ? 0 : 1; };
+  return [a] {
+    const OutDir out = prepare_out_dir("--out", a->settings.out_dir);
+    return run_calibration(read_calibration_files(a->files), a->settings).converged ? 0 : 1;
+  };
 }
 
 }  // namespace terracal::app

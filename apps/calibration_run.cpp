@@ -47,11 +47,13 @@ std::string fingerprint(const CalibrationData& d, const CalibrationSettings& s) 
 }
 
 void validate(const CalibrationSettings& s) {
-  // At least 4 independent chains, so that split R-hat compares 8 half-chains from dispersed starts.
-  if (s.chains < 4 || s.chains > 256) throw InputError(fmt::format("--chains {}: expected 4 to 256 chains", s.chains));
-  if (s.max_draws < 10)
-    throw InputError(fmt::format("--max-draws {}: expected at least 10 draws per chain", s.max_draws));
-  if (!(s.min_ess > 0)) throw InputError(fmt::format("--min-ess {}: expected a positive number", s.min_ess));
+  using R = CalibrationRanges;
+  if (s.chains < R::kMinChains || s.chains > R::kMaxChains)
+    throw InputError(fmt::format("--chains {}: expected {} to {} chains", s.chains, R::kMinChains, R::kMaxChains));
+  if (s.max_draws < R::kMinDraws || s.max_draws > R::kMaxDraws)
+    throw InputError(
+        fmt::format("--max-draws {}: expected {} to {} draws per chain", s.max_draws, R::kMinDraws, R::kMaxDraws));
+  check_range(R::kMinEss, s.min_ess, "--min-ess");
   if (s.out_dir.empty()) throw InputError("--out: an output folder is required");
   if (fs::exists(s.out_dir) && !fs::is_directory(s.out_dir))
     throw InputError(fmt::format("--out {}: exists and is not a folder", s.out_dir));
@@ -136,8 +138,6 @@ CalibrationOutcome run_calibration(const CalibrationData& data, const Calibratio
   if (problem.dim() == 0) throw InputError("every parameter is fixed (by the priors and the data); nothing to infer");
 
   fs::create_directories(s.out_dir);
-  for (const auto& name : remove_stale_temporaries(s.out_dir))
-    spdlog::info("removed {}/{}, left by an interrupted write", s.out_dir, name);
   const CalibrationOptions opt = sampler_options(data, s);
   spdlog::info("calibrating: {} plate points{}", problem.set(0).size(),
                data.shear ? fmt::format(", {} shear points", problem.set(1).size()) : std::string(", no shear data"));

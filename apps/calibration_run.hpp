@@ -12,9 +12,21 @@
 #include "bayes/calibrator.hpp"
 #include "bayes/observations.hpp"
 #include "bayes/priors.hpp"
+#include "core/range.hpp"
 #include "lowfi/scm_soil.hpp"
 
 namespace terracal::app {
+
+// The allowed values of the calibration's options, checked on the command line and by
+// run_calibration. At least 4 chains, so that split R-hat compares 8 half-chains from dispersed
+// starts. The draws are kept in memory (about 10 doubles per draw and chain, twice): the cap of 1e8
+// per chain keeps a run that never converges from growing without bound (the demo converges after a
+// few thousand).
+struct CalibrationRanges {
+  static constexpr long long kMinChains = 4, kMaxChains = 256;
+  static constexpr long long kMinDraws = 10, kMaxDraws = 100000000;
+  static constexpr Range kMinEss{0, 1e9, true, false};
+};
 
 // The options of one calibration (docs/architecture.md, "Calibration").
 struct CalibrationSettings {

@@ -5,7 +5,10 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "apps/cli_checks.hpp"
 #include "apps/commands.hpp"
+#include "apps/memory_check.hpp"
+#include "apps/out_dir.hpp"
 #include "apps/terrain_options.hpp"
 #include "core/errors.hpp"
 #include "highfi/crm/crm_run.hpp"
@@ -31,13 +34,20 @@ Command add_crm(CLI::App& app) {
   sub->add_option("--cache", a->cache, "folder of settled beds ('' = no cache)")->capture_default_str();
   sub->add_flag("--resume", a->resume, "continue from OUT/checkpoint.h5");
   sub->add_option("--record-every", a->record_every, "steps between rows of bodies.csv")
-      ->check(CLI::Range(1L, 1L << 40))
+      ->transform(whole_in(1, 1LL << 40))
       ->capture_default_str();
   return [a] {
+    const OutDir out = prepare_out_dir("--out", a->out);
     const CrmScene scene = load_crm_scene(a->scene);
+    if (a->resume && !std::filesystem::exists(std::filesystem::path(a->out) / "checkpoint.h5"))
+      throw InputError(
+          fmt::format("--resume: {}/checkpoint.h5 does not exist; expected the --out of an interrupted run", a->out));
     CrmRunOptions o;
     o.out = a->out;
     o.device = resolve_device(a->device);
+    check_crm_memory(scene, o.device,
+                     fmt::format("{}: key 'resolution.spacing' {} m", a->scene, scene.numerics.spacing),
+                     "a coarser resolution.spacing or a smaller bin.size");
     o.cache_dir = a->cache;
     o.resume = a->resume;
     o.record_every = a->record_every;

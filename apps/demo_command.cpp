@@ -8,7 +8,9 @@
 #include <spdlog/spdlog.h>
 
 #include "apps/calibration_run.hpp"
+#include "apps/cli_checks.hpp"
 #include "apps/commands.hpp"
+#include "apps/out_dir.hpp"
 #include "apps/pipeline.hpp"
 #include "core/atomic_file.hpp"
 #include "demo_data.hpp"  // generated: kDemoPlateCsv, kDemoShearCsv, kDemoTruthJson
@@ -43,11 +45,12 @@ Command add_demo(CLI::App& app) {
       "demo", "The whole pipeline on the embedded default soil at a coarse resolution (minutes on 2 cores)");
   auto a = std::make_shared<DemoArgs>();
   sub->add_option("--out", a->out, "output folder")->capture_default_str();
-  sub->add_option("--seed", a->seed, "random seed")->capture_default_str();
+  add_seed_option(sub, a->seed, "random seed");
   add_device_option(sub, a->device);
   sub->add_option("--cache", a->cache, "folder of settled CRM beds")->capture_default_str();
   sub->add_flag("--calibration-only", a->calibration_only, "only calibrate the embedded example curves (studies/demo)");
   return [a] {
+    const OutDir out = prepare_out_dir("--out", a->out);
     if (a->calibration_only) return calibrate_embedded(*a);
     PipelinePlan p;
     p.soil = CrmSoil{};  // "bevameter study soil (2022)" of shared/reference/crm_soils.csv

@@ -7,8 +7,10 @@
 #include <spdlog/spdlog.h>
 
 #include "apps/calibration_run.hpp"
+#include "apps/pipeline_checks.hpp"
 #include "apps/pipeline_report.hpp"
 #include "apps/report_plots.hpp"
+#include "apps/soil_choice.hpp"
 #include "core/csv.hpp"
 #include "core/errors.hpp"
 #include "lowfi/scm_terrain.hpp"
@@ -139,13 +141,28 @@ std::vector<std::string> parse_check_rigs(const std::string& text) {
   return rigs;
 }
 
+namespace {
+// Every stage's values, and whether each run fits in memory, before OUT is made: a refusal leaves no
+// folder behind and never comes after hours of CRM.
+void check_pipeline(const PipelinePlan& plan, const SoilChoice& crm) {
+  check_rig_gravity(plan.soil.gravity, plan.soil_name + ": key 'soil.gravity'");
+  check_bevameter(crm, plan.terrain, plan.bevameter, true, true);
+  check_wheel_sweep(SoilModel::kCrm, crm, plan.terrain, plan.wheel, plan.slips, plan.crm_wheel_run);
+  check_wheel_sweep(SoilModel::kScm, scm_choice(plan, lowfi::ScmSoil{}), scm_options(plan), plan.wheel, plan.slips,
+                    plan.scm_wheel_run);
+  check_pipeline_checks(plan, crm);
+  warn_about_sweep(plan.wheel, plan.slips);
+}
+}  // namespace
+
 int run_pipeline(const PipelinePlan& plan) {
   const auto start = Clock::now();
-  std::filesystem::create_directories(plan.out);
   SoilChoice crm;
   crm.solver = SoilModel::kCrm;
   crm.crm = plan.soil;
   crm.gravity = plan.soil.gravity;
+  check_pipeline(plan, crm);
+  std::filesystem::create_directories(plan.out);
 
   PipelineResults r;
   r.bevameter = bevameter_stage(plan, crm, r.wall);

@@ -30,6 +30,7 @@ struct PipelinePlan {
   int check_realisations = 1;
   std::string out;
 };
+inline constexpr int kMaxCheckRealisations = 16;
 
 // "" -> no checks, "all" -> every rig, else a comma list of plate, annulus, wheel (InputError
 // naming --checks otherwise).

@@ -39,6 +39,14 @@ TerrainOptions realisation(const TerrainOptions& o, int k) {
   r.settle_seed = o.settle_seed + k;
   return r;
 }
+// The wheel check's slip (the sweep's middle one) and its longer run.
+double check_slip(const PipelinePlan& plan) { return plan.slips[plan.slips.size() / 2]; }
+rigs::WheelRun longer_run(const rigs::WheelRun& run) {
+  rigs::WheelRun r = run;
+  r.duration *= 1.5;
+  return r;
+}
+
 std::string realisation_suffix(int k) { return k == 0 ? "" : fmt::format("_realisation{}", k); }
 std::string realisations_note(int n) { return n > 1 ? fmt::format(" (means of {} realisations per bin)", n) : ""; }
 
@@ -135,7 +143,7 @@ void check_annulus(const PipelinePlan& plan, const SoilChoice& crm, const Bevame
 // Wheel: the middle slip of the sweep in a 1.5x bin, and run 1.5x longer.
 void check_wheel(const PipelinePlan& plan, const SoilChoice& crm, const std::vector<rigs::WheelResult>& base_sweep,
                  std::vector<PipelineCheck>& out) {
-  const double slip = plan.slips[plan.slips.size() / 2];
+  const double slip = check_slip(plan);
   const rigs::WheelResult* base = nullptr;
   for (const auto& r : base_sweep)
     if (r.slip == slip) base = &r;
@@ -154,8 +162,7 @@ void check_wheel(const PipelinePlan& plan, const SoilChoice& crm, const std::vec
     rigs::write_wheel_series_csv(checks_dir(plan) + "/wheel_bin_1.5x" + realisation_suffix(k) + "_series.csv", big);
     big_bin.push_back(big[0]);
   }
-  rigs::WheelRun long_run = plan.crm_wheel_run;
-  long_run.duration *= 1.5;
+  const rigs::WheelRun long_run = longer_run(plan.crm_wheel_run);
   const auto longer = run_wheel_sweep(SoilModel::kCrm, crm, plan.terrain, plan.wheel, {slip}, long_run);
   rigs::write_wheel_series_csv(checks_dir(plan) + "/wheel_longer_series.csv", longer);
   // The largest of the changes of DBP (relative to the thrust torque / r), torque and sinkage.
@@ -193,6 +200,18 @@ void check_wheel(const PipelinePlan& plan, const SoilChoice& crm, const std::vec
 }
 
 }  // namespace
+
+void check_pipeline_checks(const PipelinePlan& plan, const SoilChoice& crm) {
+  const TerrainOptions big = larger_bin(plan.terrain);
+  for (const std::string& rig : plan.checks) {
+    if (rig == "plate") check_bevameter(crm, big, plan.bevameter, true, false);
+    if (rig == "annulus") check_bevameter(crm, big, plan.bevameter, false, true);
+    if (rig != "wheel" || plan.slips.empty()) continue;
+    const std::vector<double> slip{check_slip(plan)};
+    check_wheel_sweep(SoilModel::kCrm, crm, big, plan.wheel, slip, plan.crm_wheel_run);
+    check_wheel_sweep(SoilModel::kCrm, crm, plan.terrain, plan.wheel, slip, longer_run(plan.crm_wheel_run));
+  }
+}
 
 std::vector<PipelineCheck> run_checks(const PipelinePlan& plan, const SoilChoice& crm, const BevameterCurves& base_bev,
                                       const std::vector<rigs::WheelResult>& base_wheel) {

@@ -15,6 +15,9 @@ struct PipelineCheck {
   bool bounded = true;  // a bin-size or run-length check (5 % bound); false: a measurement reported beside them
 };
 
+// Whether the runs of plan.checks fit in memory, and their values, checked before the pipeline starts.
+void check_pipeline_checks(const PipelinePlan& plan, const SoilChoice& crm);
+
 // The checks of plan.checks against the base runs; the rerun curves go to OUT/checks/.
 std::vector<PipelineCheck> run_checks(const PipelinePlan& plan, const SoilChoice& crm, const BevameterCurves& base_bev,
                                       const std::vector<rigs::WheelResult>& base_wheel);

@@ -5,7 +5,9 @@
 #include <fmt/format.h>
 
 #include "apps/bevameter_options.hpp"
+#include "apps/cli_checks.hpp"
 #include "apps/commands.hpp"
+#include "apps/out_dir.hpp"
 #include "apps/pipeline.hpp"
 #include "core/errors.hpp"
 
@@ -38,16 +40,22 @@ Command add_pipeline(CLI::App& app) {
   auto* replot = sub->add_flag("--replot", a->replot, "only draw the plots of the finished pipeline in --out again");
   soil->excludes(replot);
   sub->add_option("--wheel", a->wheel, "wheel file (JSON); default radius 0.47 m, width 0.25 m, 108 kg, 1 rad/s");
-  sub->add_option("--slips", a->slips, "slips of the wheel sweep")->capture_default_str();
-  sub->add_option("--wheel-duration", a->wheel_duration, "simulated seconds per slip")->capture_default_str();
-  sub->add_option("--seed", a->seed, "calibration seed")->capture_default_str();
+  sub->add_option("--slips", a->slips, "slips of the wheel sweep")
+      ->check(list_in_range(rigs::WheelRanges::kSlip))
+      ->capture_default_str();
+  sub->add_option("--wheel-duration", a->wheel_duration, "simulated seconds per slip")
+      ->check(in_range(rigs::WheelRanges::kDuration))
+      ->capture_default_str();
+  add_seed_option(sub, a->seed, "calibration seed");
   sub->add_flag("--checks{all}", a->checks,
                 "rerun the rigs (all, or a list such as annulus,wheel) in a 1.5x bin and 1.5x longer; default off");
   sub->add_option("--check-realisations", a->check_realisations,
-                  "beds per bin whose means the annulus and wheel bin checks compare, 1 ... 16 (docs/decisions.md)")
+                  "beds per bin whose means the annulus and wheel bin checks compare (docs/decisions.md)")
+      ->transform(whole_in(1, kMaxCheckRealisations))
       ->capture_default_str();
   add_bevameter_options(sub, a->plan, a->lists);
   return [a] {
+    const OutDir out = prepare_out_dir("--out", a->out);
     if (a->replot) {
       replot_pipeline(a->out);
       return 0;
@@ -61,8 +69,6 @@ Command add_pipeline(CLI::App& app) {
     p.out = a->out;
     p.seed = a->seed;
     p.checks = parse_check_rigs(a->checks);
-    if (!(a->check_realisations >= 1 && a->check_realisations <= 16))
-      throw InputError(fmt::format("--check-realisations {}: expected an integer in [1, 16]", a->check_realisations));
     p.check_realisations = a->check_realisations;
     if (a->terrain.settle_seed > (1L << 62) - (a->check_realisations - 1))
       throw InputError(

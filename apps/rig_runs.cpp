@@ -8,8 +8,8 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "apps/memory_check.hpp"
 #include "core/errors.hpp"
-#include "virtual_bevameter/rig_checks.hpp"
 
 namespace terracal::app {
 
@@ -17,11 +17,72 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-std::unique_ptr<TerrainSite> site_for(const SoilChoice& soil, const TerrainOptions& o, double half_length,
-                                      double half_width, double depth) {
+// The soil a rig needs: a CRM bin (half length and half width around the centre and the soil's
+// depth, before --bin-scale), and for SCM's memory the areas under its body in one step and over
+// the whole run [m^2]. `spacing_option` names the option that sets the CRM spacing of its runs.
+struct RigSoil {
+  std::string what;
+  double half_length = 0, half_width = 0, depth = 0;
+  double footprint = 0, swept = 0;
+  std::string spacing_option = "--spacing";
+};
+
+// Each plate in a bin sized by its own radius (see BevameterPlan::plate_wall_radii).
+RigSoil plate_soil(const BevameterPlan& plan, const TerrainOptions& po, double r) {
+  const double k = plan.bin_scale, half = k * plan.plate_wall_radii * r + po.spacing;
+  const double depth = k * plan.plate_depth_scale * (plan.max_sinkage + 2.5 * r);
+  return {fmt::format("the plate r = {} m", r),
+          half,
+          half,
+          depth,
+          4 * r * r,
+          4 * r * r,
+          plan.plate_spacing > 0 ? "--plate-spacing" : "--spacing"};
+}
+
+// A thin ring under a heavy load sinks a long way (in CRM 0.19 m for 200 kg on the 0.15-0.20 m
+// annulus): the bed is at least 0.5 m deep, the walls 3 radii away (2 radii: a 1.5x bin moved the
+// torque by 14 %).
+RigSoil shear_soil(const BevameterPlan& plan, const TerrainOptions& o) {
+  const double k = plan.bin_scale, r = plan.outer_radius, half = k * 3 * r + o.spacing;
+  return {"the annulus", half, half, k * std::max(0.5, 2.5 * r), 4 * r * r, 4 * r * r};
+}
+
+// The run's travel at the lowest slip plus two outer radii of soil before and after.
+RigSoil wheel_soil(const rigs::WheelSpec& wheel, const std::vector<double>& slips, const rigs::WheelRun& run,
+                   const TerrainOptions& o) {
+  double travel = 0;
+  for (double slip : slips)
+    travel = std::max(travel, wheel.angular_velocity * wheel.radius * (1 - slip) * run.duration);
+  const double outer = wheel.radius + wheel.grouser_height;
+  return {"the wheel",
+          0.5 * travel + 2 * outer + o.spacing,
+          2 * rigs::wheel_reach_y(wheel) + o.spacing,
+          std::max(0.2, 0.5 * wheel.radius),
+          2 * outer * wheel.width,
+          (2 * outer + travel) * wheel.width};
+}
+
+// Refuses a site that cannot fit in memory, naming the options that size it.
+void check_site_memory(const SoilChoice& soil, const TerrainOptions& o, const RigSoil& rig) {
+  if (soil.solver == SoilModel::kCrm && soil.crm) {
+    const CrmScene sc = crm_site_scene(*soil.crm, o, o.bin_scale * rig.half_length, o.bin_scale * rig.half_width,
+                                       o.depth_scale() * rig.depth);
+    check_crm_memory(sc, crm_device(o.device), fmt::format("{} {} m", rig.spacing_option, o.spacing),
+                     fmt::format("a coarser {} (or a smaller --bin-scale) for {}", rig.spacing_option, rig.what));
+  } else if (soil.solver == SoilModel::kScm) {
+    check_memory(fmt::format("--grid {} m", o.grid),
+                 fmt::format("SCM under {} ({:.3g} m^2 of soil touched)", rig.what, rig.swept),
+                 lowfi::scm_memory_bytes(o.grid, rig.footprint, rig.swept), 0, "a coarser --grid");
+  }
+}
+
+std::unique_ptr<TerrainSite> site_for(const SoilChoice& soil, const TerrainOptions& o, const RigSoil& rig) {
+  check_site_memory(soil, o, rig);
   if (soil.solver == SoilModel::kCrm) {
     if (!soil.crm) throw InputError("--solver crm needs a CRM soil (--soil SOIL.json)");
-    return crm_site(*soil.crm, o, o.bin_scale * half_length, o.bin_scale * half_width, o.depth_scale() * depth);
+    return crm_site(*soil.crm, o, o.bin_scale * rig.half_length, o.bin_scale * rig.half_width,
+                    o.depth_scale() * rig.depth);
   }
   if (soil.solver == SoilModel::kScm) {
     if (!soil.scm) throw InputError("--solver scm needs an SCM parameter set (--scm SCM.json)");
@@ -47,6 +108,61 @@ std::vector<rigs::WheelResult> wong_reece_sweep(const SoilChoice& soil, const ri
     out.push_back(r);
   }
   return out;
+}
+
+// The plates' values (before any plate runs: a bad value must not wait for the others to finish).
+void check_plate_plan(const BevameterPlan& plan) {
+  using R = BevameterRanges;
+  if (plan.plates.empty()) throw InputError("--plates: give at least one plate radius");
+  for (double r : plan.plates) {
+    check_range(R::kPlateRadius, r, "--plates");
+    if (plan.max_sinkage > 5 * r)
+      throw InputError(
+          fmt::format("--max-sinkage {} m: more than 5 radii of the plate r = {} m (--plates); expected "
+                      "at most {} m",
+                      plan.max_sinkage, r, 5 * r));
+  }
+  check_range(R::kMaxSinkage, plan.max_sinkage, "--max-sinkage");
+  check_range(R::kPlateSpeed, plan.plate_speed, "--plate-speed");
+  check_range(R::kPlateWallRadii, plan.plate_wall_radii, "--plate-wall-radii");
+  check_range(R::kPlateDepthScale, plan.plate_depth_scale, "--plate-depth-scale");
+  if (plan.plate_spacing != 0) check_range(RigRanges::kSpacing, plan.plate_spacing, "--plate-spacing");
+}
+
+void check_shear_plan(const BevameterPlan& plan) {
+  using R = BevameterRanges;
+  if (plan.shear_loads.empty()) throw InputError("--shear-loads: give at least one normal load [N]");
+  for (double load : plan.shear_loads) check_range(R::kShearLoad, load, "--shear-loads");
+  check_range(R::kAnnulusRadius, plan.inner_radius, "--annulus (inner radius)");
+  check_range(R::kAnnulusRadius, plan.outer_radius, "--annulus (outer radius)");
+  if (!(plan.outer_radius > plan.inner_radius))
+    throw InputError(fmt::format("--annulus {},{}: expected the inner radius below the outer one", plan.inner_radius,
+                                 plan.outer_radius));
+  check_range(R::kShearAngle, plan.shear_angle, "--shear-angle");
+  check_range(R::kShearRate, plan.shear_rate, "--shear-rate");
+  check_range(R::kShearSettle, plan.shear_settle, "--shear-settle");
+  check_range(R::kShearLoadRamp, plan.shear_load_ramp, "--shear-load-ramp");
+  check_range(RigRanges::kStep, plan.shear_step, "--shear-step");
+}
+
+void check_bevameter_plan(const BevameterPlan& plan, bool plate, bool shear) {
+  check_range(BevameterRanges::kBinScale, plan.bin_scale, "bevameter bin scale");
+  if (plate) check_plate_plan(plan);
+  if (shear) check_shear_plan(plan);
+}
+
+TerrainOptions plate_options(const BevameterPlan& plan, const TerrainOptions& o) {
+  TerrainOptions po = o;
+  if (plan.plate_spacing > 0) po.spacing = plan.plate_spacing;
+  return po;
+}
+
+// A thin ring driven into the soil needs a smaller CRM step than the CFL limit (it fell through the
+// bed at the CFL step): --shear-step.
+TerrainOptions shear_options(const BevameterPlan& plan, const TerrainOptions& o) {
+  TerrainOptions so = o;
+  if (plan.shear_step > 0) so.step = plan.shear_step;
+  return so;
 }
 }  // namespace
 
@@ -81,67 +197,85 @@ rigs::RigProgress progress_logger() {
   };
 }
 
+void check_bevameter(const SoilChoice& soil, const TerrainOptions& o, const BevameterPlan& plan, bool plate,
+                     bool shear) {
+  check_bevameter_plan(plan, plate, shear);
+  if (plate) {
+    const TerrainOptions po = plate_options(plan, o);
+    for (double r : plan.plates) check_site_memory(soil, po, plate_soil(plan, po, r));
+  }
+  if (shear) check_site_memory(soil, shear_options(plan, o), shear_soil(plan, o));
+}
+
+namespace {
+void run_plates(const SoilChoice& soil, const TerrainOptions& o, const BevameterPlan& plan,
+                const rigs::RigProgress& progress, BevameterCurves& c) {
+  const TerrainOptions po = plate_options(plan, o);
+  const auto t0 = Clock::now();
+  for (double r : plan.plates) {
+    auto site = site_for(soil, po, plate_soil(plan, po, r));
+    if (c.site.find(site->description()) == std::string::npos)
+      c.site += (c.site.empty() ? "" : "; ") + site->description();
+    rigs::PlateTest t;
+    t.radius = r;
+    t.max_sinkage = plan.max_sinkage;
+    t.speed = plan.plate_speed;
+    t.thickness = std::max(0.02, 2 * po.spacing);
+    const auto rows = rigs::run_plate(*site, t, progress);
+    c.plate.insert(c.plate.end(), rows.begin(), rows.end());
+    spdlog::info("plate r = {} m: {} rows, force {:.4g} N at {:.3g} m", r, rows.size(), rows.back().force,
+                 rows.back().sinkage);
+  }
+  c.plate_wall = seconds_since(t0);
+}
+
+void run_annulus(const SoilChoice& soil, const TerrainOptions& o, const BevameterPlan& plan,
+                 const rigs::RigProgress& progress, BevameterCurves& c) {
+  const auto t0 = Clock::now();
+  auto site = site_for(soil, shear_options(plan, o), shear_soil(plan, o));
+  if (c.site.empty()) c.site = site->description();
+  rigs::ShearTest t;
+  t.inner_radius = plan.inner_radius;
+  t.outer_radius = plan.outer_radius;
+  t.loads = plan.shear_loads;
+  t.angular_velocity = plan.shear_rate;
+  t.max_angle = plan.shear_angle;
+  t.settle_time = plan.shear_settle;
+  t.load_ramp = plan.shear_load_ramp * plan.shear_settle;
+  t.thickness = std::max(0.02, 2 * o.spacing);
+  c.shear = rigs::run_shear(*site, t, progress);
+  c.shear_wall = seconds_since(t0);
+}
+}  // namespace
+
 BevameterCurves run_bevameter(const SoilChoice& soil, const TerrainOptions& o, const BevameterPlan& plan, bool plate,
                               bool shear) {
-  BevameterCurves c;
-  rigs::check_range("bevameter bin scale", plan.bin_scale, 0.5, 10, "");
   // Before any run: a bad value must not wait for the plates to finish.
-  rigs::check_range("--shear-load-ramp", plan.shear_load_ramp, 0, 1, "(a fraction of --shear-settle)");
-  const double k = plan.bin_scale;
+  check_bevameter_plan(plan, plate, shear);
+  BevameterCurves c;
   const auto progress = progress_logger();
-  if (plate) {
-    if (plan.plates.empty()) throw InputError("--plates: give at least one plate radius");
-    for (double r : plan.plates) rigs::check_range("--plates radius", r, 0.01, 2, "m");
-    rigs::check_range("--max-sinkage", plan.max_sinkage, 1e-3, 2, "m");
-    rigs::check_range("--plate-wall-radii", plan.plate_wall_radii, 1.5, 50, "");
-    rigs::check_range("--plate-depth-scale", plan.plate_depth_scale, 0.5, 10, "");
-    rigs::check_range("--plate-spacing", plan.plate_spacing, 0, 1, "m");
-    TerrainOptions po = o;
-    if (plan.plate_spacing > 0) po.spacing = plan.plate_spacing;
-    const auto t0 = Clock::now();
-    for (double r : plan.plates) {
-      // Each plate in a bin sized by its own radius (see BevameterPlan::plate_wall_radii).
-      const double half = k * plan.plate_wall_radii * r + po.spacing;
-      auto site = site_for(soil, po, half, half, k * plan.plate_depth_scale * (plan.max_sinkage + 2.5 * r));
-      if (c.site.find(site->description()) == std::string::npos)
-        c.site += (c.site.empty() ? "" : "; ") + site->description();
-      rigs::PlateTest t;
-      t.radius = r;
-      t.max_sinkage = plan.max_sinkage;
-      t.speed = plan.plate_speed;
-      t.thickness = std::max(0.02, 2 * po.spacing);
-      const auto rows = rigs::run_plate(*site, t, progress);
-      c.plate.insert(c.plate.end(), rows.begin(), rows.end());
-      spdlog::info("plate r = {} m: {} rows, force {:.4g} N at {:.3g} m", r, rows.size(), rows.back().force,
-                   rows.back().sinkage);
-    }
-    c.plate_wall = seconds_since(t0);
-  }
-  if (shear) {
-    if (plan.shear_loads.empty()) throw InputError("--shear-loads: give at least one normal load [N]");
-    const auto t0 = Clock::now();
-    const double r = plan.outer_radius;
-    // A thin ring under a heavy load sinks a long way (in CRM 0.19 m for 200 kg on the 0.15-0.20 m
-    // annulus): the bed is at least 0.5 m deep, the walls 3 radii away (2 radii: a 1.5x bin moved the torque by 14 %).
-    // A thin ring driven into the soil also needs a smaller CRM step than the CFL limit (it fell through the bed at the
-    // CFL step; --shear-step).
-    TerrainOptions so = o;
-    if (plan.shear_step > 0) so.step = plan.shear_step;
-    auto site = site_for(soil, so, k * 3 * r + o.spacing, k * 3 * r + o.spacing, k * std::max(0.5, 2.5 * r));
-    if (c.site.empty()) c.site = site->description();
-    rigs::ShearTest t;
-    t.inner_radius = plan.inner_radius;
-    t.outer_radius = plan.outer_radius;
-    t.loads = plan.shear_loads;
-    t.angular_velocity = plan.shear_rate;
-    t.max_angle = plan.shear_angle;
-    t.settle_time = plan.shear_settle;
-    t.load_ramp = plan.shear_load_ramp * plan.shear_settle;
-    t.thickness = std::max(0.02, 2 * o.spacing);
-    c.shear = rigs::run_shear(*site, t, progress);
-    c.shear_wall = seconds_since(t0);
-  }
+  if (plate) run_plates(soil, o, plan, progress, c);
+  if (shear) run_annulus(soil, o, plan, progress, c);
   return c;
+}
+
+void check_wheel_sweep(SoilModel solver, const SoilChoice& soil, const TerrainOptions& o, const rigs::WheelSpec& wheel,
+                       const std::vector<double>& slips, const rigs::WheelRun& run) {
+  rigs::validate(wheel);
+  rigs::validate(run);
+  if (slips.empty()) throw InputError("--slips: give at least one slip");
+  for (double s : slips) check_range(rigs::WheelRanges::kSlip, s, "--slips");
+  if (solver == SoilModel::kWongReece) return;
+  SoilChoice s = soil;
+  s.solver = solver;
+  check_site_memory(s, o, wheel_soil(wheel, slips, run, o));
+}
+
+void warn_about_sweep(const rigs::WheelSpec& wheel, const std::vector<double>& slips) {
+  if (wheel.angular_velocity == 0 && slips.size() > 1)
+    spdlog::warn(
+        "the wheel's angular_velocity is 0: it does not turn, and every slip of --slips is the same "
+        "standstill run under its load");
 }
 
 std::vector<rigs::WheelResult> run_wheel_sweep(SoilModel solver, const SoilChoice& soil, const TerrainOptions& o,
@@ -149,21 +283,14 @@ std::vector<rigs::WheelResult> run_wheel_sweep(SoilModel solver, const SoilChoic
                                                const rigs::WheelRun& run, std::string* site_description) {
   rigs::validate(wheel);
   rigs::validate(run);
-  for (double s : slips)
-    if (!(s > -1 && s < 1)) throw InputError(fmt::format("--slips: slip {} outside (-1, 1)", s));
+  for (double s : slips) check_range(rigs::WheelRanges::kSlip, s, "--slips");
   if (solver == SoilModel::kWongReece) {
     if (site_description) *site_description = "Wong-Reece (analytic, GSL quadrature)";
     return wong_reece_sweep(soil, wheel, slips);
   }
   SoilChoice s = soil;
   s.solver = solver;
-  // The bin: the run's travel at the lowest slip plus two outer radii of soil before and after.
-  double travel = 0;
-  for (double slip : slips)
-    travel = std::max(travel, wheel.angular_velocity * wheel.radius * (1 - slip) * run.duration);
-  const double outer = wheel.radius + wheel.grouser_height;
-  auto site = site_for(s, o, 0.5 * travel + 2 * outer + o.spacing, 2 * rigs::wheel_reach_y(wheel) + o.spacing,
-                       std::max(0.2, 0.5 * wheel.radius));
+  auto site = site_for(s, o, wheel_soil(wheel, slips, run, o));
   if (site_description) *site_description = site->description();
   std::vector<rigs::WheelResult> out;
   const auto progress = progress_logger();

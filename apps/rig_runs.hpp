@@ -30,6 +30,23 @@ struct SoilChoice {
   Vec3<double> gravity{0, 0, -9.81};
 };
 
+// The allowed values of the bevameter rigs' options: checked on the command line
+// (apps/bevameter_options.cpp) and, for plans built in code, by check_bevameter.
+struct BevameterRanges {
+  static constexpr Range kPlateRadius{0.01, 2, false, false, "m"};
+  static constexpr Range kMaxSinkage{1e-3, 2, false, false, "m"};  // and at most 5 plate radii
+  static constexpr Range kPlateSpeed{1e-4, 10, false, false, "m/s"};
+  static constexpr Range kPlateWallRadii{1.5, 50};
+  static constexpr Range kPlateDepthScale{0.5, 10};
+  static constexpr Range kAnnulusRadius{0, 10, false, false, "m"};  // inner below outer
+  static constexpr Range kShearLoad{1e-3, 1e7, false, false, "N"};
+  static constexpr Range kShearAngle{1e-3, 100, false, false, "rad"};
+  static constexpr Range kShearRate{1e-3, 100, false, false, "rad/s"};
+  static constexpr Range kShearSettle{0, 100, false, false, "s"};
+  static constexpr Range kShearLoadRamp{0, 1};  // a fraction of the settling
+  static constexpr Range kBinScale{0.5, 10};    // BevameterPlan::bin_scale (the demo's 0.7)
+};
+
 struct BevameterPlan {
   std::vector<double> plates{0.2, 0.3};
   double max_sinkage = 0.2, plate_speed = 0.1;
@@ -69,9 +86,20 @@ inline constexpr const char* kDefaultSlips = "0,0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8"
 // Logs "what: t / t_end s simulated, x real time" every few wall seconds.
 rigs::RigProgress progress_logger();
 
+// Every value of a bevameter run, and whether each of its sites fits in memory, checked before any
+// site is made: InputError naming the option otherwise. run_bevameter checks the values again.
+void check_bevameter(const SoilChoice& soil, const TerrainOptions& o, const BevameterPlan& plan, bool plate,
+                     bool shear);
 BevameterCurves run_bevameter(const SoilChoice& soil, const TerrainOptions& o, const BevameterPlan& plan, bool plate,
                               bool shear);
 
+// The same for a slip sweep on `solver` (soil.scm and soil.crm may be missing: only the solver, the
+// gravity and the resolution matter here).
+void check_wheel_sweep(SoilModel solver, const SoilChoice& soil, const TerrainOptions& o, const rigs::WheelSpec& wheel,
+                       const std::vector<double>& slips, const rigs::WheelRun& run);
+// Warns (once per command) about a sweep that is legitimate but most likely not meant: a wheel that
+// does not turn (angular_velocity 0) swept over several slips, which all run the same standstill test.
+void warn_about_sweep(const rigs::WheelSpec& wheel, const std::vector<double>& slips);
 // A slip sweep on CRM or SCM, or the analytic Wong-Reece model (which needs soil.scm).
 std::vector<rigs::WheelResult> run_wheel_sweep(SoilModel solver, const SoilChoice& soil, const TerrainOptions& o,
                                                const rigs::WheelSpec& wheel, const std::vector<double>& slips,

@@ -1,10 +1,25 @@
 #include "apps/soil_choice.hpp"
 
+#include <cmath>
+
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include "core/errors.hpp"
 
 namespace terracal::app {
+
+void check_rig_gravity(const Vec3<double>& g, const std::string& source) {
+  const double size = norm(g);
+  if (!std::isfinite(size) || !(g.z < 0) || size > 1000)
+    throw InputError(
+        fmt::format("{} [{}, {}, {}] m/s^2: expected gravity pointing down (g_z < 0) with |g| <= 1000 "
+                    "m/s^2, such as [0, 0, -9.81]: the rigs load their bodies by weight",
+                    source, g.x, g.y, g.z));
+  if (std::hypot(g.x, g.y) > 0.01 * size)
+    spdlog::warn("{} [{}, {}, {}] m/s^2 is not vertical: the rigs' loads and the soil's weight lean by {:.3g} deg",
+                 source, g.x, g.y, g.z, std::atan2(std::hypot(g.x, g.y), -g.z) * 180 / M_PI);
+}
 
 SoilChoice choose_soil(SoilModel solver, const TerrainOptions& o) {
   SoilChoice c;
@@ -14,14 +29,18 @@ SoilChoice choose_soil(SoilModel solver, const TerrainOptions& o) {
   if (solver == SoilModel::kCrm) {
     if (o.soil_json.empty())
       throw InputError("--solver/--terrain crm needs --soil SOIL.json (a CRM material), not --scm");
+    if (!o.gravity.empty())
+      throw InputError("--gravity: only for SCM and Wong-Reece; a CRM soil's gravity is the key 'gravity' of --soil");
     c.crm = load_crm_soil(o.soil_json);
     c.gravity = c.crm->gravity;
+    check_rig_gravity(c.gravity, o.soil_json + ": key 'soil.gravity'");
   } else {
     if (o.scm_json.empty())
       throw InputError(fmt::format("--solver/--terrain {} needs --scm SCM.json (an SCM parameter set), not --soil",
                                    soil_model_name(solver)));
     c.scm = load_scm_soil(o.scm_json);
     if (o.gravity.size() == 3) c.gravity = {o.gravity[0], o.gravity[1], o.gravity[2]};
+    check_rig_gravity(c.gravity, o.gravity.empty() ? "gravity" : "--gravity");
   }
   return c;
 }

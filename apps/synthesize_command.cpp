@@ -6,10 +6,12 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "apps/cli_checks.hpp"
 #include "apps/commands.hpp"
-#include "bayes/scm_json_read.hpp"
+#include "apps/out_dir.hpp"
 #include "bayes/synthetic_data.hpp"
 #include "core/errors.hpp"
+#include "lowfi/scm_soil.hpp"
 
 namespace terracal::app {
 
@@ -21,8 +23,51 @@ struct SynthesizeArgs {
   std::vector<double> annulus{0.15, 0.20};
 };
 
-void check_positive(const char* key, double v) {
-  if (!(v > 0)) throw InputError(fmt::format("{} {}: expected a value > 0", key, v));
+// The parameters the forward models take, from a set checked as `wheel` and `bevameter` check it.
+bayes::ParamVector truth_parameters(const std::string& path) {
+  const lowfi::ScmSoil s = lowfi::read_scm_json(path);
+  bayes::ParamVector p{};
+  p[bayes::kKc] = s.Kc;
+  p[bayes::kKphi] = s.Kphi;
+  p[bayes::kN] = s.n;
+  p[bayes::kCohesion] = s.cohesion;
+  p[bayes::kFriction] = s.friction_deg;
+  p[bayes::kJanosi] = s.janosi_k;
+  return p;
+}
+
+void add_design_options(CLI::App* sub, SynthesizeArgs& a) {
+  using R = bayes::SyntheticRanges;
+  auto& d = a.design;
+  sub->add_option("--plates", d.plate_radii, "plate radii [m]")
+      ->delimiter(',')
+      ->check(in_range(R::kPlateRadius))
+      ->capture_default_str();
+  sub->add_option("--max-sinkage", d.max_sinkage, "deepest sinkage [m]")
+      ->check(in_range(R::kMaxSinkage))
+      ->capture_default_str();
+  sub->add_option("--plate-points", d.plate_points, "samples per plate")
+      ->transform(whole_in(1, R::kMaxPoints))
+      ->capture_default_str();
+  sub->add_option("--annulus", a.annulus, "annulus inner,outer radius [m]")
+      ->delimiter(',')
+      ->expected(2)
+      ->check(in_range(R::kAnnulusRadius))
+      ->capture_default_str();
+  sub->add_option("--pressures", d.shear_pressures, "normal pressures of the shear tests [Pa]")
+      ->delimiter(',')
+      ->check(in_range(R::kPressure))
+      ->capture_default_str();
+  sub->add_option("--max-angle", d.max_angle, "largest shear angle [rad]")
+      ->check(in_range(R::kMaxAngle))
+      ->capture_default_str();
+  sub->add_option("--shear-points", d.shear_points, "samples per shear test")
+      ->transform(whole_in(1, R::kMaxPoints))
+      ->capture_default_str();
+  sub->add_option("--noise", d.relative_noise,
+                  "relative noise sd (0.02 = 2 %); above 0.2 some values would turn negative (docs/formats.md)")
+      ->check(in_range(R::kRelativeNoise))
+      ->capture_default_str();
 }
 }  // namespace
 
@@ -30,39 +75,19 @@ Command add_synthesize(CLI::App& app) {
   auto* sub =
       app.add_subcommand("synthesize", "Write synthetic plate and shear curves (CSV) from known SCM parameters");
   auto a = std::make_shared<SynthesizeArgs>();
-  auto& d = a->design;
   sub->add_option("--truth", a->truth, "SCM parameter file (Chrono JSON with 'Soil parameters')")
       ->required()
       ->check(CLI::ExistingFile);
   sub->add_option("--out", a->out, "output folder: plate.csv, shear.csv")->required();
-  sub->add_option("--seed", a->seed, "noise seed")->capture_default_str();
-  sub->add_option("--plates", d.plate_radii, "plate radii [m]")->delimiter(',')->capture_default_str();
-  sub->add_option("--max-sinkage", d.max_sinkage, "deepest sinkage [m]")->capture_default_str();
-  sub->add_option("--plate-points", d.plate_points, "samples per plate")->capture_default_str();
-  sub->add_option("--annulus", a->annulus, "annulus inner,outer radius [m]")
-      ->delimiter(',')
-      ->expected(2)
-      ->capture_default_str();
-  sub->add_option("--pressures", d.shear_pressures, "normal pressures of the shear tests [Pa]")
-      ->delimiter(',')
-      ->capture_default_str();
-  sub->add_option("--max-angle", d.max_angle, "largest shear angle [rad]")->capture_default_str();
-  sub->add_option("--shear-points", d.shear_points, "samples per shear test")->capture_default_str();
-  sub->add_option("--noise", d.relative_noise, "relative noise sd (0.02 = 2 %)")->capture_default_str();
+  add_seed_option(sub, a->seed, "noise seed");
+  add_design_options(sub, *a);
   return [a] {
+    const OutDir out = prepare_out_dir("--out", a->out);
     auto& d = a->design;
-    for (double r : d.plate_radii) check_positive("--plates", r);
-    for (double p : d.shear_pressures) check_positive("--pressures", p);
-    check_positive("--max-sinkage", d.max_sinkage);
-    check_positive("--max-angle", d.max_angle);
-    if (d.plate_points < 1 || d.shear_points < 1)
-      throw InputError("--plate-points/--shear-points: expected at least 1");
-    if (!(a->annulus[1] > a->annulus[0] && a->annulus[0] >= 0))
-      throw InputError(fmt::format("--annulus {},{}: expected 0 <= inner < outer", a->annulus[0], a->annulus[1]));
-    if (d.relative_noise < 0) throw InputError(fmt::format("--noise {}: expected >= 0", d.relative_noise));
     d.annulus_inner = a->annulus[0];
     d.annulus_outer = a->annulus[1];
-    const bayes::ParamVector truth = bayes::read_scm_soil_parameters(a->truth);
+    bayes::validate(d);
+    const bayes::ParamVector truth = truth_parameters(a->truth);
     std::filesystem::create_directories(a->out);
     Rng rng(a->seed);
     bayes::write_plate_csv(a->out + "/plate.csv", bayes::synthesize_plate(truth, d, rng));

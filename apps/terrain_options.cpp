@@ -39,7 +39,7 @@ void add_crm_settling_options(CLI::App* sub, TerrainOptions& o) {
       ->capture_default_str();
   sub->add_option("--settle-seed", o.settle_seed,
                   "seed of --settle-jitter: another seed, another realisation of the bed")
-      ->check(CLI::Range(0L, CrmRanges::kMaxSettleSeed))
+      ->transform(whole_in(0, CrmRanges::kMaxSettleSeed))
       ->capture_default_str();
   const auto damping = HourglassDamping::settings()[0];
   sub->add_option("--hourglass-damping", o.hourglass_damping,
@@ -105,24 +105,31 @@ CrmSoil load_crm_soil(const std::string& path) { return parse_crm_soil(read_json
 
 lowfi::ScmSoil load_scm_soil(const std::string& path) { return lowfi::read_scm_json(path); }
 
-CrmDevice resolve_device(DeviceChoice device) {
+CrmDevice crm_device(DeviceChoice device) {
   if (device == DeviceChoice::kCpu) return CrmDevice::kCpu;
   std::string why;
   const bool have = cuda_engine_available(&why);
-  if (device == DeviceChoice::kCuda) {
-    if (!have) throw InputError(fmt::format("--device cuda: no CUDA device available ({})", why));
-    return CrmDevice::kCuda;
-  }
-  spdlog::info("CRM on the {}", have ? "GPU (CUDA)" : fmt::format("CPU ({})", why));
+  if (device == DeviceChoice::kCuda && !have)
+    throw InputError(fmt::format("--device cuda: no CUDA device available ({})", why));
   return have ? CrmDevice::kCuda : CrmDevice::kCpu;
+}
+
+CrmDevice resolve_device(DeviceChoice device) {
+  const CrmDevice d = crm_device(device);
+  if (device != DeviceChoice::kAuto) return d;
+  std::string why;
+  cuda_engine_available(&why);
+  spdlog::info("CRM on the {}", d == CrmDevice::kCuda ? "GPU (CUDA)" : fmt::format("CPU ({})", why));
+  return d;
 }
 
 // The rigs' CRM scene: the soil, the rigs' effects and the resolution from the options. Every value
 // is checked by validate_crm_scene (CrmSite), against the ranges the command line checked too.
-std::unique_ptr<TerrainSite> crm_site(const CrmSoil& soil, const TerrainOptions& o, double half_length,
-                                      double half_width, double depth) {
+CrmScene crm_site_scene(const CrmSoil& soil, const TerrainOptions& o, double half_length, double half_width,
+                        double depth) {
   check_range(RigRanges::kSpacing, o.spacing, "--spacing");
   check_range(RigRanges::kBinScale, o.bin_scale, "--bin-scale");
+  check_range(RigRanges::kStep, o.step, "--step");
   CrmScene sc;
   sc.source = o.soil_json.empty() ? "embedded soil" : o.soil_json;
   sc.soil = soil;
@@ -142,6 +149,13 @@ std::unique_ptr<TerrainSite> crm_site(const CrmSoil& soil, const TerrainOptions&
   sc.settle_time = o.settle_time;
   sc.settle_jitter = o.settle_jitter;
   sc.settle_seed = o.settle_seed;
+  return sc;
+}
+
+std::unique_ptr<TerrainSite> crm_site(const CrmSoil& soil, const TerrainOptions& o, double half_length,
+                                      double half_width, double depth) {
+  const CrmScene sc = crm_site_scene(soil, o, half_length, half_width, depth);
+  const double d0 = o.spacing;
   if (o.settle_jitter == 0 && o.settle_seed != kDefaultSettleSeed)
     spdlog::warn("--settle-seed {} has no effect without --settle-jitter: the bed settles from the exact lattice",
                  o.settle_seed);
@@ -152,6 +166,8 @@ std::unique_ptr<TerrainSite> crm_site(const CrmSoil& soil, const TerrainOptions&
 
 std::unique_ptr<TerrainSite> scm_site(const lowfi::ScmSoil& soil, const TerrainOptions& o,
                                       const Vec3<double>& gravity) {
+  check_range(RigRanges::kScmGrid, o.grid, "--grid");
+  check_range(RigRanges::kStep, o.step, "--step");
   lowfi::ScmSettings s;
   s.grid = o.grid;
   s.time_step = o.step > 0 ? o.step : 1e-3;

@@ -66,9 +66,15 @@ void add_device_option(CLI::App* sub, DeviceChoice& device);
 
 CrmSoil load_crm_soil(const std::string& path);
 lowfi::ScmSoil load_scm_soil(const std::string& path);
-// The device a choice means here; InputError for cuda where there is none.
+// The device a choice means here; InputError for cuda where there is none. resolve_device also
+// says on the log where an `auto` CRM runs.
+CrmDevice crm_device(DeviceChoice device);
 CrmDevice resolve_device(DeviceChoice device);
 
+// The CRM scene of a site whose bin gives room for a body reaching half_length x half_width from the
+// centre, with soil `depth` deep (what crm_site settles).
+CrmScene crm_site_scene(const CrmSoil& soil, const TerrainOptions& o, double half_length, double half_width,
+                        double depth);
 // A CRM site whose bin gives room for a body reaching half_length x half_width from the centre, with
 // soil `depth` deep.
 std::unique_ptr<TerrainSite> crm_site(const CrmSoil& soil, const TerrainOptions& o, double half_length,

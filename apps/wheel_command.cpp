@@ -9,6 +9,7 @@
 
 #include "apps/cli_checks.hpp"
 #include "apps/commands.hpp"
+#include "apps/out_dir.hpp"
 #include "apps/report_plots.hpp"
 #include "apps/soil_choice.hpp"
 #include "core/atomic_file.hpp"
@@ -33,16 +34,22 @@ Command add_wheel(CLI::App& app) {
       ->required()
       ->default_str("");
   sub->add_option("--wheel", a->wheel, "wheel file (JSON, docs/formats.md 'Wheel')")->required();
-  sub->add_option("--slips", a->slips, "slips, comma-separated, each in (-1, 1)")->capture_default_str();
+  sub->add_option("--slips", a->slips, "slips, comma-separated (negative: skid)")
+      ->check(list_in_range(rigs::WheelRanges::kSlip))
+      ->capture_default_str();
   sub->add_option("--out", a->out, "output folder")->required();
-  sub->add_option("--duration", a->duration, "simulated seconds per slip")->capture_default_str();
+  sub->add_option("--duration", a->duration, "simulated seconds per slip")
+      ->check(in_range(rigs::WheelRanges::kDuration))
+      ->capture_default_str();
   sub->add_option("--average-from", a->average_from, "steady means over t >= this fraction of the run")
+      ->check(in_range(rigs::WheelRanges::kAverageFrom))
       ->capture_default_str();
   sub->add_flag("!--no-plots", a->plots, "skip the PNG plot");
   sub->add_flag("--with-wong-reece", a->with_wong_reece,
                 "with --terrain scm: also the Wong-Reece model of the same set (wheel_wong_reece.csv, comparison.md)");
   add_terrain_options(sub, a->options, true, true);
   return [a] {
+    const OutDir out = prepare_out_dir("--out", a->out);
     if (a->with_wong_reece && a->terrain != SoilModel::kScm)
       throw InputError("--with-wong-reece: only with --terrain scm");
     const rigs::WheelSpec wheel = rigs::read_wheel_json(a->wheel);
@@ -51,6 +58,8 @@ Command add_wheel(CLI::App& app) {
     run.duration = a->duration;
     run.average_from = a->average_from;
     const SoilChoice soil = choose_soil(a->terrain, a->options);
+    check_wheel_sweep(a->terrain, soil, a->options, wheel, slips, run);
+    warn_about_sweep(wheel, slips);
     std::filesystem::create_directories(a->out);
     std::string site;
     const auto results = run_wheel_sweep(a->terrain, soil, a->options, wheel, slips, run, &site);

@@ -7,8 +7,29 @@
 
 #include "bayes/forward_models.hpp"
 #include "core/atomic_file.hpp"
+#include "core/errors.hpp"
 
 namespace terracal::bayes {
+
+void validate(const SyntheticDesign& d) {
+  using R = SyntheticRanges;
+  if (d.plate_radii.empty()) throw InputError("--plates: give at least one plate radius [m]");
+  for (double r : d.plate_radii) check_range(R::kPlateRadius, r, "--plates");
+  check_range(R::kMaxSinkage, d.max_sinkage, "--max-sinkage");
+  check_range(R::kAnnulusRadius, d.annulus_inner, "--annulus (inner radius)");
+  check_range(R::kAnnulusRadius, d.annulus_outer, "--annulus (outer radius)");
+  if (!(d.annulus_outer > d.annulus_inner))
+    throw InputError(fmt::format("--annulus {},{}: expected the inner radius below the outer one", d.annulus_inner,
+                                 d.annulus_outer));
+  if (d.shear_pressures.empty()) throw InputError("--pressures: give at least one normal pressure [Pa]");
+  for (double p : d.shear_pressures) check_range(R::kPressure, p, "--pressures");
+  check_range(R::kMaxAngle, d.max_angle, "--max-angle");
+  check_range(R::kRelativeNoise, d.relative_noise, "--noise");
+  for (const auto& [key, n] :
+       {std::pair{"--plate-points", d.plate_points}, std::pair{"--shear-points", d.shear_points}})
+    if (n < 1 || n > R::kMaxPoints)
+      throw InputError(fmt::format("{} {}: expected a whole number in [1, {}]", key, n, R::kMaxPoints));
+}
 
 PlateData synthesize_plate(const ParamVector& truth, const SyntheticDesign& d, Rng& rng) {
   PlateData out;

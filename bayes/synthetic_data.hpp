@@ -6,6 +6,7 @@
 
 #include "bayes/observations.hpp"
 #include "bayes/scm_parameters.hpp"
+#include "core/range.hpp"
 #include "core/rng.hpp"
 
 namespace terracal::bayes {
@@ -26,6 +27,23 @@ struct SyntheticDesign {
   double elastic_stiffness = 4e7;  // Ke [Pa/m] of the cycles
   int unload_points = 8;           // rows per unload branch (the last at lift-off, F = 0) and per reload branch
 };
+
+// The designs `terracal synthesize` takes (its options check against these). The noise is
+// multiplicative, y = f (1 + sd eps) with eps ~ N(0, 1): a value turns negative (and the file is then
+// refused by `calibrate`) when eps < -1/sd. At sd = 0.2 that is eps < -5, probability 2.9e-7 per
+// value (the default design's 160 values: once in 20,000 files); at 0.25 it would be 3.2e-5 (once in
+// 200 files), at 0.5 2.3 %. Noisier data need another noise model than this one.
+struct SyntheticRanges {
+  static constexpr Range kPlateRadius{0, 10, true, false, "m"};
+  static constexpr Range kMaxSinkage{0, 10, true, false, "m"};
+  static constexpr long long kMaxPoints = 100000;  // samples per curve (at least 1)
+  static constexpr Range kAnnulusRadius{0, 10, false, false, "m"};
+  static constexpr Range kPressure{0, 1e9, true, false, "Pa"};
+  static constexpr Range kMaxAngle{0, 100, true, false, "rad"};
+  static constexpr Range kRelativeNoise{0, 0.2};
+};
+// Throws InputError naming the option (`terracal synthesize`'s) of the first value outside its range.
+void validate(const SyntheticDesign& design);
 
 PlateData synthesize_plate(const ParamVector& truth, const SyntheticDesign& design, Rng& rng);
 ShearData synthesize_shear(const ParamVector& truth, const SyntheticDesign& design, Rng& rng);

@@ -92,12 +92,13 @@ void write_text_atomically(const std::string& path, std::string_view content) {
 std::vector<std::string> remove_stale_temporaries(const std::string& dir) {
   std::vector<std::string> removed;
   std::error_code ec;
-  for (const auto& e : fs::directory_iterator(dir, ec)) {
-    const std::string name = e.path().filename().string();
-    const long pid = temporary_pid(name);
+  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator();
+       it.increment(ec)) {
+    const long pid = temporary_pid(it->path().filename().string());
     if (pid == 0 || pid == static_cast<long>(::getpid()) || process_running(pid)) continue;
     std::error_code rm;
-    if (fs::remove(e.path(), rm)) removed.push_back(name);
+    if (it->is_regular_file(rm) && fs::remove(it->path(), rm))
+      removed.push_back(it->path().lexically_relative(dir).string());
   }
   return removed;
 }

@@ -24,9 +24,9 @@ void commit_file(const std::string& tmp, const std::string& final_path);
 // either name) when the folder does not exist or the write fails.
 void write_text_atomically(const std::string& path, std::string_view content);
 
-// Removes the temporaries (`.NAME.tmp.PID`) that interrupted writes left in `dir`, skipping those
-// of processes still running (another command may be writing there right now). Returns the names
-// removed, for the log.
+// Removes the temporaries (`.NAME.tmp.PID`) that interrupted writes left in `dir` and its subfolders,
+// skipping those of processes still running (another command may be writing there right now).
+// Returns their paths relative to `dir`, for the log.
 std::vector<std::string> remove_stale_temporaries(const std::string& dir);
 
 }  // namespace terracal

@@ -4,6 +4,7 @@
 
 #include "core/errors.hpp"
 #include "core/json_file.hpp"
+#include "lowfi/scm_nodes.hpp"
 
 namespace terracal::lowfi {
 
@@ -55,6 +56,17 @@ ScmSoil read_scm_json(const std::string& path) {
   if (!j.contains("Soil parameters"))
     throw InputError(fmt::format("{}: missing the object 'Soil parameters' (Chrono SCM JSON)", path));
   return parse_scm_soil(j["Soil parameters"], path);
+}
+
+double scm_memory_bytes(double grid, double footprint_area, double swept_area) {
+  // A hash-map node: the ScmNode, its key, the next pointer and the allocator's header, and a bucket
+  // pointer (load factor 1); and the contact list's pointer.
+  const double per_node = sizeof(ScmNode) + sizeof(std::int64_t) + 3 * sizeof(void*) + sizeof(void*);
+  // Per ray: the underside's height, the coarse and wanted flags, and a candidate hit and a pressed
+  // hit with their node pointer and index (ScmTerrain::Scratch) at most.
+  const double per_ray = sizeof(double) + 2 + 2 * 48 + sizeof(void*) + 2 * sizeof(int);
+  const double cell = grid * grid;
+  return swept_area / cell * per_node + footprint_area / cell * per_ray;
 }
 
 nlohmann::json scm_soil_json(const ScmSoil& s) {

@@ -34,6 +34,11 @@ ScmSoil parse_scm_soil(const nlohmann::json& soil_parameters_block, const std::s
 // The "Soil parameters" block, exactly Chrono's names and units.
 nlohmann::json scm_soil_json(const ScmSoil& soil);
 
+// The memory an SCM run holds [bytes], estimated before it starts from its grid [m]: a stored node
+// for every grid node a body touches over the run (`swept_area` [m^2]; a ScmNode in a hash map), and
+// per step the scratch of one ray per node under a body's bounding box (`footprint_area` [m^2]).
+double scm_memory_bytes(double grid, double footprint_area, double swept_area);
+
 // Dry sand (Land Locomotion Lab), Wong's Table 2.3 (shared/reference/bekker_wong_soils.csv). Wong
 // gives no Janosi k for it; k = 0.025 m is a typical value for loose sand. The soil of the SCM
 // tests, the SCM wheel bench and the SCM against Wong-Reece study.

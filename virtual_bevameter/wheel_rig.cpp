@@ -54,8 +54,8 @@ WheelSpec parse_wheel(const nlohmann::json& j, const std::string& where) {
 WheelSpec read_wheel_json(const std::string& path) { return parse_wheel(read_json_file(path, "wheel file"), path); }
 
 void validate(const WheelRun& r) {
-  check_range("wheel run duration", r.duration, 1e-3, 1e5, "s");
-  check_range("wheel run average_from", r.average_from, 0, 0.95, "(fraction of the duration)");
+  terracal::check_range(WheelRanges::kDuration, r.duration, "wheel run duration");
+  terracal::check_range(WheelRanges::kAverageFrom, r.average_from, "wheel run average_from");
   check_range("wheel run samples", r.samples, 2, 1e7, "");
 }
 
@@ -73,7 +73,7 @@ WheelResult run_wheel(const TerrainSite& site, const WheelSpec& wheel, double sl
                       const RigProgress& progress) {
   validate(wheel);
   validate(run);
-  if (!(slip > -1 && slip < 1)) throw InputError(fmt::format("slip = {}: expected in (-1, 1)", slip));
+  terracal::check_range(WheelRanges::kSlip, slip, "slip");
   const double g = norm(site.gravity());
   const double speed = wheel.angular_velocity * wheel.radius * (1 - slip);
   const double travel = speed * run.duration;

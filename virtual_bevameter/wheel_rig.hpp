@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/range.hpp"
 #include "core/terrain.hpp"
 #include "virtual_bevameter/rig_progress.hpp"
 
@@ -26,6 +27,14 @@ void validate(const WheelSpec& w);
 // How far across (y) a wheel disturbs the soil, for sizing bins: its half width plus a quarter width
 // of undisturbed soil on each side (a bin three wheel widths wide).
 inline double wheel_reach_y(const WheelSpec& w) { return 0.75 * w.width; }
+
+// The allowed slips and run settings, checked on the command line (`wheel`, `pipeline`) and by
+// validate(WheelRun) and run_wheel.
+struct WheelRanges {
+  static constexpr Range kSlip{-1, 1, true, true};  // s < 0 is skid
+  static constexpr Range kDuration{1e-3, 1e5, false, false, "s"};
+  static constexpr Range kAverageFrom{0, 0.95};  // a fraction of the duration
+};
 
 struct WheelRun {
   double duration = 4.0;      // [s] simulated per slip

@@ -160,16 +160,17 @@ RigidBody parse_body(JsonObject o, const std::filesystem::path& base, int index)
     r.finish();
   }
   if (o.has("motion")) parse_motion(o.object("motion"), b.motion);
+  b.inertia = o.vec3_or("inertia", {0, 0, 0});
+  if (b.inertia.x < 0 || b.inertia.y < 0 || b.inertia.z < 0)
+    o.fail("inertia", "principal moments must not be negative");
   if (b.motion.any_free()) {
     b.mass = o.number("mass", 0, 1e9, true);
-    const Vec3<double> I = o.vec3_or("inertia", {0, 0, 0});
+    const Vec3<double>& I = b.inertia;
     bool rot_free = b.motion.free[3] || b.motion.free[4] || b.motion.free[5];
     if (rot_free && !(I.x > 0 && I.y > 0 && I.z > 0))
       o.fail("inertia", "a body free to rotate needs three positive principal moments");
-    b.inertia = I;
   } else {
     b.mass = o.number_or("mass", 0, 0, 1e9);
-    b.inertia = o.vec3_or("inertia", {});
   }
   b.applied_force = o.vec3_or("force", {});
   b.applied_torque = o.vec3_or("torque", {});

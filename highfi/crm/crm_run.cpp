@@ -120,6 +120,7 @@ HostSoil settled_bed(const CrmScene& scene, CrmDevice device, const fs::path& ca
   for (auto& v : soil.vel) v = {0, 0, 0, v.w == double(kParticleLost) ? v.w : double(kParticleActive)};
   if (!file.empty()) {
     fs::create_directories(cache_dir);
+    remove_stale_temporaries(cache_dir.string());  // beds whose caching was interrupted
     write_crm_checkpoint(file, {soil, {}, 0, 0, key});
     spdlog::info("settled bed cached: {}", file.string());
   }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include "core/errors.hpp"
 #include "core/json_file.hpp"
@@ -26,6 +27,14 @@ CrmSoil parse_crm_soil(const nlohmann::json& j, const std::string& where) {
   s.cohesion = o.number_or("cohesion", s.cohesion, 0, 1e9);
   s.gravity = o.vec3_or("gravity", s.gravity);
   if (norm(s.gravity) > 1000) o.fail("gravity", fmt::format("|g| = {} m/s^2 is outside [0, 1000]", norm(s.gravity)));
+  // The bed lies on the bin's floor: gravity points down. Without any (the tests' stress-free beds)
+  // nothing settles and nothing has weight: allowed, with a warning.
+  if (norm(s.gravity) > 0 && !(s.gravity.z < 0))
+    o.fail("gravity", fmt::format("[{}, {}, {}] m/s^2 does not point down; expected g_z < 0, such as [0, 0, -9.81]",
+                                  s.gravity.x, s.gravity.y, s.gravity.z));
+  if (norm(s.gravity) == 0)
+    spdlog::warn("{}: key '{}': [0, 0, 0]: the soil has no weight, so it neither settles nor carries a load", where,
+                 o.key_path("gravity"));
   o.finish();
   return s;
 }

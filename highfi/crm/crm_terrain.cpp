@@ -25,6 +25,52 @@ double bed_surface_height(const HostSoil& bed, const CrmScene& scene) {
   return sum / n + 0.5 * d0;
 }
 
+namespace {
+// The engine's arrays (sph_engine_impl.hpp): two soil states, the ids and four sort keys per
+// particle; ten (twelve with wall normals) Vec4 per marker; two cell starts per cell, plus the CPU
+// sort's counts.
+double engine_bytes(const CrmMemoryNeed& n, std::size_t real, int records, bool normals, bool cpu) {
+  const double per_particle = 2.0 * (4 + records) * 4 * double(real) + 5 * sizeof(int);
+  const double per_marker = (normals ? 12 : 10) * 4 * double(real) + 4 * sizeof(int);
+  const double per_cell = (cpu ? 3 : 2) * sizeof(int);
+  return n.particles * per_particle + n.markers * per_marker + n.cells * per_cell;
+}
+}  // namespace
+
+CrmMemoryNeed crm_memory_need(const CrmScene& sc, CrmDevice device) {
+  CrmMemoryNeed n;
+  const double d0 = sc.numerics.spacing;
+  const CrmBin& bin = sc.bin;
+  auto count = [&](double length) { return std::max(1.0, double(std::lround(length / d0))); };
+  n.particles = count(bin.fill_length > 0 ? bin.fill_length : bin.size.x) * count(bin.size.y) * count(bin.fill_height);
+  // The walls' and floor's marker layers around the bin, and each body's layers under its surface.
+  const double L = bin.boundary_layers, mx = count(bin.size.x), my = count(bin.size.y);
+  const double mz = std::max(1.0, std::ceil(bin.size.z / d0 - 1e-9));
+  n.markers = (mx + 2 * L) * (my + 2 * L) * (mz + L) - mx * my * mz;
+  for (const auto& b : sc.bodies) n.markers += 4 * M_PI * b.bounding_radius() * b.bounding_radius() / (d0 * d0) * L;
+  try {
+    n.cells = double(crm_grid(sc).cells());
+  } catch (const InputError&) {
+    n.cells = 2e9;  // crm_grid refuses more; the particles alone say by how much
+  }
+  int records = 0;
+  sc.effects.named.for_each_named([&](auto tag) {
+    using E = typename decltype(tag)::type;
+    if constexpr (E::kRecord) ++records;
+  });
+  const bool normals = needs_wall_normals(sc.numerics.marker_velocity);
+  const double host_soil = (4 + records) * sizeof(Vec4<double>) + sizeof(int);
+  const double host_markers = (normals ? 4 : 3) * sizeof(Vec4<double>) + sizeof(Vec3<double>);
+  n.host_bytes = 3 * n.particles * host_soil + n.markers * host_markers;
+  if (device == CrmDevice::kCuda) {
+    n.gpu_bytes = engine_bytes(n, sizeof(float), records, normals, false) + n.particles * 2 * sizeof(int);
+  } else {
+    const bool single = sc.numerics.cpu_precision == CrmPrecision::kFloat;
+    n.host_bytes += engine_bytes(n, single ? sizeof(float) : sizeof(double), records, normals, true);
+  }
+  return n;
+}
+
 std::string CrmTerrain::description() const {
   const CrmScene& s = solver_.scene();
   return fmt::format("CRM, spacing {} m, step {:.3g} s", s.numerics.spacing, s.numerics.time_step);

@@ -15,6 +15,17 @@ namespace terracal {
 // particles there.
 double bed_surface_height(const HostSoil& bed, const CrmScene& scene);
 
+// The memory a CRM run of `scene` holds, estimated from its bin, spacing and effects before any
+// particle exists (laid out as initial_bed, bin_marker_positions and crm_grid lay them out). On the
+// host: the particles' state three times over (the site's settled bed, the solver's copy of it while
+// the engine is made, and settling's start or download) and, on the CPU, the engine's arrays. On the
+// GPU: the engine's arrays and the sort's scratch.
+struct CrmMemoryNeed {
+  double particles = 0, markers = 0, cells = 0;
+  double host_bytes = 0, gpu_bytes = 0;
+};
+CrmMemoryNeed crm_memory_need(const CrmScene& scene, CrmDevice device);
+
 class CrmTerrain final : public Terrain {
  public:
   CrmTerrain(const CrmScene& scene, CrmDevice device, const HostSoil& bed) : solver_(scene, device, &bed) {}
