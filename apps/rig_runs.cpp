@@ -122,6 +122,8 @@ void check_plate_plan(const BevameterPlan& plan) {
                       "at most {} m",
                       plan.max_sinkage, r, 5 * r));
   }
+  check_distinct(plan.plates, "--plates",
+                 "each plate radius is run once (plate.csv keys a plate's curve by its radius)");
   check_range(R::kMaxSinkage, plan.max_sinkage, "--max-sinkage");
   check_range(R::kPlateSpeed, plan.plate_speed, "--plate-speed");
   check_range(R::kPlateWallRadii, plan.plate_wall_radii, "--plate-wall-radii");

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 #include "core/errors.hpp"
@@ -21,7 +22,22 @@ void check_rig_gravity(const Vec3<double>& g, const std::string& source) {
                  source, g.x, g.y, g.z, std::atan2(std::hypot(g.x, g.y), -g.z) * 180 / M_PI);
 }
 
+namespace {
+// Options of the other solver are refused rather than ignored: a --spacing given to an SCM run would
+// otherwise look as if it had set the resolution.
+void refuse_other_solvers_options(SoilModel solver, const TerrainOptions& o) {
+  const auto refuse = [&](const std::vector<std::string>& given, const char* whose) {
+    if (!given.empty())
+      throw InputError(fmt::format("{}: {} only; --solver/--terrain {} does not read {}", fmt::join(given, ", "), whose,
+                                   soil_model_name(solver), given.size() == 1 ? "it" : "them"));
+  };
+  if (solver != SoilModel::kCrm) refuse(o.crm_given, "for CRM");
+  if (solver != SoilModel::kScm) refuse(o.scm_given, "for SCM");
+}
+}  // namespace
+
 SoilChoice choose_soil(SoilModel solver, const TerrainOptions& o) {
+  refuse_other_solvers_options(solver, o);
   SoilChoice c;
   c.solver = solver;
   if (o.soil_json.empty() == o.scm_json.empty())

@@ -1,5 +1,6 @@
 #include "apps/terrain_options.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -20,6 +21,14 @@ std::map<std::string, MarkerVelocity> marker_velocity_map() {
   std::map<std::string, MarkerVelocity> m;
   for (const char* name : kMarkerVelocityNames) m[name] = marker_velocity_from_name(name);
   return m;
+}
+// Notes the option's name in `given` when the command line gives it.
+CLI::Option* noted(CLI::Option* opt, std::vector<std::string>& given) {
+  const std::string name = opt->get_name();
+  opt->each([&given, name](const std::string&) {
+    if (std::find(given.begin(), given.end(), name) == given.end()) given.push_back(name);
+  });
+  return opt;
 }
 }  // namespace
 
@@ -89,13 +98,22 @@ void add_step_option(CLI::App* sub, TerrainOptions& o) {
 }
 
 void add_terrain_options(CLI::App* sub, TerrainOptions& o, bool crm, bool scm) {
-  if (crm) add_crm_terrain_options(sub, o);
+  if (crm) {
+    const auto soil = add_crm_terrain_options(sub, o);
+    // Every CRM knob but --soil (choose_soil names a soil file given to the wrong solver itself).
+    const auto options = sub->get_options();
+    for (auto it = std::find(options.begin(), options.end(), soil) + 1; it != options.end(); ++it)
+      noted(*it, o.crm_given);
+  }
   if (scm) {
     sub->add_option("--scm", o.scm_json, "SCM parameter file (Chrono SCM JSON or terracal's scm_params.json)");
     add_scm_grid_option(sub, o);
-    sub->add_option("--scm-effects", o.scm_effects,
-                    fmt::format("SCM effects: {}, or none", fmt::join(EffectSet<lowfi::ScmEffects>::kNames, ", ")))
-        ->capture_default_str();
+    noted(sub->get_option("--grid"), o.scm_given);
+    noted(
+        sub->add_option("--scm-effects", o.scm_effects,
+                        fmt::format("SCM effects: {}, or none", fmt::join(EffectSet<lowfi::ScmEffects>::kNames, ", ")))
+            ->capture_default_str(),
+        o.scm_given);
     sub->add_option("--gravity", o.gravity, "gravity vector for SCM (default Earth) [m/s^2]")->expected(3);
   }
   add_step_option(sub, o);

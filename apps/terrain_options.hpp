@@ -38,6 +38,9 @@ struct TerrainOptions {
   std::vector<double> gravity;  // SCM: override Earth gravity
   double bin_scale = 1;         // CRM bins (and their depth) scaled by this: the bin-size check
   double bin_depth_scale = 0;   // the bed's depth scaled by this instead (0 = bin_scale): which dimension matters
+  // The options of one solver given on the command line, so that a run on the other solver refuses
+  // them instead of ignoring them (choose_soil).
+  std::vector<std::string> crm_given, scm_given;
   double depth_scale() const { return bin_depth_scale > 0 ? bin_depth_scale : bin_scale; }
 };
 

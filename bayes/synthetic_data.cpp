@@ -15,6 +15,8 @@ void validate(const SyntheticDesign& d) {
   using R = SyntheticRanges;
   if (d.plate_radii.empty()) throw InputError("--plates: give at least one plate radius [m]");
   for (double r : d.plate_radii) check_range(R::kPlateRadius, r, "--plates");
+  check_distinct(d.plate_radii, "--plates",
+                 "each plate radius is run once (plate.csv keys a plate's curve by its radius)");
   check_range(R::kMaxSinkage, d.max_sinkage, "--max-sinkage");
   check_range(R::kAnnulusRadius, d.annulus_inner, "--annulus (inner radius)");
   check_range(R::kAnnulusRadius, d.annulus_outer, "--annulus (outer radius)");

@@ -1,6 +1,7 @@
 #include "core/json_object.hpp"
 
 #include <cmath>
+#include <cstdint>
 
 #include <fmt/format.h>
 
@@ -62,8 +63,11 @@ long JsonObject::integer_or(const std::string& key, long fallback, long lo, long
   if (!has(key)) return fallback;
   const nlohmann::json& v = raw(key);
   if (!v.is_number_integer()) fail(key, fmt::format("value {} is not an integer", shown(v)));
-  const long x = v.get<long>();
-  if (x < lo || x > hi) fail(key, fmt::format("value {} is outside the allowed range [{}, {}]", x, lo, hi));
+  // A value above the long range arrives unsigned; get<long>() would wrap it to a negative number.
+  const bool beyond = v.is_number_unsigned() && (hi < 0 || v.get<std::uint64_t>() > std::uint64_t(hi));
+  const long x = beyond ? hi : v.get<long>();
+  if (beyond || x < lo || x > hi)
+    fail(key, fmt::format("value {} is outside the allowed range [{}, {}]", shown(v), lo, hi));
   return x;
 }
 

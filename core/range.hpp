@@ -4,6 +4,7 @@
 // apps/cli_checks.hpp) and values that code builds (validate_* functions). One definition, so that
 // the three can never disagree (docs/architecture.md, "Settings").
 #include <string>
+#include <vector>
 
 namespace terracal {
 
@@ -21,5 +22,9 @@ struct Range {
 // Throws InputError "<where>key 'KEY': value V is outside the allowed range R" unless r holds v.
 // `where` is a file name (or empty for a command-line option, whose name is the key).
 void check_range(const Range& r, double v, const std::string& key, const std::string& where = "");
+
+// Throws InputError "KEY A,B,A: the value A is given twice; WHY" for lists whose values name things
+// (plate radii key the curves of plate.csv: two plates of one radius would read as one curve).
+void check_distinct(const std::vector<double>& values, const std::string& key, const std::string& why);
 
 }  // namespace terracal

@@ -39,6 +39,7 @@ void read_obj(const std::filesystem::path& file, BodyShape& shape, const std::st
   }
   std::istringstream in{std::string(check_utf8_text(file.string(), bytes))};
   std::string line;
+  std::vector<int> face_line;  // the line of each triangle, to name it if it refers to no vertex
   for (int line_no = 1; std::getline(in, line); ++line_no) {
     std::istringstream ls(line);
     std::string tag, tok;
@@ -57,17 +58,27 @@ void read_obj(const std::filesystem::path& file, BodyShape& shape, const std::st
       while (ls >> tok) {
         const int k =
             obj_number<int>(tok.substr(0, tok.find('/')), file, line_no, "a vertex number (1, 2, ... or -1, -2, ...)");
+        // Negative numbers count back from the last vertex defined above this line.
+        if (k == 0 || int(shape.vertices.size()) + k < 0)
+          throw InputError(
+              fmt::format("{}:{}: {} is not a vertex number; expected 1 to N or -1 to -{} (the vertices "
+                          "above this line)",
+                          file.string(), line_no, k, shape.vertices.size()));
         idx.push_back(k > 0 ? k - 1 : int(shape.vertices.size()) + k);
       }
       if (idx.size() < 3) throw InputError(fmt::format("{}:{}: a face needs 3 vertices", file.string(), line_no));
-      for (std::size_t q = 1; q + 1 < idx.size(); ++q) shape.triangles.push_back({idx[0], idx[q], idx[q + 1]});
+      for (std::size_t q = 1; q + 1 < idx.size(); ++q) {
+        shape.triangles.push_back({idx[0], idx[q], idx[q + 1]});
+        face_line.push_back(line_no);
+      }
     }
   }
-  for (const auto& t : shape.triangles)
-    for (int v : t)
+  // After the whole file: a face may name a vertex defined below it.
+  for (std::size_t t = 0; t < shape.triangles.size(); ++t)
+    for (int v : shape.triangles[t])
       if (v < 0 || v >= int(shape.vertices.size()))
-        throw InputError(
-            fmt::format("{}: a face refers to vertex {} of {}", file.string(), v + 1, shape.vertices.size()));
+        throw InputError(fmt::format("{}:{}: a face refers to vertex {}; expected 1 to {}, the vertices of the file",
+                                     file.string(), face_line[t], v + 1, shape.vertices.size()));
   if (shape.triangles.empty()) throw InputError(fmt::format("{}: mesh file '{}' has no faces", key, file.string()));
 }
 

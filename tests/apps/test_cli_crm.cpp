@@ -1,10 +1,8 @@
-// A scene is validated before anything runs; each bad value exits 2 with
-// the key, the value and the allowed range. And a short run resumes exactly from its checkpoint.
+// terracal crm: a short run resumes exactly from its checkpoint (bad scenes: tests/bad_input/test_crm.cpp).
 #include <catch2/catch.hpp>
 
 #include <filesystem>
 #include <fstream>
-#include <functional>
 
 #include <nlohmann/json.hpp>
 
@@ -27,52 +25,6 @@ nlohmann::json good_scene() {
   return j;
 }
 }  // namespace
-
-TEST_CASE("terracal crm: bad scenes exit 2 naming the key, value and range", "[apps][crm]") {
-  ScratchDir dir("crm_bad");
-  struct Case {
-    const char* what;
-    std::function<void(nlohmann::json&)> edit;
-    std::vector<std::string> expect;
-  };
-  const std::vector<Case> cases = {
-      {"spacing too coarse for the bin",
-       [](auto& j) { j["resolution"]["spacing"] = 0.03; },
-       {"bin.size", "too coarse"}},
-      {"spacing too coarse for the body",
-       [](auto& j) { j["bodies"][0]["shape"]["radius"] = 0.015; },
-       {"shape.radius", "too coarse"}},
-      {"h/d0 out of range", [](auto& j) { j["resolution"]["h_over_d0"] = 2.0; }, {"h_over_d0", "2", "[1, 1.6]"}},
-      {"marker velocity not a known rule",
-       [](auto& j) { j["resolution"]["marker_velocity"] = "slip"; },
-       {"marker_velocity", "slip", "mirror"}},
-      {"step above CFL", [](auto& j) { j["resolution"]["time_step"] = 1e-3; }, {"time_step", "0.001", "CFL"}},
-      {"nu >= 0.5", [](auto& j) { j["soil"]["poisson_ratio"] = 0.5; }, {"poisson_ratio", "0.5", "[0, 0.5)"}},
-      {"non-positive density", [](auto& j) { j["soil"]["density"] = 0; }, {"density", "0", "(0,"}},
-      {"non-positive modulus", [](auto& j) { j["soil"]["young_modulus"] = -1e6; }, {"young_modulus", "-1000000"}},
-      {"body outside the bin",
-       [](auto& j) {
-         j["bodies"][0]["position"] = {0.5, 0.03, 0.05};
-       },
-       {"position", "outside the bin"}},
-      {"unknown key", [](auto& j) { j["resolution"]["spacnig"] = 0.01; }, {"resolution.spacnig", "unknown key"}},
-      {"unknown effect", [](auto& j) { j["effects"] = {"bulldozing"}; }, {"effects", "bulldozing", "active_domain"}},
-      {"cohesion without its effect", [](auto& j) { j["soil"]["cohesion"] = 5000; }, {"soil.cohesion", "\"cohesion\""}},
-  };
-  for (const Case& c : cases) {
-    INFO(c.what);
-    nlohmann::json j = good_scene();
-    c.edit(j);
-    const std::string scene = dir.path.string() + "/scene.json";
-    test::write(scene, j.dump());
-    const CliResult r =
-        test::run_cli("crm --scene " + scene + " --out " + dir.path.string() + "/out --cache ''", dir.path);
-    INFO(r.err);
-    CHECK(r.exit_code == 2);
-    for (const auto& e : c.expect) CHECK(r.err.find(e) != std::string::npos);
-    CHECK(!std::filesystem::exists(dir.path.string() + "/out/bodies.csv"));
-  }
-}
 
 TEST_CASE("terracal crm: a resumed run ends with exactly the files of an uninterrupted one", "[apps][crm]") {
   ScratchDir dir("crm_resume");
