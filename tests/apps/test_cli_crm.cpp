@@ -14,21 +14,9 @@
 using namespace terracal;
 using namespace terracal::test;
 
-namespace {
-nlohmann::json good_scene() {
-  nlohmann::json j = test::bed_scene_json(0.01, 6, 4, 0.0);
-  j["duration"] = 0.003;
-  j["bodies"] = {{{"name", "plate"},
-                  {"shape", {{"type", "disc"}, {"radius", 0.02}, {"thickness", 0.01}}},
-                  {"position", {0.03, 0.03, 0.05}},
-                  {"motion", {{"type", "prescribed"}, {"linear_velocity", {0, 0, -0.1}}}}}};
-  return j;
-}
-}  // namespace
-
 TEST_CASE("terracal crm: a resumed run ends with exactly the files of an uninterrupted one", "[apps][crm]") {
   ScratchDir dir("crm_resume");
-  nlohmann::json j = good_scene();
+  nlohmann::json j = terracal::test::plate_scene_json();
   j["duration"] = 0.006;
   j["output"] = {{"vtu_every", 3}};  // snapshots before and after the checkpoint: one collection
   const std::string full = dir.path.string() + "/full.json", half = dir.path.string() + "/half.json";

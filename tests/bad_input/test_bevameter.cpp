@@ -14,14 +14,15 @@ const std::string kCrm = "bevameter --solver crm --soil {soil} --device cpu --te
 
 // The pipeline study's CRM soil with `key` set to `value`.
 InputFile soil_with(const std::string& name, const std::string& key, const nlohmann::json& value) {
-  nlohmann::json j = nlohmann::json::parse(terracal::test::read_file(
-      std::string(TERRACAL_SOURCE_DIR) + "/studies/pipeline/bevameter_soil_2022.json"));
+  nlohmann::json j = nlohmann::json::parse(
+      terracal::test::read_file(std::string(TERRACAL_SOURCE_DIR) + "/studies/pipeline/bevameter_soil_2022.json"));
   j[key] = value;
   return {name, j.dump()};
 }
 
 std::vector<InputFile> soil_files() {
-  return {soil_with("soil_dense.json", "density", -5), soil_with("soil_up.json", "gravity", {0, 0, 9.81}),
+  return {soil_with("soil_dense.json", "density", -5),
+          soil_with("soil_up.json", "gravity", {0, 0, 9.81}),
           soil_with("soil_none.json", "gravity", {0, 0, 0}),
           {"sand_bad.json", R"({"Soil parameters": {"Bekker Kphi": 1e6, "Bekker Kc": 0, "Bekker n exponent": 9,
              "Mohr cohesive limit": 0, "Mohr friction limit": 30, "Janosi shear coefficient": 0.01}})"}};
@@ -55,7 +56,10 @@ TEST_CASE("bad input, bevameter: soil files", "[cli][bad_input]") {
        "bevameter --solver crm --soil {dir}/soil_none.json --test plate --out {out}",
        {"warning", "the soil has no weight",
         "soil_none.json: key 'soil.gravity' [0, 0, 0] m/s^2: expected gravity pointing"}},
-      {"--soil with the SCM solver", {}, "bevameter --solver scm --soil {soil} --shear-loads 100 --out {out}", {"--scm"}},
+      {"--soil with the SCM solver",
+       {},
+       "bevameter --solver scm --soil {soil} --shear-loads 100 --out {out}",
+       {"--scm"}},
   };
   terracal::test::check_bad_inputs("bad_bev_soil", cases, soil_files());
 }
@@ -78,7 +82,8 @@ TEST_CASE("bad input, bevameter: options", "[cli][bad_input]") {
       scm("--test shear --shear-loads 500 --shear-load-ramp 1.5", {"--shear-load-ramp", "1.5"}),
       scm("--test shear --shear-loads 100 --annulus 0.2,0.15",
           {"--annulus 0.2,0.15: expected the inner radius below the outer one"}),
-      scm("--test plate --plates 0.1 --max-sinkage 0.6", {"--max-sinkage 0.6 m: more than 5 radii of the plate r = 0.1 m"}),
+      scm("--test plate --plates 0.1 --max-sinkage 0.6",
+          {"--max-sinkage 0.6 m: more than 5 radii of the plate r = 0.1 m"}),
       scm("--test plate --gravity 0 0 9.81", {"--gravity [0, 0, 9.81] m/s^2: expected gravity pointing down"}),
       // The other solver's options are refused, not ignored.
       scm("--test plate --spacing 0.005 --settle-time 0.5",
@@ -93,7 +98,9 @@ TEST_CASE("bad input, bevameter: options", "[cli][bad_input]") {
       crm("--hourglass-damping 3", {"--hourglass-damping", "3"}),
       crm("--hourglass-stiffness 0.5", {"--hourglass-stiffness", "0.5"}),
       crm("--h-over-d0 2", {"--h-over-d0", "2"}),
-      {"--out is a file", {{"afile", "x\n"}}, "bevameter --solver scm --scm {demo}/truth.json --test plate --out {dir}/afile",
+      {"--out is a file",
+       {{"afile", "x\n"}},
+       "bevameter --solver scm --scm {demo}/truth.json --test plate --out {dir}/afile",
        {"--out {dir}/afile: exists and is not a folder"}},
   };
   terracal::test::check_bad_inputs("bad_bev_opt", cases);

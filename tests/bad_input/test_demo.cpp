@@ -5,9 +5,14 @@ using terracal::test::BadInput;
 
 TEST_CASE("bad input, demo", "[cli][bad_input]") {
   const std::vector<BadInput> cases = {
-      {"--seed 0x10", {}, "demo --calibration-only --out {out} --seed 0x10", {"--seed: value 0x10 is not a whole number"}},
+      {"--seed 0x10",
+       {},
+       "demo --calibration-only --out {out} --seed 0x10",
+       {"--seed: value 0x10 is not a whole number"}},
       {"--seed -1", {}, "demo --calibration-only --out {out} --seed -1", {"--seed: value -1 is outside"}},
-      {"--out is a file", {{"afile", "x\n"}}, "demo --calibration-only --out {dir}/afile",
+      {"--out is a file",
+       {{"afile", "x\n"}},
+       "demo --calibration-only --out {dir}/afile",
        {"--out {dir}/afile: exists and is not a folder"}},
   };
   terracal::test::check_bad_inputs("bad_demo", cases);

@@ -12,12 +12,16 @@ namespace fs = std::filesystem;
 TEST_CASE("bad input, --out", "[cli][bad_input]") {
   const std::string synth = "synthesize --truth {demo}/truth.json --out ";
   const std::vector<BadInput> cases = {
-      {"under /proc", {}, synth + "/proc/terracal_no_such_folder/out",
+      {"under /proc",
+       {},
+       synth + "/proc/terracal_no_such_folder/out",
        {"--out /proc/terracal_no_such_folder/out: cannot make the folder"}},
       {"under a file", {{"afile", "x\n"}}, synth + "{dir}/afile/out", {"--out {dir}/afile/out:", "is not a folder"}},
       {"empty", {}, synth + "''", {"--out '': an empty path"}},
       // The folders a refused run would have made above --out are not left behind either.
-      {"refused after the path was checked", {}, "calibrate --plate {dir}/none.csv --out {dir}/made/out",
+      {"refused after the path was checked",
+       {},
+       "calibrate --plate {dir}/none.csv --out {dir}/made/out",
        {"{dir}/none.csv"}},
   };
   terracal::test::check_bad_inputs("bad_out", cases);

@@ -31,7 +31,9 @@ TEST_CASE("bad input, pipeline", "[cli][bad_input]") {
       option("--plate-depth-scale 0.1", {"--plate-depth-scale", "0.1"}),
       option("--wheel-duration -1", {"--wheel-duration: value -1 is outside"}),
       option("--spacing 0.001", {"--spacing 0.001 m: a CRM bin", "needs about"}),
-      {"--out is a file", {{"afile", "x\n"}}, "pipeline --soil {soil} --out {dir}/afile",
+      {"--out is a file",
+       {{"afile", "x\n"}},
+       "pipeline --soil {soil} --out {dir}/afile",
        {"--out {dir}/afile: exists and is not a folder"}},
   };
   terracal::test::check_bad_inputs("bad_pipeline", cases);

@@ -20,7 +20,9 @@ BadInput scm(const std::string& args, std::vector<std::string> phrases) {
   return {args, {}, kScm + args, std::move(phrases)};
 }
 BadInput wheel(const std::string& file, std::vector<std::string> phrases) {
-  return {file, {}, "wheel --terrain scm --scm {demo}/truth.json --wheel {dir}/" + file + " --out {out}",
+  return {file,
+          {},
+          "wheel --terrain scm --scm {demo}/truth.json --wheel {dir}/" + file + " --out {out}",
           std::move(phrases)};
 }
 
@@ -30,7 +32,8 @@ TEST_CASE("bad input, wheel: the wheel file", "[cli][bad_input]") {
   const std::vector<BadInput> cases = {
       wheel("wheel_typo.json", {"width", "missing"}),
       wheel("wheel_neg.json", {"radius", "-0.47"}),
-      wheel("wheel_massless.json", {"wheel_massless.json: key 'mass': value 0 is outside the allowed range (0, 1000000]"}),
+      wheel("wheel_massless.json",
+            {"wheel_massless.json: key 'mass': value 0 is outside the allowed range (0, 1000000]"}),
       wheel("none.json", {"{dir}/none.json"}),
   };
   terracal::test::check_bad_inputs("bad_wheel_file", cases, wheel_files());
@@ -45,23 +48,32 @@ TEST_CASE("bad input, wheel: options", "[cli][bad_input]") {
       scm("--gravity 0 0 9.81", {"--gravity [0, 0, 9.81] m/s^2: expected gravity pointing down"}),
       scm("--gravity 0 0 0", {"--gravity [0, 0, 0] m/s^2: expected gravity"}),
       scm("--device cpu", {"--device: for CRM only; --solver/--terrain scm does not read it"}),
-      {"--scm-effects with Wong-Reece", {},
+      {"--scm-effects with Wong-Reece",
+       {},
        "wheel --terrain wong-reece --scm {demo}/truth.json --wheel {dir}/wheel.json --scm-effects none --out {out}",
        {"--scm-effects: for SCM only; --solver/--terrain wong-reece does not read it"}},
-      {"unknown terrain", {}, "wheel --terrain dem --scm {demo}/truth.json --wheel {dir}/wheel.json --out {out}",
+      {"unknown terrain",
+       {},
+       "wheel --terrain dem --scm {demo}/truth.json --wheel {dir}/wheel.json --out {out}",
        {"--terrain", "dem"}},
-      {"CRM without --soil", {}, "wheel --terrain crm --scm {demo}/truth.json --wheel {dir}/wheel.json --out {out}",
+      {"CRM without --soil",
+       {},
+       "wheel --terrain crm --scm {demo}/truth.json --wheel {dir}/wheel.json --out {out}",
        {"--soil"}},
-      {"--h-over-d0 0.9", {},
+      {"--h-over-d0 0.9",
+       {},
        "wheel --terrain crm --soil {soil} --wheel {dir}/wheel.json --device cpu --h-over-d0 0.9 --out {out}",
        {"--h-over-d0", "0.9"}},
-      {"--marker-velocity slip", {},
+      {"--marker-velocity slip",
+       {},
        "wheel --terrain crm --soil {soil} --wheel {dir}/wheel.json --device cpu --marker-velocity slip --out {out}",
        {"--marker-velocity", "slip"}},
-      {"--out is a file", {{"afile", "x\n"}},
+      {"--out is a file",
+       {{"afile", "x\n"}},
        "wheel --terrain scm --scm {demo}/truth.json --wheel {dir}/wheel.json --out {dir}/afile",
        {"--out {dir}/afile: exists and is not a folder"}},
-      {"CRM spacing beyond memory", {},
+      {"CRM spacing beyond memory",
+       {},
        "wheel --terrain crm --soil {soil} --device cpu --wheel {dir}/wheel.json --spacing 0.001 --out {out}",
        {"--spacing 0.001 m: a CRM bin", "for the wheel", "needs about"}},
   };
@@ -72,7 +84,8 @@ TEST_CASE("a wheel that does not turn runs, with a 'warning' line on stderr", "[
   const std::vector<BadInput> cases = {
       {"angular velocity 0",
        {{"still.json", R"({"radius": 0.47, "width": 0.25, "mass": 108, "angular_velocity": 0})"}},
-       "wheel --terrain wong-reece --scm {demo}/truth.json --wheel {dir}/still.json --slips 0,0.2 --no-plots --out {out}",
+       "wheel --terrain wong-reece --scm {demo}/truth.json --wheel {dir}/still.json --slips 0,0.2 --no-plots --out "
+       "{out}",
        {"warning", "angular_velocity is 0: it does not turn"},
        0},
   };

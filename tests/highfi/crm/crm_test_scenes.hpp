@@ -28,6 +28,18 @@ inline nlohmann::json bed_scene_json(double d0, int cells, int layers, double se
           {"settle_time", settle}};
 }
 
+// A small bed (6 x 6 spacings of 0.01 m, 4 deep, not settled) with a disc pressed into it, 0.003 s long:
+// the command-line tests' scene.
+inline nlohmann::json plate_scene_json() {
+  nlohmann::json j = bed_scene_json(0.01, 6, 4, 0.0);
+  j["duration"] = 0.003;
+  j["bodies"] = {{{"name", "plate"},
+                  {"shape", {{"type", "disc"}, {"radius", 0.02}, {"thickness", 0.01}}},
+                  {"position", {0.03, 0.03, 0.05}},
+                  {"motion", {{"type", "prescribed"}, {"linear_velocity", {0, 0, -0.1}}}}}};
+  return j;
+}
+
 // The device the validation scenes (lithostatic bed, coupling, slope, hard cases) run on: the CPU,
 // as in CI, or the GPU when TERRACAL_TEST_DEVICE=cuda, which is how the device machine runs the
 // same tests on the same scenes. Asking for cuda where there is none fails the tests loudly.
