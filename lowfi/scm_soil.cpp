@@ -1,5 +1,7 @@
 #include "lowfi/scm_soil.hpp"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
@@ -8,45 +10,50 @@
 
 namespace terracal::lowfi {
 
-namespace {
-
-// One key of the block: present (unless it has a default), a number, within [lo, hi].
-double read_key(const nlohmann::json& s, const std::string& where, const char* key, double lo, double hi,
-                const char* range, const double* fallback = nullptr) {
-  if (!s.contains(key)) {
-    if (fallback) return *fallback;
-    throw InputError(fmt::format("{}: key 'Soil parameters.{}' is missing", where, key));
-  }
-  if (!s[key].is_number())
-    throw InputError(fmt::format("{}: key 'Soil parameters.{}': {} is not a number", where, key, s[key].dump()));
-  const double v = s[key].get<double>();
-  if (!(v >= lo && v <= hi))
-    throw InputError(fmt::format("{}: key 'Soil parameters.{}' = {}: expected {}", where, key, v, range));
-  return v;
+const std::array<ScmSoilKey, 8>& scm_soil_keys() {
+  static const std::array<ScmSoilKey, 8> keys = {{
+      {"Bekker Kphi", &ScmSoil::Kphi, {0, 1e12, false, false, "Pa/m^n"}, true},
+      {"Bekker Kc", &ScmSoil::Kc, {-1e12, 1e12, false, false, "Pa/m^(n-1)"}, true},
+      {"Bekker n exponent", &ScmSoil::n, {0.05, 5}, true},
+      {"Mohr cohesive limit", &ScmSoil::cohesion, {0, 1e8, false, false, "Pa"}, true},
+      {"Mohr friction limit", &ScmSoil::friction_deg, {0, 89, false, false, "degrees"}, true},
+      {"Janosi shear coefficient", &ScmSoil::janosi_k, {1e-6, 10, false, false, "m"}, true},
+      {"Elastic stiffness", &ScmSoil::elastic_stiffness, {1, 1e13, false, false, "Pa/m"}, false},
+      {"Damping", &ScmSoil::damping, {0, 1e10, false, false, "Pa s/m"}, false},
+  }};
+  return keys;
 }
 
+namespace {
+void check_key(const ScmSoilKey& k, double v, const std::string& where) {
+  if (!k.range.contains(v))
+    throw InputError(
+        fmt::format("{}: key 'Soil parameters.{}' = {}: expected in {}", where, k.name, v, k.range.text()));
+}
 }  // namespace
+
+void validate(const ScmSoil& soil, const std::string& source) {
+  for (const auto& k : scm_soil_keys()) check_key(k, soil.*k.field, source);
+}
 
 ScmSoil parse_scm_soil(const nlohmann::json& s, const std::string& where) {
   if (!s.is_object()) throw InputError(fmt::format("{}: 'Soil parameters' must be an object", where));
-  ScmSoil soil;
-  const double ke = soil.elastic_stiffness, damping = soil.damping;
-  soil.Kphi = read_key(s, where, "Bekker Kphi", 0, 1e12, "in [0, 1e12] Pa/m^n");
-  soil.Kc = read_key(s, where, "Bekker Kc", -1e12, 1e12, "in [-1e12, 1e12] Pa/m^(n-1)");
-  soil.n = read_key(s, where, "Bekker n exponent", 0.05, 5, "in [0.05, 5]");
-  soil.cohesion = read_key(s, where, "Mohr cohesive limit", 0, 1e8, "in [0, 1e8] Pa");
-  soil.friction_deg = read_key(s, where, "Mohr friction limit", 0, 89, "in [0, 89] degrees");
-  soil.janosi_k = read_key(s, where, "Janosi shear coefficient", 1e-6, 10, "in [1e-6, 10] m");
-  soil.elastic_stiffness = read_key(s, where, "Elastic stiffness", 1, 1e13, "in [1, 1e13] Pa/m", &ke);
-  soil.damping = read_key(s, where, "Damping", 0, 1e10, "in [0, 1e10] Pa s/m", &damping);
+  ScmSoil soil;  // the defaults of the keys that may be left out
+  for (const auto& k : scm_soil_keys()) {
+    if (!s.contains(k.name)) {
+      if (k.required) throw InputError(fmt::format("{}: key 'Soil parameters.{}' is missing", where, k.name));
+      continue;
+    }
+    const nlohmann::json& v = s[k.name];
+    if (!v.is_number())
+      throw InputError(fmt::format("{}: key 'Soil parameters.{}': {} is not a number", where, k.name, v.dump()));
+    soil.*k.field = v.get<double>();
+    check_key(k, soil.*k.field, where);
+  }
   for (const auto& [key, value] : s.items()) {
-    static const char* known[] = {"Bekker Kphi",         "Bekker Kc",
-                                  "Bekker n exponent",   "Mohr cohesive limit",
-                                  "Mohr friction limit", "Janosi shear coefficient",
-                                  "Elastic stiffness",   "Damping"};
-    bool ok = false;
-    for (const char* k : known) ok = ok || key == k;
-    if (!ok) throw InputError(fmt::format("{}: unknown key 'Soil parameters.{}'", where, key));
+    const auto& keys = scm_soil_keys();
+    if (std::none_of(keys.begin(), keys.end(), [&](const ScmSoilKey& k) { return key == k.name; }))
+      throw InputError(fmt::format("{}: unknown key 'Soil parameters.{}'", where, key));
   }
   return soil;
 }

@@ -3,10 +3,13 @@
 // elastic stiffness and damping of Chrono's SCM, in Chrono's units (the "Soil parameters" block;
 // docs/formats.md, "SCM parameter sets and scm_params.json"): Kc [Pa/m^(n-1)], Kphi [Pa/m^n], n [-],
 // cohesion [Pa], friction [deg], Janosi k [m], elastic stiffness [Pa/m], damping [Pa s/m].
+#include <array>
 #include <cmath>
 #include <string>
 
 #include <nlohmann/json.hpp>
+
+#include "core/range.hpp"
 
 namespace terracal::lowfi {
 
@@ -24,6 +27,20 @@ struct ScmSoil {
     return shear_strength(p) * (1.0 - std::exp(-std::abs(j) / janosi_k));
   }
 };
+
+// One key of the "Soil parameters" block: Chrono's name, the field it sets and its allowed values,
+// for the reader and for validate() alike. `required`: Elastic stiffness and Damping default to Chrono's.
+struct ScmSoilKey {
+  const char* name;
+  double ScmSoil::*field;
+  Range range;
+  bool required;
+};
+const std::array<ScmSoilKey, 8>& scm_soil_keys();
+
+// Throws InputError "SOURCE: key 'Soil parameters.KEY' = V: expected in RANGE" for the first
+// parameter outside its range: for sets built in code (a calibration's result) as the reader checks files.
+void validate(const ScmSoil& soil, const std::string& source);
 
 // Reads the "Soil parameters" block of a Chrono SCM JSON file (or of terracal's scm_params.json).
 // Bekker Kphi, Kc, n, the Mohr limits and the Janosi coefficient are required; Elastic stiffness and

@@ -46,10 +46,7 @@ void validate(const ScmSettings& s, const ScmSoil& soil) {
   check_effect_settings(s.effects, "SCM settings");
   if (!(norm(s.gravity) <= 1000))
     throw InputError(fmt::format("SCM setting 'gravity': |g| = {} outside [0, 1000] m/s^2", norm(s.gravity)));
-  check("Bekker Kphi", soil.Kphi, 0, 1e12, "Pa/m^n");
-  check("Bekker n exponent", soil.n, 0.05, 5, "");
-  check("Janosi shear coefficient", soil.janosi_k, 1e-6, 10, "m");
-  check("Elastic stiffness", soil.elastic_stiffness, 1, 1e13, "Pa/m");
+  validate(soil, "SCM soil");
 }
 
 ScmTerrain::ScmTerrain(const ScmSoil& soil, const ScmSettings& settings, std::vector<RigidBody> bodies)

@@ -29,7 +29,7 @@ BadInput truth(const std::string& name, InputFile file, std::vector<std::string>
 TEST_CASE("bad input, synthesize: --truth", "[cli][bad_input]") {
   const std::vector<BadInput> cases = {
       truth("Janosi k = 0", truth_with("k0.json", "Janosi shear coefficient", 0),
-            {"k0.json: key 'Soil parameters.Janosi shear coefficient' = 0: expected in [1e-6, 10] m"}),
+            {"k0.json: key 'Soil parameters.Janosi shear coefficient' = 0: expected in [1e-06, 10] m"}),
       truth("friction angle 95 degrees", truth_with("phi95.json", "Mohr friction limit", 95),
             {"key 'Soil parameters.Mohr friction limit' = 95"}),
       truth("n = 0", truth_with("n0.json", "Bekker n exponent", 0), {"key 'Soil parameters.Bekker n exponent' = 0"}),
