@@ -47,7 +47,7 @@ Command add_crm(CLI::App& app) {
     o.device = resolve_device(a->device);
     check_crm_memory(scene, o.device,
                      fmt::format("{}: key 'resolution.spacing' {} m", a->scene, scene.numerics.spacing),
-                     "a coarser resolution.spacing or a smaller bin.size");
+                     "a coarser resolution.spacing or a smaller bin.size", true);
     o.cache_dir = a->cache;
     o.resume = a->resume;
     o.record_every = a->record_every;

@@ -7,6 +7,7 @@
 #include <string>
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include "core/errors.hpp"
 
@@ -63,11 +64,17 @@ double available_gpu_bytes() {
 }
 
 void check_memory(const std::string& subject, const std::string& what, double host_bytes, double gpu_bytes,
-                  const std::string& expected) {
+                  const std::string& expected, bool say) {
   const double host = available_host_bytes();
   const double gpu = gpu_bytes > 0 ? available_gpu_bytes() : -1;
   const bool host_short = host >= 0 && host_bytes > host, gpu_short = gpu >= 0 && gpu_bytes > gpu;
-  if (!host_short && !gpu_short) return;
+  if (!host_short && !gpu_short) {
+    if (say)
+      spdlog::info("memory: {} needs about {:.3g} GiB{} (estimated before allocating; {:.3g} GiB available{})", subject,
+                   host_bytes / kGiB, gpu_bytes > 0 ? fmt::format(" and {:.3g} GiB on the GPU", gpu_bytes / kGiB) : "",
+                   host / kGiB, gpu >= 0 ? fmt::format(", {:.3g} GiB free on the GPU", gpu / kGiB) : "");
+    return;
+  }
   const std::string need = gpu_short ? fmt::format("{:.3g} GiB of GPU memory", gpu_bytes / kGiB)
                                      : fmt::format("{:.3g} GiB of memory", host_bytes / kGiB);
   const std::string have = gpu_short ? fmt::format("{:.3g} GiB is free on the GPU", gpu / kGiB)
@@ -75,15 +82,15 @@ void check_memory(const std::string& subject, const std::string& what, double ho
   throw InputError(fmt::format("{}: {} needs about {} where {}; expected {}", subject, what, need, have, expected));
 }
 
-void check_crm_memory(const CrmScene& scene, CrmDevice device, const std::string& subject,
-                      const std::string& expected) {
+void check_crm_memory(const CrmScene& scene, CrmDevice device, const std::string& subject, const std::string& expected,
+                      bool say) {
   const CrmMemoryNeed n = crm_memory_need(scene, device);
   // crm_grid refuses more than 2e9 cells: the estimate counts that many, at least.
   const std::string what = fmt::format(
       "a CRM bin of {:.3g} x {:.3g} m filled {:.3g} m deep ({:.3g} particles, {:.3g} markers, {}{:.3g} cells)",
       scene.bin.size.x, scene.bin.size.y, scene.bin.fill_height, n.particles, n.markers, n.cells >= 2e9 ? "over " : "",
       n.cells);
-  check_memory(subject, what, n.host_bytes, n.gpu_bytes, expected);
+  check_memory(subject, what, n.host_bytes, n.gpu_bytes, expected, say);
 }
 
 }  // namespace terracal::app

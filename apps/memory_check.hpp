@@ -16,10 +16,12 @@ double available_host_bytes();
 double available_gpu_bytes();
 
 // Throws InputError "SUBJECT: WHAT needs about X GiB of memory (Y GiB on the GPU) where A GiB is
-// available; expected EXPECTED" when either need is above what is available.
+// available; expected EXPECTED" when either need is above what is available. `say`: when it fits,
+// log the estimate and what is available (once per run, just before it allocates).
 void check_memory(const std::string& subject, const std::string& what, double host_bytes, double gpu_bytes,
-                  const std::string& expected);
+                  const std::string& expected, bool say = false);
 // The same for a CRM scene run on `device` (its particles, markers and cells in WHAT).
-void check_crm_memory(const CrmScene& scene, CrmDevice device, const std::string& subject, const std::string& expected);
+void check_crm_memory(const CrmScene& scene, CrmDevice device, const std::string& subject, const std::string& expected,
+                      bool say = false);
 
 }  // namespace terracal::app

@@ -63,22 +63,22 @@ RigSoil wheel_soil(const rigs::WheelSpec& wheel, const std::vector<double>& slip
           (2 * outer + travel) * wheel.width};
 }
 
-// Refuses a site that cannot fit in memory, naming the options that size it.
-void check_site_memory(const SoilChoice& soil, const TerrainOptions& o, const RigSoil& rig) {
+// Refuses a site that cannot fit in memory, naming the options that size it; `say`: log the estimate.
+void check_site_memory(const SoilChoice& soil, const TerrainOptions& o, const RigSoil& rig, bool say = false) {
   if (soil.solver == SoilModel::kCrm && soil.crm) {
     const CrmScene sc = crm_site_scene(*soil.crm, o, o.bin_scale * rig.half_length, o.bin_scale * rig.half_width,
                                        o.depth_scale() * rig.depth);
     check_crm_memory(sc, crm_device(o.device), fmt::format("{} {} m", rig.spacing_option, o.spacing),
-                     fmt::format("a coarser {} (or a smaller --bin-scale) for {}", rig.spacing_option, rig.what));
+                     fmt::format("a coarser {} (or a smaller --bin-scale) for {}", rig.spacing_option, rig.what), say);
   } else if (soil.solver == SoilModel::kScm) {
     check_memory(fmt::format("--grid {} m", o.grid),
                  fmt::format("SCM under {} ({:.3g} m^2 of soil touched)", rig.what, rig.swept),
-                 lowfi::scm_memory_bytes(o.grid, rig.footprint, rig.swept), 0, "a coarser --grid");
+                 lowfi::scm_memory_bytes(o.grid, rig.footprint, rig.swept), 0, "a coarser --grid", say);
   }
 }
 
 std::unique_ptr<TerrainSite> site_for(const SoilChoice& soil, const TerrainOptions& o, const RigSoil& rig) {
-  check_site_memory(soil, o, rig);
+  check_site_memory(soil, o, rig, true);  // again: memory may have gone since the plan was checked
   if (soil.solver == SoilModel::kCrm) {
     if (!soil.crm) throw InputError("--solver crm needs a CRM soil (--soil SOIL.json)");
     return crm_site(*soil.crm, o, o.bin_scale * rig.half_length, o.bin_scale * rig.half_width,
