@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "apps/memory_check.hpp"
 #include "bayes/calibration_outputs.hpp"
 #include "bayes/posterior_h5.hpp"
 #include "core/atomic_file.hpp"
@@ -54,6 +55,12 @@ void validate(const CalibrationSettings& s) {
     throw InputError(
         fmt::format("--max-draws {}: expected {} to {} draws per chain", s.max_draws, R::kMinDraws, R::kMaxDraws));
   check_range(R::kMinEss, s.min_ess, "--min-ess");
+  // A run that does not converge keeps every draw up to the cap: 6 parameters and the log density in
+  // doubles, held about four times over (the chains, the result, the diagnostics' copy, the checkpoint).
+  const double values = double(s.chains) * double(s.max_draws) * (kNumParams + 1);
+  check_memory(fmt::format("--max-draws {} with --chains {}", s.max_draws, s.chains),
+               fmt::format("keeping {:.3g} draws of {} chains until the cap", double(s.max_draws), s.chains),
+               4 * sizeof(double) * values, 0, "fewer --max-draws or --chains");
   if (s.out_dir.empty()) throw InputError("--out: an output folder is required");
   if (fs::exists(s.out_dir) && !fs::is_directory(s.out_dir))
     throw InputError(fmt::format("--out {}: exists and is not a folder", s.out_dir));
