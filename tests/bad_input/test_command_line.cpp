@@ -31,7 +31,7 @@ TEST_CASE("bad input, command line: unknown commands and options", "[cli][bad_in
   terracal::test::check_bad_inputs("bad_cmdline", cases);
 }
 
-TEST_CASE("--help and --version exit 0", "[cli]") {
+TEST_CASE("every command's --help, and --version, exit 0", "[cli]") {
   const terracal::test::ScratchDir scratch("help");
   const std::string dir = scratch.str();
   auto r = terracal::test::run_cli("--version", dir);

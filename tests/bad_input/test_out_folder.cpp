@@ -28,7 +28,7 @@ TEST_CASE("bad input, --out", "[cli][bad_input]") {
   terracal::test::check_bad_inputs("bad_out", cases);
 }
 
-TEST_CASE("--out in a folder without write permission: exit 2 naming --out", "[cli][bad_input]") {
+TEST_CASE("an --out in a folder without write permission: exit 2 naming --out", "[cli][bad_input]") {
   if (::geteuid() == 0) {
     terracal::test::report_skip("--out without write permission", "running as root, who writes in any folder");
     return;
