@@ -16,5 +16,6 @@ Command add_crm(CLI::App& app);
 Command add_bevameter(CLI::App& app);
 Command add_wheel(CLI::App& app);
 Command add_pipeline(CLI::App& app);
+Command add_rom(CLI::App& app);
 
 }  // namespace terracal::app

@@ -119,6 +119,7 @@ int main(int argc, char** argv) {
   add(terracal::app::add_bevameter, "bevameter");
   add(terracal::app::add_wheel, "wheel");
   add(terracal::app::add_pipeline, "pipeline");
+  add(terracal::app::add_rom, "rom");
   // Progress and messages go to stderr; stdout carries the summary table only.
   spdlog::set_default_logger(spdlog::stderr_color_mt("terracal"));
   spdlog::set_pattern("[%H:%M:%S] %^%l%$ %v");

@@ -152,3 +152,31 @@ void plot_wheel_models(const std::string& dir,
 }
 
 }  // namespace terracal::app
+
+namespace terracal::app {
+
+void plot_trajectory(const std::string& dir, const std::string& title) {
+  const std::string work = dir + "/.plot_trajectory";
+  std::filesystem::create_directories(work);
+  std::filesystem::copy_file(dir + "/trajectory.csv", work + "/trajectory.csv");
+  const std::string s = fmt::format(
+      "set terminal pngcairo noenhanced size 1500,900 font 'Sans,11'\nset output 'trajectory.png'\n"
+      "set datafile separator ','\nset key autotitle columnhead\nset grid\n"
+      "set multiplot layout 2,3 title '{}'\n"
+      "set xlabel 'x [m]'\nset ylabel 'y [m]'\nset size ratio -1\nset title 'path'\nplot 'trajectory.csv' using 2:3 "
+      "with lines lw 2 notitle\nset size noratio\n"
+      "set xlabel 'time [s]'\nset ylabel '[m/s]'\nset title 'speed'\nplot 'trajectory.csv' using 1:8 with lines lw 2, "
+      "'' using 1:9 with lines lw 2\n"
+      "set ylabel '[rad/s], [rad]'\nset title 'yaw rate and roll'\nplot 'trajectory.csv' using 1:10 with lines lw 2, '' "
+      "using 1:6 with lines lw 2\n"
+      "set ylabel '[m/s^2]'\nset title 'accelerations'\nplot 'trajectory.csv' using 1:12 with lines lw 2, '' using "
+      "1:13 with lines lw 2\n"
+      "set ylabel '[rpm]'\nset title 'engine'\nplot 'trajectory.csv' using 1:14 with lines lw 2\n"
+      "set ylabel 'gear'\nset title 'gear'\nplot 'trajectory.csv' using 1:15 with steps lw 2\n"
+      "unset multiplot\n",
+      title);
+  render(work, s, "trajectory.png");
+  publish(work, "trajectory.png", dir);
+}
+
+}  // namespace terracal::app

@@ -16,5 +16,8 @@ void plot_bevameter(const std::string& dir, const BevameterCurves& curves, const
 // DIR/wheel.png: DBP, torque and sinkage against slip, one line per named model.
 void plot_wheel_models(const std::string& dir,
                        const std::vector<std::pair<std::string, std::vector<rigs::WheelResult>>>& models);
+// DIR/trajectory.png from DIR/trajectory.csv: path, speeds, yaw rate and roll, accelerations,
+// engine speed and gear.
+void plot_trajectory(const std::string& dir, const std::string& title);
 
 }  // namespace terracal::app

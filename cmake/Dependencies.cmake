@@ -9,6 +9,7 @@ find_package(fmt REQUIRED)
 find_package(spdlog REQUIRED)
 find_package(OpenMP REQUIRED)
 find_package(Catch2 2 REQUIRED)
+find_package(SUNDIALS 6 REQUIRED)  # CVODES for the reduced-order vehicles
 
 # Serial HDF5 with the high-level library (dimension scales, H5DS).
 set(HDF5_PREFER_PARALLEL FALSE)

@@ -1,0 +1,33 @@
+#pragma once
+// SUNDIALS CVODES (BDF, Newton with a dense linear solver) behind a small interface: a right-hand
+// side dy = f(t, y) of fixed size, advanced to given times, restarted where the model changes
+// discontinuously (a gear shift, a new held input).
+#include <functional>
+#include <memory>
+
+namespace terracal::rom {
+
+struct CvodesProblem {
+  int states = 0;
+  std::function<void(double t, const double* y, double* dy)> rhs;
+};
+
+class CvodesIntegrator {
+ public:
+  CvodesIntegrator(CvodesProblem problem, const double* y0, double rtol, double atol);
+  ~CvodesIntegrator();
+  CvodesIntegrator(const CvodesIntegrator&) = delete;
+  CvodesIntegrator& operator=(const CvodesIntegrator&) = delete;
+  // Integrates to t_out and writes the state there. Throws RunError when CVODES fails.
+  void advance(double t_out, double* y);
+  // Starts again from (t, y), discarding the solver's history.
+  void restart(double t, const double* y);
+  long steps() const;
+  long rhs_evaluations() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace terracal::rom

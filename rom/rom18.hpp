@@ -1,0 +1,172 @@
+#pragma once
+// The 18-DOF double-track model (after LFDM's 18-DOF model): chassis longitudinal, lateral, yaw and
+// roll motion, four wheel spins, tread deflections per tire and the crank, on flat rigid ground.
+// Loads are quasi-static (axle_loads, lateral_transfer); wheels cannot lift off. The right-hand
+// side is written once for the CPU and the GPU. State layout: docs/rom.md.
+#include <cmath>
+
+#include "core/host_device.hpp"
+#include "core/vehicle/driver_inputs.hpp"
+#include "rom/driveline.hpp"
+#include "rom/loads.hpp"
+#include "rom/rom_sample.hpp"
+#include "rom/wheel_contact.hpp"
+
+namespace terracal::rom {
+
+struct Rom18 {
+  static constexpr const char* kName = "18dof";
+  static constexpr int kWheels = 4;  // FL, FR, RL, RR
+  enum : int { kX, kY, kYaw, kRoll, kVx, kVy, kYawRate, kRollRate, kSpin, kXe = kSpin + 4, kYe = kXe + 4, kCrank = kYe + 4 };
+  static constexpr int kStates = kCrank + 1;
+  // Positions: the fixed-step scheme advances these with the velocities already stepped.
+  static TERRACAL_HD bool is_position(int i) { return i <= kRoll; }
+  static TERRACAL_HD double wheel_x(const RomVehicle& v, int w) { return w < 2 ? v.cg_to_front : -v.cg_to_rear; }
+  static TERRACAL_HD double wheel_y(const RomVehicle& v, int w) { return (w % 2 == 0 ? 0.5 : -0.5) * v.track[w / 2]; }
+
+  static TERRACAL_HD void kinematics(const RomVehicle& v, const double* y, double* dy) {
+    const double c = cos(y[kYaw]), s = sin(y[kYaw]);
+    dy[kX] = y[kVx] * c - y[kVy] * s;
+    dy[kY] = y[kVx] * s + y[kVy] * c;
+    dy[kYaw] = y[kYawRate];
+    dy[kRoll] = v.has(kEffectRoll) ? y[kRollRate] : 0.0;
+  }
+
+  // Tire forces on the chassis for given chassis accelerations (they set the loads).
+  struct Forces {
+    double fx = 0, fy = 0, mz = 0;
+    WheelContact w[4];
+    double fz[4] = {};
+    double roll = 0, roll_rate = 0;
+  };
+  static TERRACAL_HD Forces forces(const RomVehicle& v, double delta, const double* y, double ax, double ay) {
+    Forces f;
+    const AxleLoads axle = axle_loads(v, ax);
+    f.roll = v.has(kEffectRoll) ? y[kRoll] : steady_roll(v, ay);
+    f.roll_rate = v.has(kEffectRoll) ? y[kRollRate] : 0.0;
+    const double cd = cos(delta), sd = sin(delta);
+    for (int w = 0; w < 4; ++w) {
+      const int axle_i = w / 2;
+      const double transfer = lateral_transfer(v, axle_i, ay, f.roll, f.roll_rate);
+      f.fz[w] = 0.5 * (axle_i == 0 ? axle.front : axle.rear) + (w % 2 == 0 ? -transfer : transfer);
+      const double px = wheel_x(v, w), py = wheel_y(v, w);
+      const double c = axle_i == 0 ? cd : 1.0, s = axle_i == 0 ? sd : 0.0;
+      const Planar vw = to_wheel_frame(y[kVx] - y[kYawRate] * py, y[kVy] + y[kYawRate] * px, c, s);
+      f.w[w] = wheel_contact(v, v.tire[axle_i], f.fz[w], vw.x, vw.y, y[kSpin + w], y[kXe + w], y[kYe + w], 1.0);
+      const Planar fc = to_chassis_frame(f.w[w].fx, f.w[w].fy, c, s);
+      f.fx += fc.x;
+      f.fy += fc.y;
+      f.mz += px * fc.y - py * fc.x;
+    }
+    return f;
+  }
+
+  // dy = f(y). `smooth_dry`: brake and rolling resistance as smooth torques (ODE solvers); else
+  // left out and reported in aux->dry_torque for the fixed-step scheme to apply implicitly.
+  static TERRACAL_HD void rhs(const RomVehicle& v, const DriverInput& in, int gear, const double* y, double* dy,
+                              RomAux* aux, bool smooth_dry) {
+    const double delta = fmin(fmax(in.steering, -1.0), 1.0) * v.max_steer;
+    const double m = v.total_mass();
+    const double drag = v.has(kEffectAeroDrag) ? 0.5 * v.air_density * v.drag_area * y[kVx] * fabs(y[kVx]) : 0.0;
+    // The loads depend on the accelerations the forces cause. With relaxed tires the tread springs
+    // (state) give them without a loop; steady tires take one more pass from the first estimate.
+    double ax = 0, ay = 0;
+    if (v.has(kEffectTireRelaxation)) {
+      const double cd = cos(delta), sd = sin(delta);
+      for (int w = 0; w < 4; ++w) {
+        const TmeasyParams& t = v.tire[w / 2];
+        const Planar fc = to_chassis_frame(t.longitudinal_stiffness * y[kXe + w], t.lateral_stiffness * y[kYe + w],
+                                           w < 2 ? cd : 1.0, w < 2 ? sd : 0.0);
+        ax += fc.x / m;
+        ay += fc.y / m;
+      }
+    } else {
+      const Forces first = forces(v, delta, y, 0.0, 0.0);
+      ax = first.fx / m;
+      ay = first.fy / m;
+    }
+    const Forces f = forces(v, delta, y, ax - drag / m, ay);
+    ax = (f.fx - drag) / m;
+    ay = f.fy / m;
+    dy[kVx] = ax + y[kVy] * y[kYawRate];
+    dy[kVy] = ay - y[kVx] * y[kYawRate];
+    dy[kYawRate] = f.mz / v.yaw_inertia;
+    if (v.has(kEffectRoll)) {
+      const double hs = roll_arm(v);
+      const double k = v.roll_stiffness[0] + v.roll_stiffness[1], c = v.roll_damping[0] + v.roll_damping[1];
+      dy[kRollRate] = (v.mass * hs * (ay * cos(f.roll) + v.gravity * sin(f.roll)) - k * f.roll - c * f.roll_rate) /
+                      (v.roll_inertia + v.mass * hs * hs);
+    } else {
+      dy[kRollRate] = 0.0;
+    }
+    wheel_spins(v, in, gear, y, f, dy, aux, smooth_dry);
+    kinematics(v, y, dy);
+    aux->ax = ax;
+    aux->ay = ay;
+    for (int w = 0; w < 4; ++w) aux->fz[w] = f.fz[w];
+  }
+
+  static TERRACAL_HD void wheel_spins(const RomVehicle& v, const DriverInput& in, int gear, const double* y,
+                                      const Forces& f, double* dy, RomAux* aux, bool smooth_dry) {
+    bool driven[4];
+    double j[4], tau[4], mean_spin = 0;
+    int n_driven = 0;
+    for (int w = 0; w < 4; ++w) {
+      driven[w] = is_driven(v.powertrain.drive, w < 2);
+      if (driven[w]) mean_spin += y[kSpin + w], ++n_driven;
+    }
+    mean_spin /= n_driven;
+    const Driveline d = driveline(v, gear, fmin(fmax(in.throttle, 0.0), 1.0), y[kCrank], mean_spin, n_driven);
+    const double brake = fmin(fmax(in.braking, 0.0), 1.0) * v.powertrain.max_brake_torque;
+    for (int w = 0; w < 4; ++w) {
+      const TmeasyParams& t = v.tire[w / 2];
+      j[w] = t.wheel_inertia;
+      tau[w] = (driven[w] ? d.wheel_torque : 0.0) - f.w[w].fx * f.w[w].rdyn;
+      double dry = brake;
+      if (v.has(kEffectRollingResistance)) dry += t.rolling_resistance * fmax(f.fz[w], 0.0) * f.w[w].rdyn;
+      if (smooth_dry) tau[w] += dry_friction_torque(dry, y[kSpin + w]);
+      aux->dry_torque[w] = smooth_dry ? 0.0 : dry;
+      aux->spin_inertia[w] = j[w] + (driven[w] ? d.coupling * n_driven : 0.0);
+      dy[kXe + w] = v.has(kEffectTireRelaxation) ? f.w[w].dxe : 0.0;
+      dy[kYe + w] = v.has(kEffectTireRelaxation) ? f.w[w].dye : 0.0;
+    }
+    spin_accelerations(4, driven, j, d.coupling, tau, dy + kSpin);
+    dy[kCrank] = d.crank_accel;
+    aux->engine_speed = d.engine_speed;
+  }
+
+  // A vehicle rolling straight at `speed` with tires at their static loads; returns the gear.
+  static TERRACAL_HD int initial_state(const RomVehicle& v, double speed, double* y) {
+    for (int i = 0; i < kStates; ++i) y[i] = 0.0;
+    y[kVx] = speed;
+    const AxleLoads axle = axle_loads(v, 0.0);
+    double mean_spin = 0;
+    int n = 0;
+    for (int w = 0; w < 4; ++w) {
+      const double fz = 0.5 * (w < 2 ? axle.front : axle.rear);
+      y[kSpin + w] = speed / tmeasy_at_load(v.tire[w / 2], fz).rdyn;
+      if (is_driven(v.powertrain.drive, w < 2)) mean_spin += y[kSpin + w], ++n;
+    }
+    return initial_gear(v, mean_spin / n, y + kCrank);
+  }
+
+  static TERRACAL_HD RomSample sample(const RomVehicle& v, double t, const double* y, const RomAux& aux, int gear) {
+    RomSample s;
+    s.time = t;
+    s.x = y[kX];
+    s.y = y[kY];
+    s.yaw = y[kYaw];
+    s.roll = v.has(kEffectRoll) ? y[kRoll] : steady_roll(v, aux.ay);
+    s.roll_rate = v.has(kEffectRoll) ? y[kRollRate] : 0.0;
+    s.vx = y[kVx];
+    s.vy = y[kVy];
+    s.yaw_rate = y[kYawRate];
+    s.ax = aux.ax;
+    s.ay = aux.ay;
+    s.engine_speed_rpm = aux.engine_speed * 30.0 / 3.14159265358979323846;
+    s.gear = gear + 1;
+    return s;
+  }
+};
+
+}  // namespace terracal::rom

@@ -1,0 +1,125 @@
+#include "rom/rom_run.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+#include "rom/cvodes_integrator.hpp"
+#include "rom/half_implicit.hpp"
+#include "rom/rom11.hpp"
+#include "rom/rom18.hpp"
+
+namespace terracal::rom {
+
+const char* model_name(RomModel m) { return m == RomModel::k11Dof ? Rom11::kName : Rom18::kName; }
+const char* integrator_name(RomIntegrator i) { return i == RomIntegrator::kCvodes ? "cvodes" : "half-implicit"; }
+
+namespace {
+
+template <class M>
+DriverInput driver_input(RomDriver& d, double t, const double* y) {
+  if (d.series) return d.series->at(t);
+  return d.maneuver->at(VehiclePose{t, y[M::kX], y[M::kY], y[M::kYaw], y[M::kVx]});
+}
+
+template <class M>
+RomSample sample_at(const RomVehicle& v, const DriverInput& in, int gear, double t, const double* y) {
+  double dy[M::kStates];
+  RomAux aux;
+  M::rhs(v, in, gear, y, dy, &aux, true);
+  return M::sample(v, t, y, aux, gear);
+}
+
+template <class M>
+void run_half_implicit(const RomVehicle& v, RomDriver& d, const RomRunOptions& o, RomRunResult& r) {
+  double y[M::kStates];
+  int gear = M::initial_state(v, o.initial_speed, y);
+  const double h = o.step, dt_out = 1.0 / o.output_rate;
+  const long steps = std::lround(o.end_time / h);
+  const long control_every = d.series ? 1 : std::max(1L, std::lround(d.control_period / h));
+  DriverInput in = driver_input<M>(d, 0.0, y);
+  r.samples.push_back(sample_at<M>(v, in, gear, 0.0, y));
+  double next_out = dt_out;
+  RomAux aux;
+  for (long k = 0; k < steps; ++k) {
+    const double t = k * h;
+    if (k % control_every == 0) in = driver_input<M>(d, t, y);
+    if (!half_implicit_step<M>(v, in, gear, y, h, &aux))
+      throw RunError(fmt::format("rom: the half-implicit scheme diverged at t = {:.4g} s with --step {} s: the step is "
+                                 "too large for this vehicle and manoeuvre; use a smaller --step or --integrator cvodes",
+                                 t + h, h));
+    ++r.steps;
+    const double t1 = (k + 1) * h;
+    if (t1 >= next_out - 1e-9 * h) {
+      r.samples.push_back(sample_at<M>(v, in, gear, t1, y));
+      next_out += dt_out;
+    }
+  }
+  r.rhs_evaluations = r.steps;
+}
+
+template <class M>
+void run_cvodes(const RomVehicle& v, RomDriver& d, const RomRunOptions& o, RomRunResult& r) {
+  double y[M::kStates];
+  int gear = M::initial_state(v, o.initial_speed, y);
+  DriverInput held = driver_input<M>(d, 0.0, y);
+  CvodesProblem problem;
+  problem.states = M::kStates;
+  problem.rhs = [&](double t, const double* state, double* dy) {
+    RomAux aux;
+    const DriverInput in = d.series ? d.series->at(t) : held;
+    M::rhs(v, in, gear, state, dy, &aux, true);
+  };
+  CvodesIntegrator cv(problem, y, o.rtol, o.atol);
+  r.samples.push_back(sample_at<M>(v, held, gear, 0.0, y));
+  // Chunks end at output times and, with a manoeuvre, at control times: the inputs and the gear
+  // change only there (the solver restarts when they do).
+  const double dt_out = 1.0 / o.output_rate;
+  const double chunk = d.series ? dt_out : std::min(dt_out, d.control_period);
+  const long chunks = std::lround(o.end_time / chunk);
+  const long out_every = std::max(1L, std::lround(dt_out / chunk));
+  for (long k = 1; k <= chunks; ++k) {
+    const double t = k * chunk;
+    cv.advance(t, y);
+    const DriverInput in = d.series ? d.series->at(t) : held;
+    if (k % out_every == 0) r.samples.push_back(sample_at<M>(v, in, gear, t, y));
+    RomAux aux;
+    double dy[M::kStates];
+    M::rhs(v, in, gear, y, dy, &aux, true);
+    const int new_gear = shift_gear(v.powertrain, gear, aux.engine_speed);
+    bool restart = new_gear != gear;
+    gear = new_gear;
+    if (!d.series) {
+      held = driver_input<M>(d, t, y);
+      restart = true;
+    }
+    if (restart) cv.restart(t, y);
+  }
+  r.steps = cv.steps();
+  r.rhs_evaluations = cv.rhs_evaluations();
+}
+
+template <class M>
+void run_model(const RomVehicle& v, RomDriver& d, const RomRunOptions& o, RomRunResult& r) {
+  if (o.integrator == RomIntegrator::kCvodes)
+    run_cvodes<M>(v, d, o, r);
+  else
+    run_half_implicit<M>(v, d, o, r);
+}
+
+}  // namespace
+
+RomRunResult run_rom(const RomVehicle& vehicle, RomDriver& driver, const RomRunOptions& options) {
+  RomRunResult r;
+  const auto start = std::chrono::steady_clock::now();
+  if (options.model == RomModel::k11Dof)
+    run_model<Rom11>(vehicle, driver, options, r);
+  else
+    run_model<Rom18>(vehicle, driver, options, r);
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+}  // namespace terracal::rom

@@ -1,0 +1,202 @@
+#include "rom/rom_vehicle_json.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <string_view>
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+#include "core/json_file.hpp"
+#include "core/json_object.hpp"
+#include "core/vehicle/tmeasy_params.hpp"
+
+namespace terracal::rom {
+
+namespace {
+
+constexpr double kRpm = 3.14159265358979323846 / 30.0;  // rad/s per rpm
+constexpr double kBig = 1e12;
+
+// [front, rear] as two numbers in (lo, hi] ... or one number for both axles.
+void axle_pair(JsonObject& o, const std::string& key, double* out, double lo, double hi, bool lo_open = true) {
+  const nlohmann::json& v = o.raw(key);
+  const nlohmann::json pair = v.is_array() ? v : nlohmann::json::array({v, v});
+  if (pair.size() != 2) o.fail(key, fmt::format("value {} must be [front, rear] or one number", v.dump()));
+  for (int i = 0; i < 2; ++i) {
+    const bool ok = pair[i].is_number() && std::isfinite(pair[i].get<double>()) &&
+                    (lo_open ? pair[i].get<double>() > lo : pair[i].get<double>() >= lo) && pair[i].get<double>() <= hi;
+    if (!ok)
+      o.fail(key, fmt::format("{} value {} is outside the allowed range {}{}, {}]", i == 0 ? "front" : "rear",
+                              pair[i].dump(), lo_open ? "(" : "[", lo, hi));
+    out[i] = pair[i].get<double>();
+  }
+}
+
+// A table [[x, y], ...]: x strictly increasing, at most Table1d::kMaxPoints rows; x scaled by
+// x_scale (rpm to rad/s), y checked against [y_lo, y_hi].
+Table1d table(JsonObject& o, const std::string& key, double x_scale, double y_lo, double y_hi) {
+  const nlohmann::json& v = o.raw(key);
+  if (!v.is_array() || v.empty() || v.size() > static_cast<std::size_t>(Table1d::kMaxPoints))
+    o.fail(key, fmt::format("must be a table [[x, y], ...] of 1 to {} rows", Table1d::kMaxPoints));
+  Table1d t;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const auto& row = v[i];
+    if (!row.is_array() || row.size() != 2 || !row[0].is_number() || !row[1].is_number() ||
+        !std::isfinite(row[0].get<double>()) || !std::isfinite(row[1].get<double>()))
+      o.fail(key, fmt::format("row {} {} must be two finite numbers [x, y]", i + 1, row.dump()));
+    const double x = row[0].get<double>() * x_scale, y = row[1].get<double>();
+    if (i > 0 && !(x > t.x[i - 1]))
+      o.fail(key, fmt::format("row {} x = {}: x must increase from row to row", i + 1, row[0].dump()));
+    if (y < y_lo || y > y_hi)
+      o.fail(key, fmt::format("row {} y = {} is outside the allowed range [{}, {}]", i + 1, row[1].dump(), y_lo, y_hi));
+    t.x[i] = x;
+    t.y[i] = y;
+    t.n = static_cast<int>(i + 1);
+  }
+  return t;
+}
+
+// A list of up to kMaxGears positive numbers (one number: the same for every gear).
+int gear_list(JsonObject& o, const std::string& key, double* out, double scale, int gears) {
+  const nlohmann::json& v = o.raw(key);
+  const int n = v.is_array() ? static_cast<int>(v.size()) : gears;
+  if (n < 1 || n > PowertrainParams::kMaxGears || (gears > 0 && n != gears))
+    o.fail(key, gears > 0 ? fmt::format("must list one value per gear ({}) or be one number", gears)
+                          : fmt::format("must list 1 to {} values", PowertrainParams::kMaxGears));
+  for (int i = 0; i < n; ++i) {
+    const auto& x = v.is_array() ? v[i] : v;
+    if (!x.is_number() || !(x.get<double>() > 0) || !std::isfinite(x.get<double>()))
+      o.fail(key, fmt::format("value {} must be a positive number", x.dump()));
+    out[i] = x.get<double>() * scale;
+  }
+  return n;
+}
+
+void read_effects(JsonObject& o, RomVehicle& v) {
+  const std::vector<std::string> names(std::begin(kRomEffectNames), std::end(kRomEffectNames));
+  for (const auto& e : o.strings_or("effects", names))
+    for (int i = 0; i < kRomEffectCount; ++i)
+      if (e == kRomEffectNames[i]) v.effects |= 1u << i;
+}
+
+TmeasyParams tire_from(JsonObject& o, const std::string& key, const std::string& folder) {
+  const nlohmann::json& t = o.raw(key);
+  if (t.is_string()) {
+    std::filesystem::path p = t.get<std::string>();
+    if (p.is_relative()) p = std::filesystem::path(folder) / p;
+    return read_tmeasy_file(p.string());
+  }
+  return read_tmeasy(t, fmt::format("{}: key '{}'", o.where(), key));
+}
+
+void read_powertrain(JsonObject pt, PowertrainParams& p) {
+  const std::string drive = pt.string_or("drive", "all", {"all", "rear", "front"});
+  p.drive = drive == "all" ? Drive::kAll : drive == "rear" ? Drive::kRear : Drive::kFront;
+  p.crank_inertia = pt.number("crank_inertia", 0, 1e3, true);
+  p.max_torque = table(pt, "max_torque_rpm", kRpm, -kBig, kBig);
+  p.losses = pt.has("losses_rpm") ? table(pt, "losses_rpm", kRpm, -kBig, kBig) : Table1d{};
+  p.capacity_factor = table(pt, "capacity_factor", 1.0, 1e-6, kBig);
+  p.torque_ratio = table(pt, "torque_ratio", 1.0, 1e-6, 100);
+  p.gears = gear_list(pt, "gear_ratios", p.gear_ratio, 1.0, 0);
+  gear_list(pt, "upshift_rpm", p.upshift_speed, kRpm, p.gears);
+  gear_list(pt, "downshift_rpm", p.downshift_speed, kRpm, p.gears);
+  p.max_brake_torque = pt.number("max_brake_torque", 0, 1e7);
+  pt.finish();
+}
+
+RomVehicle read_own(JsonObject& o, const std::string& folder, bool tire_given) {
+  RomVehicle v;
+  o.string_or("type", "ROM vehicle", {"ROM vehicle"});
+  o.raw("name");
+  if (o.has("source")) o.raw("source");
+  read_effects(o, v);
+  v.mass = o.number("mass", 0, 1e7, true);
+  axle_pair(o, "unsprung_mass", v.unsprung_mass, 0, 1e6, false);
+  v.cg_to_front = o.number("cg_to_front", 0, 100, true);
+  v.cg_to_rear = o.number("cg_to_rear", 0, 100, true);
+  v.cg_height = o.number("cg_height", 0, 100, true);
+  v.yaw_inertia = o.number("yaw_inertia", 0, 1e9, true);
+  v.roll_inertia = o.number("roll_inertia", 0, 1e9, true);
+  axle_pair(o, "track", v.track, 0, 100);
+  axle_pair(o, "roll_center_height", v.roll_center_height, -100, 100);
+  axle_pair(o, "roll_stiffness", v.roll_stiffness, 0, 1e12);
+  axle_pair(o, "roll_damping", v.roll_damping, 0, 1e12, false);
+  v.max_steer = o.number("max_steer", 0, 1.5707963267948966, true, true);
+  if (o.has("spring_rate")) axle_pair(o, "spring_rate", v.spring_rate, 0, 1e12);
+  if (o.has("damper_rate")) axle_pair(o, "damper_rate", v.damper_rate, 0, 1e12, false);
+  v.drag_area = o.number_or("drag_area", 0.0, 0, 1e3);
+  v.air_density = o.number_or("air_density", 1.2, 0, 100);
+  read_powertrain(o.object("powertrain"), v.powertrain);
+  if (tire_given && !o.has("tire") && !o.has("tire_front")) return v;
+  if (o.has("tire") && (o.has("tire_front") || o.has("tire_rear")))
+    o.fail("tire", "give either 'tire' (all four) or 'tire_front' and 'tire_rear', not both");
+  if (o.has("tire")) {
+    v.tire[0] = v.tire[1] = tire_from(o, "tire", folder);
+  } else {
+    v.tire[0] = tire_from(o, "tire_front", folder);
+    v.tire[1] = tire_from(o, "tire_rear", folder);
+  }
+  return v;
+}
+
+bool is_lfdm(const nlohmann::json& j) { return j.is_object() && j.contains("m") && j.contains("a"); }
+
+}  // namespace
+
+RomVehicle read_rom_vehicle(const nlohmann::json& j, const std::string& source, const std::string& folder,
+                            const TmeasyParams* tire) {
+  JsonObject o(j, source, "");
+  RomVehicle v = is_lfdm(j) ? read_lfdm_vehicle(o) : read_own(o, folder, tire != nullptr);
+  o.finish();
+  if (tire) {
+    v.tire[0] = v.tire[1] = *tire;
+  } else if (is_lfdm(j)) {
+    throw InputError(fmt::format("{}: an LFDM vehicle file holds no tire: give its tire file too (--tire TIRE.json)",
+                                 source));
+  }
+  validate(v, source);
+  return v;
+}
+
+void validate(const RomVehicle& v, const std::string& source) {
+  const PowertrainParams& p = v.powertrain;
+  for (int g = 0; g < p.gears; ++g) {
+    if (g > 0 && !(p.gear_ratio[g] > p.gear_ratio[g - 1]))
+      throw InputError(fmt::format("{}: key 'powertrain.gear_ratios': gear {} ratio {} must exceed gear {}'s {} "
+                                   "(wheel speed / engine speed grows with the gear)",
+                                   source, g + 1, p.gear_ratio[g], g, p.gear_ratio[g - 1]));
+    if (!(p.downshift_speed[g] < p.upshift_speed[g]))
+      throw InputError(fmt::format("{}: gear {}: downshift speed {} rpm must be below its upshift speed {} rpm", source,
+                                   g + 1, p.downshift_speed[g] / kRpm, p.upshift_speed[g] / kRpm));
+  }
+  for (int i = 1; i < p.torque_ratio.n; ++i)
+    if (p.torque_ratio.y[i] > p.torque_ratio.y[i - 1])
+      throw InputError(fmt::format("{}: key 'powertrain.torque_ratio': row {} ratio {} rises; the converter's torque "
+                                   "ratio must not grow with the speed ratio",
+                                   source, i + 1, p.torque_ratio.y[i]));
+  if (v.has(kEffectTorqueConverter) && (p.capacity_factor.n == 0 || p.torque_ratio.n == 0))
+    throw InputError(fmt::format("{}: effect 'torque_converter' needs 'capacity_factor' and 'torque_ratio'", source));
+  if (v.has(kEffectSuspension) && !(v.spring_rate[0] > 0 && v.spring_rate[1] > 0))
+    throw InputError(fmt::format("{}: effect 'suspension' needs 'spring_rate' and 'damper_rate' per axle", source));
+  const double hs = v.cg_height - 0.5 * (v.roll_center_height[0] + v.roll_center_height[1]);
+  if (v.mass * v.gravity * hs >= v.roll_stiffness[0] + v.roll_stiffness[1])
+    throw InputError(fmt::format("{}: roll stiffness {} N m/rad cannot hold the body up (m g hs = {:.4g} N m): the "
+                                 "vehicle would roll over at rest",
+                                 source, v.roll_stiffness[0] + v.roll_stiffness[1], v.mass * v.gravity * hs));
+  validate(v.tire[0], source + " (front tire)");
+  validate(v.tire[1], source + " (rear tire)");
+}
+
+RomVehicle load_rom_vehicle(const std::string& name_or_path, const std::string& tire_override) {
+  TmeasyParams tire;
+  if (!tire_override.empty()) tire = read_tmeasy_file(tire_override);
+  const TmeasyParams* t = tire_override.empty() ? nullptr : &tire;
+  const std::string preset = rom_preset_json(name_or_path);
+  if (!preset.empty()) return read_rom_vehicle(nlohmann::json::parse(preset), "preset '" + name_or_path + "'", ".", t);
+  const nlohmann::json j = read_json_file(name_or_path, "vehicle file");
+  const std::string folder = std::filesystem::path(name_or_path).parent_path().string();
+  return read_rom_vehicle(j, name_or_path, folder.empty() ? "." : folder, t);
+}
+
+}  // namespace terracal::rom

@@ -1,0 +1,57 @@
+#pragma once
+// One tire on rigid ground, as every reduced-order model uses it: TMeasy forces in the wheel frame
+// from the contact point's velocity, the spin and the load, relaxed (tread deflection states) or
+// steady, scaled to `count` identical tires (2 for an axle of the single-track model).
+#include <cmath>
+
+#include "core/host_device.hpp"
+#include "core/vehicle/tmeasy.hpp"
+#include "rom/rom_vehicle.hpp"
+
+namespace terracal::rom {
+
+struct WheelContact {
+  double fx = 0, fy = 0;    // force on the wheel at the contact, wheel frame [N]
+  double dxe = 0, dye = 0;  // tread deflection rates (relaxed form) [m/s]
+  double rdyn = 0;          // dynamic rolling radius [m]
+};
+
+TERRACAL_HD_INLINE WheelContact wheel_contact(const RomVehicle& v, const TmeasyParams& tire, double fz, double vx,
+                                              double vy, double omega, double xe, double ye, double count) {
+  WheelContact w;
+  const double fz_one = fz / count;
+  const TmeasyLoadState st = tmeasy_at_load(tire, fz_one, v.friction);
+  w.rdyn = st.rdyn;
+  if (fz_one <= 0.0) {  // a wheel off the ground: no force; the tread relaxes
+    w.dxe = -xe * tire.longitudinal_stiffness / tire.longitudinal_damping;
+    w.dye = -ye * tire.lateral_stiffness / tire.lateral_damping;
+    return w;
+  }
+  const TmeasySlips s = tmeasy_slips(vx, vy, omega, st.rdyn);
+  const TmeasyStiffness k = tmeasy_steady_stiffness(st, s.sx, s.sy, fz_one);
+  if (v.has(kEffectTireRelaxation)) {
+    const TmeasyRelaxed r = tmeasy_relaxed(tire, k, s, vx, vy, omega, st.rdyn, xe, ye);
+    w.fx = count * r.fx;
+    w.fy = count * r.fy;
+    w.dxe = r.dxe;
+    w.dye = r.dye;
+  } else {
+    w.fx = count * k.kx * s.sx;
+    w.fy = count * k.ky * s.sy;
+  }
+  return w;
+}
+
+// Velocity of a chassis point (px, py) in the chassis frame, turned into a wheel frame steered by
+// delta; and a wheel-frame force turned back into the chassis frame.
+struct Planar {
+  double x = 0, y = 0;
+};
+TERRACAL_HD_INLINE Planar to_wheel_frame(double vx, double vy, double cos_d, double sin_d) {
+  return {vx * cos_d + vy * sin_d, -vx * sin_d + vy * cos_d};
+}
+TERRACAL_HD_INLINE Planar to_chassis_frame(double fx, double fy, double cos_d, double sin_d) {
+  return {fx * cos_d - fy * sin_d, fx * sin_d + fy * cos_d};
+}
+
+}  // namespace terracal::rom
