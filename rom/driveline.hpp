@@ -12,6 +12,7 @@ struct Driveline {
   double wheel_torque = 0;    // drive torque on each driven wheel [N m]
   double crank_accel = 0;     // d(crank speed)/dt with the converter [rad/s^2]
   double engine_speed = 0;    // [rad/s]
+  double input_speed = 0;     // gearbox input (turbine) [rad/s]
   double coupling = 0;        // locked crank: its inertia seen by each driven wheel pair, Jc / (n g)^2
 };
 
@@ -20,6 +21,7 @@ TERRACAL_HD_INLINE Driveline driveline(const RomVehicle& v, int gear, double thr
   const PowertrainParams& p = v.powertrain;
   const double g = p.gear_ratio[gear];
   Driveline d;
+  d.input_speed = mean_driven_spin / g;
   if (v.has(kEffectTorqueConverter)) {
     d.engine_speed = crank_speed;
     const ConverterTorques tc = torque_converter(p, crank_speed, mean_driven_spin / g);

@@ -32,7 +32,7 @@ TERRACAL_HD bool half_implicit_step(const RomVehicle& v, const DriverInput& in, 
   M::kinematics(v, y, dy);
   for (int i = 0; i < M::kStates; ++i)
     if (M::is_position(i)) y[i] += h * dy[i];
-  gear = shift_gear(v.powertrain, gear, aux->engine_speed);
+  gear = shift_gear(v.powertrain, gear, aux->gearbox_input_speed);
   bool ok = fabs(y[M::kVx]) < kMaxSpeed && fabs(y[M::kVy]) < kMaxSpeed && fabs(y[M::kCrank]) < kMaxSpin;
   for (int w = 0; w < M::kWheels; ++w) ok = ok && fabs(y[M::kSpin + w]) < kMaxSpin;
   for (int i = 0; i < M::kStates; ++i) ok = ok && fabs(y[i]) <= 1.7e308;  // false for NaN and infinity

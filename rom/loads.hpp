@@ -8,7 +8,8 @@
 
 namespace terracal::rom {
 
-// Front and rear axle loads under a longitudinal acceleration ax [N].
+// Front and rear axle loads under a longitudinal acceleration ax [N]. a and b locate the whole
+// vehicle's CG, where the models apply its mass; the unsprung masses count in the transfer heights.
 struct AxleLoads {
   double front = 0, rear = 0;
 };
@@ -18,8 +19,8 @@ TERRACAL_HD_INLINE AxleLoads axle_loads(const RomVehicle& v, double ax) {
   const double transfer =
       ax * (v.mass * v.cg_height + (v.unsprung_mass[0] + v.unsprung_mass[1]) * unsprung_height) / l;
   AxleLoads f;
-  f.front = v.mass * g * v.cg_to_rear / l + v.unsprung_mass[0] * g - transfer;
-  f.rear = v.mass * g * v.cg_to_front / l + v.unsprung_mass[1] * g + transfer;
+  f.front = v.total_mass() * g * v.cg_to_rear / l - transfer;
+  f.rear = v.total_mass() * g * v.cg_to_front / l + transfer;
   return f;
 }
 

@@ -102,6 +102,7 @@ struct Rom11 {
     aux->ax = ax;
     aux->ay = ay;
     aux->engine_speed = d.engine_speed;
+    aux->gearbox_input_speed = d.input_speed;
   }
 
   static TERRACAL_HD int initial_state(const RomVehicle& v, double speed, double* y) {

@@ -133,6 +133,7 @@ struct Rom18 {
     spin_accelerations(4, driven, j, d.coupling, tau, dy + kSpin);
     dy[kCrank] = d.crank_accel;
     aux->engine_speed = d.engine_speed;
+    aux->gearbox_input_speed = d.input_speed;
   }
 
   // A vehicle rolling straight at `speed` with tires at their static loads; returns the gear.

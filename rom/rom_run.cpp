@@ -88,7 +88,7 @@ void run_cvodes(const RomVehicle& v, RomDriver& d, const RomRunOptions& o, RomRu
     RomAux aux;
     double dy[M::kStates];
     M::rhs(v, in, gear, y, dy, &aux, true);
-    const int new_gear = shift_gear(v.powertrain, gear, aux.engine_speed);
+    const int new_gear = shift_gear(v.powertrain, gear, aux.gearbox_input_speed);
     bool restart = new_gear != gear;
     gear = new_gear;
     if (!d.series) {

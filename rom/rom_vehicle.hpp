@@ -57,6 +57,7 @@ struct RomVehicle {
 struct RomAux {
   double ax = 0, ay = 0;        // chassis-frame accelerations of the CG [m/s^2]
   double engine_speed = 0;      // crank [rad/s]
+  double gearbox_input_speed = 0;  // turbine, or the crank without a converter [rad/s]
   double dry_torque[4] = {};    // brake + rolling resistance bound per wheel [N m]
   double spin_inertia[4] = {};  // the inertia that bound acts on [kg m^2]
   double fz[4] = {};            // vertical tire loads [N]

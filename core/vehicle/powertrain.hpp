@@ -34,7 +34,10 @@ TERRACAL_HD_INLINE double engine_torque(const PowertrainParams& p, double crank_
 
 // Torque-converter torques with the pump on the crank and the turbine on the gearbox input.
 // Below a speed ratio of 1 the pump absorbs (omega_pump / K)^2 and the turbine delivers TR times
-// that; above 1 (the wheels drive the engine) the roles swap, with K and TR = 1 taken at ratio 1.
+// that; above 1 (the wheels drive the engine) the roles swap, with K and TR taken at ratio 1. Maps
+// end at K(1) finite, which would make the torque jump from +T to -T at ratio 1 (an ODE solver
+// stalls there): within kConverterCouplingBand of 1 the torque fades linearly to zero instead.
+inline constexpr double kConverterCouplingBand = 0.02;
 struct ConverterTorques {
   double pump = 0;     // torque the converter takes from the crank [N m]
   double turbine = 0;  // torque it delivers to the gearbox input [N m]
@@ -47,21 +50,26 @@ TERRACAL_HD_INLINE ConverterTorques torque_converter(const PowertrainParams& p, 
   if (wt <= wp) {
     const double ratio = wt / wp;
     const double k = p.capacity_factor(ratio);
-    t.pump = copysign((wp / k) * (wp / k), pump_speed);
+    const double fade = fmin(1.0, (1.0 - ratio) / kConverterCouplingBand);
+    t.pump = fade * copysign((wp / k) * (wp / k), pump_speed);
     t.turbine = p.torque_ratio(ratio) * t.pump;
   } else {
+    const double ratio = wp / wt;
     const double k = p.capacity_factor(1.0);
-    t.turbine = -copysign((wt / k) * (wt / k), turbine_speed);
+    const double fade = fmin(1.0, (1.0 - ratio) / kConverterCouplingBand);
+    t.turbine = -fade * copysign((wt / k) * (wt / k), turbine_speed);
     t.pump = t.turbine;
   }
   return t;
 }
 
 // The automatic gearbox: one gear up above the gear's upshift speed, one down below its downshift
-// speed. Called between steps (the gear is a discrete state, not part of the ODE).
-TERRACAL_HD_INLINE int shift_gear(const PowertrainParams& p, int gear, double crank_speed) {
-  if (gear + 1 < p.gears && crank_speed > p.upshift_speed[gear]) return gear + 1;
-  if (gear > 0 && crank_speed < p.downshift_speed[gear]) return gear - 1;
+// speed, measured at the gearbox input (the turbine; the crank when there is no converter), as
+// Chrono's automatic transmission does: a converter slipping at stall does not shift through every
+// gear at once. Called between steps (the gear is a discrete state, not part of the ODE).
+TERRACAL_HD_INLINE int shift_gear(const PowertrainParams& p, int gear, double input_speed) {
+  if (gear + 1 < p.gears && input_speed > p.upshift_speed[gear]) return gear + 1;
+  if (gear > 0 && input_speed < p.downshift_speed[gear]) return gear - 1;
   return gear;
 }
 
