@@ -41,8 +41,9 @@ Command add_rom(CLI::App& app) {
   auto* inputs = sub->add_option("--inputs", a->inputs, "driver file: rows 'time steering throttle braking'");
   auto* maneuver = sub->add_option("--maneuver", a->maneuver, "built-in manoeuvre (JSON, docs/formats.md)");
   inputs->excludes(maneuver);
-  sub->add_option("--end-time", a->run.end_time, "simulated seconds (default: the driver file's last time or the "
-                                                 "manoeuvre's end_time)")
+  sub->add_option("--end-time", a->run.end_time,
+                  "simulated seconds (default: the driver file's last time or the "
+                  "manoeuvre's end_time)")
       ->check(in_range(Range{0, 1e5, true, false}));
   sub->add_option("--initial-speed", a->run.initial_speed, "initial forward speed [m/s] (negative: backwards)")
       ->check(in_range(Range{-100, 100, false, false}));

@@ -11,3 +11,9 @@
 #define TERRACAL_HD
 #define TERRACAL_HD_INLINE __attribute__((always_inline)) inline
 #endif
+
+// Minimum and maximum of two doubles, inlined (std::fmin/fmax are library calls unless NaN handling
+// is relaxed). NaN in `a` gives `b`.
+TERRACAL_HD_INLINE double min_of(double a, double b) { return a < b ? a : b; }
+TERRACAL_HD_INLINE double max_of(double a, double b) { return a > b ? a : b; }
+TERRACAL_HD_INLINE double clamp_to(double x, double lo, double hi) { return min_of(max_of(x, lo), hi); }

@@ -9,11 +9,11 @@
 namespace terracal::rom {
 
 struct Driveline {
-  double wheel_torque = 0;    // drive torque on each driven wheel [N m]
-  double crank_accel = 0;     // d(crank speed)/dt with the converter [rad/s^2]
-  double engine_speed = 0;    // [rad/s]
-  double input_speed = 0;     // gearbox input (turbine) [rad/s]
-  double coupling = 0;        // locked crank: its inertia seen by each driven wheel pair, Jc / (n g)^2
+  double wheel_torque = 0;  // drive torque on each driven wheel [N m]
+  double crank_accel = 0;   // d(crank speed)/dt with the converter [rad/s^2]
+  double engine_speed = 0;  // [rad/s]
+  double input_speed = 0;   // gearbox input (turbine) [rad/s]
+  double coupling = 0;      // locked crank: its inertia seen by each driven wheel pair, Jc / (n g)^2
 };
 
 TERRACAL_HD_INLINE Driveline driveline(const RomVehicle& v, int gear, double throttle, double crank_speed,

@@ -14,14 +14,14 @@
 namespace terracal::rom {
 
 // A state beyond these is a step too large for the scheme (it diverged), never a vehicle.
-inline constexpr double kMaxSpeed = 1000.0;      // [m/s]
-inline constexpr double kMaxSpin = 20000.0;      // wheel or crank [rad/s]
+inline constexpr double kMaxSpeed = 1000.0;  // [m/s]
+inline constexpr double kMaxSpin = 20000.0;  // wheel or crank [rad/s]
 
 template <class M>
 TERRACAL_HD bool half_implicit_step(const RomVehicle& v, const DriverInput& in, int& gear, double* y, double h,
                                     RomAux* aux) {
   double dy[M::kStates];
-  M::rhs(v, in, gear, y, dy, aux, false);
+  M::rhs(v, in, gear, y, dy, aux, false, false);
   for (int i = 0; i < M::kStates; ++i)
     if (!M::is_position(i)) y[i] += h * dy[i];
   for (int w = 0; w < M::kWheels; ++w) {

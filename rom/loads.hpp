@@ -16,8 +16,7 @@ struct AxleLoads {
 TERRACAL_HD_INLINE AxleLoads axle_loads(const RomVehicle& v, double ax) {
   const double l = v.wheelbase(), g = v.gravity;
   const double unsprung_height = 0.5 * (v.tire[0].unloaded_radius + v.tire[1].unloaded_radius);
-  const double transfer =
-      ax * (v.mass * v.cg_height + (v.unsprung_mass[0] + v.unsprung_mass[1]) * unsprung_height) / l;
+  const double transfer = ax * (v.mass * v.cg_height + (v.unsprung_mass[0] + v.unsprung_mass[1]) * unsprung_height) / l;
   AxleLoads f;
   f.front = v.total_mass() * g * v.cg_to_rear / l - transfer;
   f.rear = v.total_mass() * g * v.cg_to_front / l + transfer;

@@ -32,12 +32,11 @@ struct Rom11 {
     WheelContact w[2];
     double fz[2] = {};
   };
-  static TERRACAL_HD Forces forces(const RomVehicle& v, double delta, const double* y, double ax) {
+  static TERRACAL_HD Forces forces(const RomVehicle& v, double cd, double sd, const double* y, double ax) {
     Forces f;
     const AxleLoads axle = axle_loads(v, ax);
     f.fz[0] = axle.front;
     f.fz[1] = axle.rear;
-    const double cd = cos(delta), sd = sin(delta);
     for (int w = 0; w < 2; ++w) {
       const double px = w == 0 ? v.cg_to_front : -v.cg_to_rear;
       const double c = w == 0 ? cd : 1.0, s = w == 0 ? sd : 0.0;
@@ -52,21 +51,22 @@ struct Rom11 {
   }
 
   static TERRACAL_HD void rhs(const RomVehicle& v, const DriverInput& in, int gear, const double* y, double* dy,
-                              RomAux* aux, bool smooth_dry) {
-    const double delta = fmin(fmax(in.steering, -1.0), 1.0) * v.max_steer;
+                              RomAux* aux, bool smooth_dry, bool positions = true) {
+    const double delta = clamp_to(in.steering, -1.0, 1.0) * v.max_steer;
+    const double cd = cos(delta), sd = sin(delta);
     const double m = v.total_mass();
     const double drag = v.has(kEffectAeroDrag) ? 0.5 * v.air_density * v.drag_area * y[kVx] * fabs(y[kVx]) : 0.0;
     double ax = 0;  // for the load transfer, as in Rom18::rhs
     if (v.has(kEffectTireRelaxation)) {
       for (int w = 0; w < 2; ++w) {
         const TmeasyParams& t = v.tire[w];
-        const double c = w == 0 ? cos(delta) : 1.0, s = w == 0 ? sin(delta) : 0.0;
+        const double c = w == 0 ? cd : 1.0, s = w == 0 ? sd : 0.0;
         ax += 2.0 * (t.longitudinal_stiffness * y[kXe + w] * c - t.lateral_stiffness * y[kYe + w] * s) / m;
       }
     } else {
-      ax = forces(v, delta, y, 0.0).fx / m;
+      ax = forces(v, cd, sd, y, 0.0).fx / m;
     }
-    const Forces f = forces(v, delta, y, ax - drag / m);
+    const Forces f = forces(v, cd, sd, y, ax - drag / m);
     ax = (f.fx - drag) / m;
     const double ay = f.fy / m;
     dy[kVx] = ax + y[kVy] * y[kYawRate];
@@ -81,14 +81,14 @@ struct Rom11 {
     }
     mean_spin /= n_driven;
     // An axle is two wheels: its share of the drive torque and its inertia are doubled.
-    const Driveline d = driveline(v, gear, fmin(fmax(in.throttle, 0.0), 1.0), y[kCrank], mean_spin, n_driven);
-    const double brake = 2.0 * fmin(fmax(in.braking, 0.0), 1.0) * v.powertrain.max_brake_torque;
+    const Driveline d = driveline(v, gear, clamp_to(in.throttle, 0.0, 1.0), y[kCrank], mean_spin, n_driven);
+    const double brake = 2.0 * clamp_to(in.braking, 0.0, 1.0) * v.powertrain.max_brake_torque;
     for (int w = 0; w < 2; ++w) {
       const TmeasyParams& t = v.tire[w];
       j[w] = 2.0 * t.wheel_inertia;
       tau[w] = (driven[w] ? d.wheel_torque : 0.0) - f.w[w].fx * f.w[w].rdyn;
       double dry = brake;
-      if (v.has(kEffectRollingResistance)) dry += t.rolling_resistance * fmax(f.fz[w], 0.0) * f.w[w].rdyn;
+      if (v.has(kEffectRollingResistance)) dry += t.rolling_resistance * max_of(f.fz[w], 0.0) * f.w[w].rdyn;
       if (smooth_dry) tau[w] += dry_friction_torque(dry, y[kSpin + w]);
       aux->dry_torque[w] = smooth_dry ? 0.0 : dry;
       aux->spin_inertia[w] = j[w] + (driven[w] ? d.coupling * n_driven : 0.0);
@@ -98,7 +98,7 @@ struct Rom11 {
     }
     spin_accelerations(2, driven, j, d.coupling, tau, dy + kSpin);
     dy[kCrank] = d.crank_accel;
-    kinematics(v, y, dy);
+    if (positions) kinematics(v, y, dy);
     aux->ax = ax;
     aux->ay = ay;
     aux->engine_speed = d.engine_speed;

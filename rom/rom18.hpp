@@ -17,7 +17,20 @@ namespace terracal::rom {
 struct Rom18 {
   static constexpr const char* kName = "18dof";
   static constexpr int kWheels = 4;  // FL, FR, RL, RR
-  enum : int { kX, kY, kYaw, kRoll, kVx, kVy, kYawRate, kRollRate, kSpin, kXe = kSpin + 4, kYe = kXe + 4, kCrank = kYe + 4 };
+  enum : int {
+    kX,
+    kY,
+    kYaw,
+    kRoll,
+    kVx,
+    kVy,
+    kYawRate,
+    kRollRate,
+    kSpin,
+    kXe = kSpin + 4,
+    kYe = kXe + 4,
+    kCrank = kYe + 4
+  };
   static constexpr int kStates = kCrank + 1;
   // Positions: the fixed-step scheme advances these with the velocities already stepped.
   static TERRACAL_HD bool is_position(int i) { return i <= kRoll; }
@@ -39,12 +52,11 @@ struct Rom18 {
     double fz[4] = {};
     double roll = 0, roll_rate = 0;
   };
-  static TERRACAL_HD Forces forces(const RomVehicle& v, double delta, const double* y, double ax, double ay) {
+  static TERRACAL_HD Forces forces(const RomVehicle& v, double cd, double sd, const double* y, double ax, double ay) {
     Forces f;
     const AxleLoads axle = axle_loads(v, ax);
     f.roll = v.has(kEffectRoll) ? y[kRoll] : steady_roll(v, ay);
     f.roll_rate = v.has(kEffectRoll) ? y[kRollRate] : 0.0;
-    const double cd = cos(delta), sd = sin(delta);
     for (int w = 0; w < 4; ++w) {
       const int axle_i = w / 2;
       const double transfer = lateral_transfer(v, axle_i, ay, f.roll, f.roll_rate);
@@ -63,16 +75,18 @@ struct Rom18 {
 
   // dy = f(y). `smooth_dry`: brake and rolling resistance as smooth torques (ODE solvers); else
   // left out and reported in aux->dry_torque for the fixed-step scheme to apply implicitly.
+  // `positions` false leaves the position rates out (the fixed-step scheme takes them after the
+  // velocities).
   static TERRACAL_HD void rhs(const RomVehicle& v, const DriverInput& in, int gear, const double* y, double* dy,
-                              RomAux* aux, bool smooth_dry) {
-    const double delta = fmin(fmax(in.steering, -1.0), 1.0) * v.max_steer;
+                              RomAux* aux, bool smooth_dry, bool positions = true) {
+    const double delta = clamp_to(in.steering, -1.0, 1.0) * v.max_steer;
+    const double cd = cos(delta), sd = sin(delta);
     const double m = v.total_mass();
     const double drag = v.has(kEffectAeroDrag) ? 0.5 * v.air_density * v.drag_area * y[kVx] * fabs(y[kVx]) : 0.0;
     // The loads depend on the accelerations the forces cause. With relaxed tires the tread springs
     // (state) give them without a loop; steady tires take one more pass from the first estimate.
     double ax = 0, ay = 0;
     if (v.has(kEffectTireRelaxation)) {
-      const double cd = cos(delta), sd = sin(delta);
       for (int w = 0; w < 4; ++w) {
         const TmeasyParams& t = v.tire[w / 2];
         const Planar fc = to_chassis_frame(t.longitudinal_stiffness * y[kXe + w], t.lateral_stiffness * y[kYe + w],
@@ -81,11 +95,11 @@ struct Rom18 {
         ay += fc.y / m;
       }
     } else {
-      const Forces first = forces(v, delta, y, 0.0, 0.0);
+      const Forces first = forces(v, cd, sd, y, 0.0, 0.0);
       ax = first.fx / m;
       ay = first.fy / m;
     }
-    const Forces f = forces(v, delta, y, ax - drag / m, ay);
+    const Forces f = forces(v, cd, sd, y, ax - drag / m, ay);
     ax = (f.fx - drag) / m;
     ay = f.fy / m;
     dy[kVx] = ax + y[kVy] * y[kYawRate];
@@ -100,7 +114,7 @@ struct Rom18 {
       dy[kRollRate] = 0.0;
     }
     wheel_spins(v, in, gear, y, f, dy, aux, smooth_dry);
-    kinematics(v, y, dy);
+    if (positions) kinematics(v, y, dy);
     aux->ax = ax;
     aux->ay = ay;
     for (int w = 0; w < 4; ++w) aux->fz[w] = f.fz[w];
@@ -116,14 +130,14 @@ struct Rom18 {
       if (driven[w]) mean_spin += y[kSpin + w], ++n_driven;
     }
     mean_spin /= n_driven;
-    const Driveline d = driveline(v, gear, fmin(fmax(in.throttle, 0.0), 1.0), y[kCrank], mean_spin, n_driven);
-    const double brake = fmin(fmax(in.braking, 0.0), 1.0) * v.powertrain.max_brake_torque;
+    const Driveline d = driveline(v, gear, clamp_to(in.throttle, 0.0, 1.0), y[kCrank], mean_spin, n_driven);
+    const double brake = clamp_to(in.braking, 0.0, 1.0) * v.powertrain.max_brake_torque;
     for (int w = 0; w < 4; ++w) {
       const TmeasyParams& t = v.tire[w / 2];
       j[w] = t.wheel_inertia;
       tau[w] = (driven[w] ? d.wheel_torque : 0.0) - f.w[w].fx * f.w[w].rdyn;
       double dry = brake;
-      if (v.has(kEffectRollingResistance)) dry += t.rolling_resistance * fmax(f.fz[w], 0.0) * f.w[w].rdyn;
+      if (v.has(kEffectRollingResistance)) dry += t.rolling_resistance * max_of(f.fz[w], 0.0) * f.w[w].rdyn;
       if (smooth_dry) tau[w] += dry_friction_torque(dry, y[kSpin + w]);
       aux->dry_torque[w] = smooth_dry ? 0.0 : dry;
       aux->spin_inertia[w] = j[w] + (driven[w] ? d.coupling * n_driven : 0.0);

@@ -47,9 +47,10 @@ void run_half_implicit(const RomVehicle& v, RomDriver& d, const RomRunOptions& o
     const double t = k * h;
     if (k % control_every == 0) in = driver_input<M>(d, t, y);
     if (!half_implicit_step<M>(v, in, gear, y, h, &aux))
-      throw RunError(fmt::format("rom: the half-implicit scheme diverged at t = {:.4g} s with --step {} s: the step is "
-                                 "too large for this vehicle and manoeuvre; use a smaller --step or --integrator cvodes",
-                                 t + h, h));
+      throw RunError(
+          fmt::format("rom: the half-implicit scheme diverged at t = {:.4g} s with --step {} s: the step is "
+                      "too large for this vehicle and manoeuvre; use a smaller --step or --integrator cvodes",
+                      t + h, h));
     ++r.steps;
     const double t1 = (k + 1) * h;
     if (t1 >= next_out - 1e-9 * h) {

@@ -152,8 +152,8 @@ RomVehicle read_rom_vehicle(const nlohmann::json& j, const std::string& source, 
   if (tire) {
     v.tire[0] = v.tire[1] = *tire;
   } else if (is_lfdm(j)) {
-    throw InputError(fmt::format("{}: an LFDM vehicle file holds no tire: give its tire file too (--tire TIRE.json)",
-                                 source));
+    throw InputError(
+        fmt::format("{}: an LFDM vehicle file holds no tire: give its tire file too (--tire TIRE.json)", source));
   }
   validate(v, source);
   return v;
@@ -163,27 +163,30 @@ void validate(const RomVehicle& v, const std::string& source) {
   const PowertrainParams& p = v.powertrain;
   for (int g = 0; g < p.gears; ++g) {
     if (g > 0 && !(p.gear_ratio[g] > p.gear_ratio[g - 1]))
-      throw InputError(fmt::format("{}: key 'powertrain.gear_ratios': gear {} ratio {} must exceed gear {}'s {} "
-                                   "(wheel speed / engine speed grows with the gear)",
-                                   source, g + 1, p.gear_ratio[g], g, p.gear_ratio[g - 1]));
+      throw InputError(
+          fmt::format("{}: key 'powertrain.gear_ratios': gear {} ratio {} must exceed gear {}'s {} "
+                      "(wheel speed / engine speed grows with the gear)",
+                      source, g + 1, p.gear_ratio[g], g, p.gear_ratio[g - 1]));
     if (!(p.downshift_speed[g] < p.upshift_speed[g]))
       throw InputError(fmt::format("{}: gear {}: downshift speed {} rpm must be below its upshift speed {} rpm", source,
                                    g + 1, p.downshift_speed[g] / kRpm, p.upshift_speed[g] / kRpm));
   }
   for (int i = 1; i < p.torque_ratio.n; ++i)
     if (p.torque_ratio.y[i] > p.torque_ratio.y[i - 1])
-      throw InputError(fmt::format("{}: key 'powertrain.torque_ratio': row {} ratio {} rises; the converter's torque "
-                                   "ratio must not grow with the speed ratio",
-                                   source, i + 1, p.torque_ratio.y[i]));
+      throw InputError(
+          fmt::format("{}: key 'powertrain.torque_ratio': row {} ratio {} rises; the converter's torque "
+                      "ratio must not grow with the speed ratio",
+                      source, i + 1, p.torque_ratio.y[i]));
   if (v.has(kEffectTorqueConverter) && (p.capacity_factor.n == 0 || p.torque_ratio.n == 0))
     throw InputError(fmt::format("{}: effect 'torque_converter' needs 'capacity_factor' and 'torque_ratio'", source));
   if (v.has(kEffectSuspension) && !(v.spring_rate[0] > 0 && v.spring_rate[1] > 0))
     throw InputError(fmt::format("{}: effect 'suspension' needs 'spring_rate' and 'damper_rate' per axle", source));
   const double hs = v.cg_height - 0.5 * (v.roll_center_height[0] + v.roll_center_height[1]);
   if (v.mass * v.gravity * hs >= v.roll_stiffness[0] + v.roll_stiffness[1])
-    throw InputError(fmt::format("{}: roll stiffness {} N m/rad cannot hold the body up (m g hs = {:.4g} N m): the "
-                                 "vehicle would roll over at rest",
-                                 source, v.roll_stiffness[0] + v.roll_stiffness[1], v.mass * v.gravity * hs));
+    throw InputError(
+        fmt::format("{}: roll stiffness {} N m/rad cannot hold the body up (m g hs = {:.4g} N m): the "
+                    "vehicle would roll over at rest",
+                    source, v.roll_stiffness[0] + v.roll_stiffness[1], v.mass * v.gravity * hs));
   validate(v.tire[0], source + " (front tire)");
   validate(v.tire[1], source + " (rear tire)");
 }

@@ -33,7 +33,8 @@ Table1d lfdm_table(JsonObject& o, const std::string& key, double x_scale) {
 void only(JsonObject& o, const std::string& key, const nlohmann::json& allowed, const char* why) {
   if (!o.has(key)) return;
   const nlohmann::json& v = o.raw(key);
-  if (v != allowed) o.fail(key, fmt::format("value {} is not supported ({}); expected {}", v.dump(), why, allowed.dump()));
+  if (v != allowed)
+    o.fail(key, fmt::format("value {} is not supported ({}); expected {}", v.dump(), why, allowed.dump()));
 }
 }  // namespace
 

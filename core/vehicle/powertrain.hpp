@@ -14,16 +14,16 @@ enum class Drive : int { kAll = 0, kRear = 1, kFront = 2 };
 
 struct PowertrainParams {
   static constexpr int kMaxGears = 10;
-  Table1d max_torque;       // full-throttle engine torque [N m] against crank speed [rad/s]
-  Table1d losses;           // torque the engine always adds (friction, pumping; negative) [N m]
-  double crank_inertia = 0; // [kg m^2]
-  Table1d capacity_factor;  // K(speed ratio) [rad/s / sqrt(N m)]: pump torque = (omega_pump / K)^2
-  Table1d torque_ratio;     // turbine torque / pump torque against speed ratio
+  Table1d max_torque;        // full-throttle engine torque [N m] against crank speed [rad/s]
+  Table1d losses;            // torque the engine always adds (friction, pumping; negative) [N m]
+  double crank_inertia = 0;  // [kg m^2]
+  Table1d capacity_factor;   // K(speed ratio) [rad/s / sqrt(N m)]: pump torque = (omega_pump / K)^2
+  Table1d torque_ratio;      // turbine torque / pump torque against speed ratio
   int gears = 0;
-  double gear_ratio[kMaxGears] = {};      // wheel speed / turbine speed (final drive included)
-  double upshift_speed[kMaxGears] = {};   // crank speed above which the next gear is taken [rad/s]
-  double downshift_speed[kMaxGears] = {}; // crank speed below which the previous gear is taken
-  double max_brake_torque = 0;            // per wheel at braking = 1 [N m]
+  double gear_ratio[kMaxGears] = {};       // wheel speed / turbine speed (final drive included)
+  double upshift_speed[kMaxGears] = {};    // crank speed above which the next gear is taken [rad/s]
+  double downshift_speed[kMaxGears] = {};  // crank speed below which the previous gear is taken
+  double max_brake_torque = 0;             // per wheel at braking = 1 [N m]
   Drive drive = Drive::kAll;
 };
 
@@ -50,13 +50,13 @@ TERRACAL_HD_INLINE ConverterTorques torque_converter(const PowertrainParams& p, 
   if (wt <= wp) {
     const double ratio = wt / wp;
     const double k = p.capacity_factor(ratio);
-    const double fade = fmin(1.0, (1.0 - ratio) / kConverterCouplingBand);
+    const double fade = min_of(1.0, (1.0 - ratio) / kConverterCouplingBand);
     t.pump = fade * copysign((wp / k) * (wp / k), pump_speed);
     t.turbine = p.torque_ratio(ratio) * t.pump;
   } else {
     const double ratio = wp / wt;
     const double k = p.capacity_factor(1.0);
-    const double fade = fmin(1.0, (1.0 - ratio) / kConverterCouplingBand);
+    const double fade = min_of(1.0, (1.0 - ratio) / kConverterCouplingBand);
     t.turbine = -fade * copysign((wt / k) * (wt / k), turbine_speed);
     t.pump = t.turbine;
   }

@@ -16,19 +16,19 @@ struct TmeasyCurve {
 };
 
 struct TmeasyParams {
-  double unloaded_radius = 0;         // r0 [m]
-  double wheel_inertia = 0;           // [kg m^2], wheel and tire about the spin axis
-  double vertical_stiffness = 0;      // [N/m], static radius r0 - Fz / kt
-  double rolling_resistance = 0;      // coefficient [-]: torque rr * Fz * rdyn against the spin
-  double nominal_load = 0;            // Fzn [N]; curves are given at Fzn and 2 Fzn
-  double max_load = 0;                // loads beyond this use the curve at this load [N]
-  double longitudinal_stiffness = 0;  // tread stiffness cx [N/m] of the relaxation form
-  double lateral_stiffness = 0;       // cy [N/m]
-  double longitudinal_damping = 0;    // dx [N s/m]
-  double lateral_damping = 0;         // dy [N s/m]
+  double unloaded_radius = 0;           // r0 [m]
+  double wheel_inertia = 0;             // [kg m^2], wheel and tire about the spin axis
+  double vertical_stiffness = 0;        // [N/m], static radius r0 - Fz / kt
+  double rolling_resistance = 0;        // coefficient [-]: torque rr * Fz * rdyn against the spin
+  double nominal_load = 0;              // Fzn [N]; curves are given at Fzn and 2 Fzn
+  double max_load = 0;                  // loads beyond this use the curve at this load [N]
+  double longitudinal_stiffness = 0;    // tread stiffness cx [N/m] of the relaxation form
+  double lateral_stiffness = 0;         // cy [N/m]
+  double longitudinal_damping = 0;      // dx [N s/m]
+  double lateral_damping = 0;           // dy [N s/m]
   double rdyn_coefficient[2] = {0, 0};  // lambda at Fzn, 2 Fzn: rdyn = lambda r0 + (1 - lambda) rstatic
-  TmeasyCurve x[2];                   // longitudinal curve at Fzn, 2 Fzn
-  TmeasyCurve y[2];                   // lateral curve at Fzn, 2 Fzn
+  TmeasyCurve x[2];                     // longitudinal curve at Fzn, 2 Fzn
+  TmeasyCurve y[2];                     // lateral curve at Fzn, 2 Fzn
 };
 
 // Slip velocities below this do not divide by zero: the slips' denominator is rdyn |omega| + this.
@@ -75,12 +75,16 @@ struct TmeasyLoadState {
 // fraction of the one the curves were measured on.
 TERRACAL_HD_INLINE TmeasyLoadState tmeasy_at_load(const TmeasyParams& p, double fz, double friction = 1.0) {
   TmeasyLoadState st;
-  const double fz_c = fmin(fmax(fz, 0.0), p.max_load);
+  const double fz_c = min_of(max_of(fz, 0.0), p.max_load);
   const double q = fz_c / p.nominal_load;
   // At zero load the curves vanish; a tiny load keeps the ratios below finite.
-  const double qs = fmax(q, 1e-6);
+  const double qs = max_of(q, 1e-6);
   st.x = tmeasy_curve_at_load(p.x, qs);
   st.y = tmeasy_curve_at_load(p.y, qs);
+  // Where the load extrapolation makes the initial slope too small for a curve that is concave from
+  // zero slip, it is lifted to 2 fm / sm (as Chrono and LFDM do).
+  st.x.df0 = max_of(st.x.df0, 2.0 * st.x.fm / st.x.sm);
+  st.y.df0 = max_of(st.y.df0, 2.0 * st.y.fm / st.y.sm);
   st.x.fm *= friction;
   st.x.fs *= friction;
   st.y.fm *= friction;
@@ -88,7 +92,11 @@ TERRACAL_HD_INLINE TmeasyLoadState tmeasy_at_load(const TmeasyParams& p, double 
   const double ax = st.x.fm / st.x.df0, ay = st.y.fm / st.y.df0;
   st.sx_hat = st.x.sm / (st.x.sm + st.y.sm) + ax / (ax + ay);
   st.sy_hat = st.y.sm / (st.x.sm + st.y.sm) + ay / (ax + ay);
-  const double lambda = tmeasy_slip_at_load(q, p.rdyn_coefficient[0], p.rdyn_coefficient[1]);
+  // The weighting grows with the load; beyond the load where rdyn is smallest it is held (as Chrono
+  // and LFDM do), so rdyn never rises with the load again.
+  const double l1 = p.rdyn_coefficient[0], l2 = p.rdyn_coefficient[1];
+  const double q_min = l2 > l1 ? (1.0 - 2.0 * l1 + l2) / (2.0 * (l2 - l1)) : 1e300;
+  const double lambda = tmeasy_slip_at_load(min_of(q, q_min), l1, l2);
   const double r_static = p.unloaded_radius - fz_c / p.vertical_stiffness;
   st.rdyn = lambda * p.unloaded_radius + (1.0 - lambda) * r_static;
   return st;
@@ -103,24 +111,34 @@ struct TmeasyStiffness {
 TERRACAL_HD_INLINE TmeasyStiffness tmeasy_steady_stiffness(const TmeasyLoadState& st, double sx, double sy, double fz) {
   TmeasyStiffness k;
   if (fz <= 0.0) return k;
-  const double sxn = sx / st.sx_hat, syn = sy / st.sy_hat;
+  const double inv_hx = 1.0 / st.sx_hat, inv_hy = 1.0 / st.sy_hat;
+  const double sxn = sx * inv_hx, syn = sy * inv_hy;
   const double s = sqrt(sxn * sxn + syn * syn);
   double c = 0.7071067811865476, sn = 0.7071067811865476;  // direction of zero slip: any
   if (s > 1e-12) {
-    c = fabs(sxn) / s;
-    sn = fabs(syn) / s;
+    const double inv_s = 1.0 / s;
+    c = fabs(sxn) * inv_s;
+    sn = fabs(syn) * inv_s;
   }
+  // The combined curve's points along the slip direction; the sliding part only where reached.
   TmeasyCurve m;
-  m.df0 = sqrt(st.x.df0 * st.sx_hat * c * st.x.df0 * st.sx_hat * c + st.y.df0 * st.sy_hat * sn * st.y.df0 * st.sy_hat * sn);
+  const double dx = st.x.df0 * st.sx_hat * c, dy = st.y.df0 * st.sy_hat * sn;
+  m.df0 = sqrt(dx * dx + dy * dy);
   m.fm = sqrt(st.x.fm * c * st.x.fm * c + st.y.fm * sn * st.y.fm * sn);
-  m.fs = sqrt(st.x.fs * c * st.x.fs * c + st.y.fs * sn * st.y.fs * sn);
-  const double smx = st.x.sm / st.sx_hat * c, smy = st.y.sm / st.sy_hat * sn;
+  const double smx = st.x.sm * inv_hx * c, smy = st.y.sm * inv_hy * sn;
   m.sm = sqrt(smx * smx + smy * smy);
-  const double ssx = st.x.ss / st.sx_hat * c, ssy = st.y.ss / st.sy_hat * sn;
-  m.ss = sqrt(ssx * ssx + ssy * ssy);
-  const double f_over_s = tmeasy_force_over_slip(m, s);
-  k.kx = f_over_s / st.sx_hat;
-  k.ky = f_over_s / st.sy_hat;
+  double f_over_s;
+  if (s <= m.sm) {
+    const double sigma = s / m.sm;
+    f_over_s = m.df0 / (1.0 + sigma * (sigma + m.df0 * m.sm / m.fm - 2.0));
+  } else {
+    m.fs = sqrt(st.x.fs * c * st.x.fs * c + st.y.fs * sn * st.y.fs * sn);
+    const double ssx = st.x.ss * inv_hx * c, ssy = st.y.ss * inv_hy * sn;
+    m.ss = sqrt(ssx * ssx + ssy * ssy);
+    f_over_s = tmeasy_force_over_slip(m, s);
+  }
+  k.kx = f_over_s * inv_hx;
+  k.ky = f_over_s * inv_hy;
   return k;
 }
 
@@ -141,8 +159,8 @@ TERRACAL_HD_INLINE TmeasySlips tmeasy_slips(double vx, double vy, double omega, 
 // deflection rate enters the slip: c xe + d dxe = k * -(vx + dxe - rdyn omega) / den. Solved for dxe,
 // the denominator d * den + k is at least d * vN > 0, so standstill is safe.
 struct TmeasyRelaxed {
-  double fx = 0, fy = 0;      // forces on the wheel at the contact [N], wheel frame
-  double dxe = 0, dye = 0;    // deflection rates [m/s]
+  double fx = 0, fy = 0;    // forces on the wheel at the contact [N], wheel frame
+  double dxe = 0, dye = 0;  // deflection rates [m/s]
 };
 TERRACAL_HD_INLINE TmeasyRelaxed tmeasy_relaxed(const TmeasyParams& p, const TmeasyStiffness& k, const TmeasySlips& s,
                                                 double vx, double vy, double omega, double rdyn, double xe, double ye) {

@@ -40,7 +40,8 @@ TEST_CASE("rom: coast-down follows rolling resistance and aerodynamic drag", "[r
   const RomSample& s = r.samples[100];  // t = 1 s: the transients from the initial state are gone
   const double r0 = v.tire[0].unloaded_radius;
   const double m_eff = v.total_mass() + 4 * v.tire[0].wheel_inertia / (r0 * r0);
-  const double resist = 0.5 * v.air_density * v.drag_area * s.vx * s.vx + v.tire[0].rolling_resistance * v.total_mass() * v.gravity;
+  const double resist =
+      0.5 * v.air_density * v.drag_area * s.vx * s.vx + v.tire[0].rolling_resistance * v.total_mass() * v.gravity;
   INFO("deceleration " << -s.ax << " m/s^2 at " << s.vx << " m/s; model " << resist / m_eff);
   CHECK(-s.ax == Approx(resist / m_eff).epsilon(0.03));
 }
