@@ -18,6 +18,7 @@ struct Rom11 {
   static constexpr int kWheels = 2;  // front axle, rear axle
   enum : int { kX, kY, kYaw, kVx, kVy, kYawRate, kSpin, kXe = kSpin + 2, kYe = kXe + 2, kCrank = kYe + 2 };
   static constexpr int kStates = kCrank + 1;
+  static TERRACAL_HD double roll_of(const double*) { return 0.0; }
   static TERRACAL_HD bool is_position(int i) { return i <= kYaw; }
 
   static TERRACAL_HD void kinematics(const RomVehicle&, const double* y, double* dy) {

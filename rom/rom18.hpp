@@ -33,6 +33,7 @@ struct Rom18 {
   };
   static constexpr int kStates = kCrank + 1;
   // Positions: the fixed-step scheme advances these with the velocities already stepped.
+  static TERRACAL_HD double roll_of(const double* y) { return y[kRoll]; }
   static TERRACAL_HD bool is_position(int i) { return i <= kRoll; }
   static TERRACAL_HD double wheel_x(const RomVehicle& v, int w) { return w < 2 ? v.cg_to_front : -v.cg_to_rear; }
   static TERRACAL_HD double wheel_y(const RomVehicle& v, int w) { return (w % 2 == 0 ? 0.5 : -0.5) * v.track[w / 2]; }

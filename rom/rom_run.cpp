@@ -16,6 +16,13 @@ namespace terracal::rom {
 const char* model_name(RomModel m) { return m == RomModel::k11Dof ? Rom11::kName : Rom18::kName; }
 const char* integrator_name(RomIntegrator i) { return i == RomIntegrator::kCvodes ? "cvodes" : "half-implicit"; }
 
+void check_model_effects(const RomVehicle& v, RomModel m) {
+  if (v.has(kEffectSuspension))
+    throw InputError(fmt::format("effect 'suspension' needs vertical travel per corner (the 24-DOF model); the {} "
+                                 "model has none: remove it from the vehicle's effects",
+                                 model_name(m)));
+}
+
 namespace {
 
 template <class M>
@@ -113,6 +120,7 @@ void run_model(const RomVehicle& v, RomDriver& d, const RomRunOptions& o, RomRun
 }  // namespace
 
 RomRunResult run_rom(const RomVehicle& vehicle, RomDriver& driver, const RomRunOptions& options) {
+  check_model_effects(vehicle, options.model);
   RomRunResult r;
   const auto start = std::chrono::steady_clock::now();
   if (options.model == RomModel::k11Dof)

@@ -18,6 +18,8 @@ enum class RomIntegrator { kCvodes, kHalfImplicit };
 
 const char* model_name(RomModel m);
 const char* integrator_name(RomIntegrator i);
+// Refuses (InputError) a vehicle naming an effect that model cannot simulate.
+void check_model_effects(const RomVehicle& v, RomModel m);
 
 struct RomRunOptions {
   RomModel model = RomModel::k18Dof;

@@ -1,0 +1,97 @@
+#include "rom/rom_batch.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+#include "core/parallel_for.hpp"
+#include "rom/rom11.hpp"
+#include "rom/rom18.hpp"
+#include "rom/rom_batch_kernel.hpp"
+#if TERRACAL_HAVE_CUDA
+#include "rom/rom_batch_device.hpp"
+#endif
+
+namespace terracal::rom {
+
+namespace {
+
+void check_batch(const std::vector<RomVehicle>& vehicles, const std::vector<const DriverSeries*>& drivers, long n,
+                 const BatchOptions& o) {
+  for (const RomVehicle& v : vehicles) check_model_effects(v, o.model);
+  if (n < 1) throw InputError(fmt::format("--batch {}: expected at least 1 vehicle", n));
+  if (vehicles.size() != 1 && static_cast<long>(vehicles.size()) != n)
+    throw InputError(fmt::format("batch: {} parameter sets for {} vehicles (expected 1 or {})", vehicles.size(), n, n));
+  if (drivers.size() != 1 && static_cast<long>(drivers.size()) != n)
+    throw InputError(fmt::format("batch: {} drivers for {} vehicles (expected 1 or {})", drivers.size(), n, n));
+  if (o.output_rate > 0 && std::fabs(std::round(1.0 / (o.output_rate * o.step)) * o.output_rate * o.step - 1.0) > 1e-9)
+    throw InputError(fmt::format("--output-rate {} Hz: the output interval must be a whole number of steps of {} s",
+                                 o.output_rate, o.step));
+}
+
+template <class M>
+void run_cpu(const std::vector<RomVehicle>& vehicles, const std::vector<DriverSeriesView>& views, long n,
+             const BatchOptions& o, BatchResult& r) {
+  BatchKernel<M> k;
+  k.vehicles = vehicles.data();
+  k.n_vehicles = static_cast<long>(vehicles.size());
+  k.drivers = views.data();
+  k.n_drivers = static_cast<long>(views.size());
+  k.count = n;
+  k.step = o.step;
+  k.steps = std::lround(o.end_time / o.step);
+  k.initial_speed = o.initial_speed;
+  k.sample_every = o.output_rate > 0 ? std::lround(1.0 / (o.output_rate * o.step)) : 0;
+  k.samples = k.sample_every > 0 ? static_cast<int>(k.steps / k.sample_every) + 1 : 0;
+  k.n_channels = k.sample_every > 0 ? static_cast<int>(o.channels.size()) : 0;
+  for (int c = 0; c < k.n_channels; ++c) k.channel[c] = o.channels[c];
+  r.samples = k.samples;
+  r.states = M::kStates;
+  r.metrics.assign(static_cast<std::size_t>(kBatchMetricCount) * n, 0.0);
+  r.channels.assign(static_cast<std::size_t>(k.n_channels) * k.samples * n, 0.0);
+  r.final_state.assign(static_cast<std::size_t>(M::kStates) * n, 0.0);
+  k.metrics = r.metrics.data();
+  k.channels = r.channels.data();
+  k.final_state = r.final_state.data();
+  parallel_for_cpu(n, k);
+  r.chunks = 1;
+}
+
+}  // namespace
+
+bool cuda_batch_available() {
+#if TERRACAL_HAVE_CUDA
+  return true;
+#else
+  return false;
+#endif
+}
+
+BatchResult run_rom_batch(const std::vector<RomVehicle>& vehicles, const std::vector<const DriverSeries*>& drivers,
+                          long n, const BatchOptions& o) {
+  check_batch(vehicles, drivers, n, o);
+  if (o.device == BatchDevice::kCuda) {
+#if TERRACAL_HAVE_CUDA
+    return run_rom_batch_cuda(vehicles, drivers, n, o);
+#else
+    throw RunError("rom batch: --device cuda, but this terracal was built without CUDA");
+#endif
+  }
+  BatchResult r;
+  r.vehicles = n;
+  r.device = "cpu (OpenMP)";
+  std::vector<DriverSeriesView> views;
+  for (const DriverSeries* d : drivers) views.push_back(d->view());
+  const auto start = std::chrono::steady_clock::now();
+  if (o.model == RomModel::k11Dof)
+    run_cpu<Rom11>(vehicles, views, n, o, r);
+  else
+    run_cpu<Rom18>(vehicles, views, n, o, r);
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  for (long i = 0; i < n; ++i) r.failed += r.metrics[static_cast<std::size_t>(kMetFailedAt) * n + i] >= 0;
+  return r;
+}
+
+}  // namespace terracal::rom

@@ -1,0 +1,71 @@
+#pragma once
+// Batches of independent reduced-order vehicles, one per thread: the same half-implicit step as a
+// single run, looped with OpenMP on the CPU or as one CUDA thread per vehicle on the GPU (the
+// pbrt-v4 pattern: rom_batch_kernel.hpp holds the loop body once). Each vehicle has its own
+// parameters and driver (or shares them); outputs are reduced where the vehicles run: per-vehicle
+// summary metrics, the final state, and chosen channels sampled at a chosen rate. Never a copy per
+// step to the host. Vehicles beyond what the device memory holds at once run in chunks.
+#include <string>
+#include <vector>
+
+#include "core/vehicle/driver_inputs.hpp"
+#include "rom/rom_run.hpp"
+#include "rom/rom_vehicle.hpp"
+
+namespace terracal::rom {
+
+enum class BatchDevice { kCpu, kCuda };
+
+// Sampled channels, by name in batch.h5 ("channels/<name>").
+enum BatchChannel : int { kChX, kChY, kChYaw, kChVx, kChVy, kChYawRate, kChAx, kChAy, kChRoll, kBatchChannelCount };
+inline constexpr const char* kBatchChannelNames[] = {"x", "y", "yaw", "vx", "vy", "yaw_rate", "ax", "ay", "roll"};
+
+// Per-vehicle summary metrics ("summary/<name>").
+enum BatchMetric : int {
+  kMetX,          // final x [m]
+  kMetY,          // final y [m]
+  kMetYaw,        // final yaw [rad]
+  kMetVx,         // final forward speed [m/s]
+  kMetMaxAy,      // largest |ay| [m/s^2]
+  kMetMaxYawRate, // largest |yaw rate| [rad/s]
+  kMetMaxRoll,    // largest |roll| [rad] (0 for the 11-DOF model)
+  kMetFailedAt,   // time the state diverged (the step too large) [s]; -1 when it did not
+  kBatchMetricCount
+};
+inline constexpr const char* kBatchMetricNames[] = {"final_x",        "final_y",   "final_yaw",  "final_vx",
+                                                    "max_abs_ay",     "max_abs_yaw_rate", "max_abs_roll",
+                                                    "failed_at"};
+
+struct BatchOptions {
+  RomModel model = RomModel::k18Dof;
+  double step = 1e-3;          // half-implicit step [s]
+  double end_time = 2.0;       // [s]
+  double initial_speed = 0.0;  // [m/s]
+  double output_rate = 0.0;    // channel samples per second; 0: summary metrics only
+  std::vector<BatchChannel> channels;
+  BatchDevice device = BatchDevice::kCpu;
+  long max_chunk = 0;          // vehicles per launch; 0: as many as memory allows
+};
+
+struct BatchResult {
+  long vehicles = 0;
+  int samples = 0;                  // channel samples per vehicle (time k / output_rate, k = 0..)
+  std::vector<double> metrics;      // [metric][vehicle]
+  std::vector<double> channels;     // [channel][sample][vehicle]
+  std::vector<double> final_state;  // [state][vehicle]
+  int states = 0;
+  long failed = 0;                  // vehicles whose state diverged
+  double wall_seconds = 0;          // the stepping, launches and copies included
+  std::string device;               // what ran it, in words
+  long chunks = 0;
+  double bytes_per_vehicle = 0;     // device memory per vehicle: parameters, driver, outputs
+};
+
+// `vehicles`: one (shared) or n; `drivers`: one (shared) or n. Throws InputError for mismatched
+// sizes and RunError for CUDA failures or a GPU batch in a build without CUDA.
+BatchResult run_rom_batch(const std::vector<RomVehicle>& vehicles, const std::vector<const DriverSeries*>& drivers,
+                          long n, const BatchOptions& options);
+
+bool cuda_batch_available();
+
+}  // namespace terracal::rom

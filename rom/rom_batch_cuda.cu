@@ -1,0 +1,127 @@
+// The GPU batch: vehicles' parameters and drivers copied once, then chunks of vehicles run as one
+// CUDA thread each (the same BatchKernel as the CPU), and only the reduced outputs come back.
+#include <chrono>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/cuda_check.hpp"
+#include "core/errors.hpp"
+#include "core/parallel_for_cuda.cuh"
+#include "rom/rom11.hpp"
+#include "rom/rom18.hpp"
+#include "rom/rom_batch_device.hpp"
+#include "rom/rom_batch_kernel.hpp"
+
+namespace terracal::rom {
+
+namespace {
+
+// Device copies that free themselves.
+template <class T>
+struct DeviceArray {
+  T* p = nullptr;
+  explicit DeviceArray(std::size_t n) {
+    if (n > 0) TERRACAL_CUDA_CHECK(cudaMalloc(&p, n * sizeof(T)));
+  }
+  DeviceArray(const T* host, std::size_t n) : DeviceArray(n) {
+    if (n > 0) TERRACAL_CUDA_CHECK(cudaMemcpy(p, host, n * sizeof(T), cudaMemcpyHostToDevice));
+  }
+  ~DeviceArray() { cudaFree(p); }
+  DeviceArray(const DeviceArray&) = delete;
+  DeviceArray& operator=(const DeviceArray&) = delete;
+};
+
+template <class M>
+void run_device(const std::vector<RomVehicle>& vehicles, const std::vector<const DriverSeries*>& drivers, long n,
+                const BatchOptions& o, BatchResult& r) {
+  DeviceArray<RomVehicle> d_vehicles(vehicles.data(), vehicles.size());
+  // Each driver's four columns on the device, and the views that point at them.
+  std::vector<std::unique_ptr<DeviceArray<double>>> columns;
+  std::vector<DriverSeriesView> views;
+  for (const DriverSeries* d : drivers) {
+    DriverSeriesView v;
+    v.n = d->size();
+    const std::vector<double>* cols[4] = {&d->times(), &d->steering(), &d->throttle(), &d->braking()};
+    const double** slots[4] = {&v.time, &v.steering, &v.throttle, &v.braking};
+    for (int c = 0; c < 4; ++c) {
+      columns.push_back(std::make_unique<DeviceArray<double>>(cols[c]->data(), cols[c]->size()));
+      *slots[c] = columns.back()->p;
+    }
+    views.push_back(v);
+  }
+  DeviceArray<DriverSeriesView> d_views(views.data(), views.size());
+
+  BatchKernel<M> k;
+  k.vehicles = d_vehicles.p;
+  k.n_vehicles = static_cast<long>(vehicles.size());
+  k.drivers = d_views.p;
+  k.n_drivers = static_cast<long>(views.size());
+  k.step = o.step;
+  k.steps = std::lround(o.end_time / o.step);
+  k.initial_speed = o.initial_speed;
+  k.sample_every = o.output_rate > 0 ? std::lround(1.0 / (o.output_rate * o.step)) : 0;
+  k.samples = k.sample_every > 0 ? static_cast<int>(k.steps / k.sample_every) + 1 : 0;
+  k.n_channels = k.sample_every > 0 ? static_cast<int>(o.channels.size()) : 0;
+  for (int c = 0; c < k.n_channels; ++c) k.channel[c] = o.channels[c];
+  r.samples = k.samples;
+  r.states = M::kStates;
+
+  // Outputs per vehicle; the chunk is what fits in 80 % of the free memory (or max_chunk).
+  const std::size_t out_doubles = kBatchMetricCount + static_cast<std::size_t>(k.n_channels) * k.samples + M::kStates;
+  std::size_t free_bytes = 0, total_bytes = 0;
+  TERRACAL_CUDA_CHECK(cudaMemGetInfo(&free_bytes, &total_bytes));
+  long chunk = std::max<long>(1, static_cast<long>(0.8 * free_bytes / (out_doubles * sizeof(double))));
+  if (o.max_chunk > 0) chunk = std::min(chunk, o.max_chunk);
+  chunk = std::min(chunk, n);
+  r.bytes_per_vehicle = out_doubles * sizeof(double) + (vehicles.size() > 1 ? sizeof(RomVehicle) : 0) +
+                        (drivers.size() > 1 ? sizeof(DriverSeriesView) + 4 * sizeof(double) * drivers[0]->size() : 0);
+
+  r.metrics.assign(static_cast<std::size_t>(kBatchMetricCount) * n, 0.0);
+  r.channels.assign(static_cast<std::size_t>(k.n_channels) * k.samples * n, 0.0);
+  r.final_state.assign(static_cast<std::size_t>(M::kStates) * n, 0.0);
+  DeviceArray<double> d_out(out_doubles * chunk);
+  for (long first = 0; first < n; first += chunk) {
+    const long count = std::min(chunk, n - first);
+    k.first = first;
+    k.count = count;
+    k.metrics = d_out.p;
+    k.channels = d_out.p + kBatchMetricCount * count;
+    k.final_state = k.channels + static_cast<std::size_t>(k.n_channels) * k.samples * count;
+    parallel_for_cuda(count, k);
+    TERRACAL_CUDA_CHECK(cudaDeviceSynchronize());
+    // [quantity][count] blocks of this chunk into [quantity][n] of the whole batch.
+    auto fetch = [&](const double* from, std::vector<double>& to, std::size_t rows) {
+      TERRACAL_CUDA_CHECK(cudaMemcpy2D(to.data() + first, n * sizeof(double), from, count * sizeof(double),
+                                       count * sizeof(double), rows, cudaMemcpyDeviceToHost));
+    };
+    fetch(k.metrics, r.metrics, kBatchMetricCount);
+    if (k.n_channels > 0) fetch(k.channels, r.channels, static_cast<std::size_t>(k.n_channels) * k.samples);
+    fetch(k.final_state, r.final_state, M::kStates);
+    ++r.chunks;
+  }
+}
+
+}  // namespace
+
+BatchResult run_rom_batch_cuda(const std::vector<RomVehicle>& vehicles, const std::vector<const DriverSeries*>& drivers,
+                               long n, const BatchOptions& o) {
+  int count = 0;
+  if (cudaGetDeviceCount(&count) != cudaSuccess || count == 0)
+    throw RunError("rom batch: --device cuda, but no CUDA device is present");
+  BatchResult r;
+  r.vehicles = n;
+  cudaDeviceProp prop{};
+  TERRACAL_CUDA_CHECK(cudaGetDeviceProperties(&prop, 0));
+  r.device = fmt::format("cuda: {}", prop.name);
+  const auto start = std::chrono::steady_clock::now();
+  if (o.model == RomModel::k11Dof)
+    run_device<Rom11>(vehicles, drivers, n, o, r);
+  else
+    run_device<Rom18>(vehicles, drivers, n, o, r);
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  for (long i = 0; i < n; ++i) r.failed += r.metrics[static_cast<std::size_t>(kMetFailedAt) * n + i] >= 0;
+  return r;
+}
+
+}  // namespace terracal::rom

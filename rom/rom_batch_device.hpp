@@ -1,0 +1,12 @@
+#pragma once
+// The GPU side of run_rom_batch (rom_batch_cuda.cu); only built with CUDA.
+#include <vector>
+
+#include "rom/rom_batch.hpp"
+
+namespace terracal::rom {
+
+BatchResult run_rom_batch_cuda(const std::vector<RomVehicle>& vehicles, const std::vector<const DriverSeries*>& drivers,
+                               long n, const BatchOptions& options);
+
+}  // namespace terracal::rom

@@ -1,0 +1,88 @@
+#pragma once
+// The body of the batch loop: vehicle i steps from rest (or its initial speed) to the end time with
+// the half-implicit scheme, keeping its state in registers, and writes its summary metrics, its
+// final state and its sampled channels once. Compiled for the CPU (OpenMP) and the GPU (one thread
+// per vehicle) from this one source.
+#include <cmath>
+
+#include "core/host_device.hpp"
+#include "core/vehicle/driver_inputs.hpp"
+#include "rom/half_implicit.hpp"
+#include "rom/rom_batch.hpp"
+
+namespace terracal::rom {
+
+template <class M>
+struct BatchKernel {
+  const RomVehicle* vehicles = nullptr;  // n_vehicles entries (1: shared)
+  long n_vehicles = 1;
+  const DriverSeriesView* drivers = nullptr;  // n_drivers entries (1: shared)
+  long n_drivers = 1;
+  long first = 0;  // index of this chunk's first vehicle in the whole batch
+  long count = 0;  // vehicles in this chunk
+  double step = 1e-3;
+  long steps = 0;
+  double initial_speed = 0;
+  long sample_every = 0;  // steps between channel samples; 0: none
+  int samples = 0;
+  int n_channels = 0;
+  int channel[kBatchChannelCount] = {};
+  double* metrics = nullptr;      // [metric][count]
+  double* channels = nullptr;     // [channel][sample][count]
+  double* final_state = nullptr;  // [state][count]
+
+  TERRACAL_HD static double channel_value(int c, const double* y, const RomAux& aux) {
+    switch (c) {
+      case kChX: return y[M::kX];
+      case kChY: return y[M::kY];
+      case kChYaw: return y[M::kYaw];
+      case kChVx: return y[M::kVx];
+      case kChVy: return y[M::kVy];
+      case kChYawRate: return y[M::kYawRate];
+      case kChAx: return aux.ax;
+      case kChAy: return aux.ay;
+      default: return M::roll_of(y);
+    }
+  }
+
+  TERRACAL_HD void record(int s, long i, const double* y, const RomAux& aux) const {
+    for (int c = 0; c < n_channels; ++c) channels[(long(c) * samples + s) * count + i] = channel_value(channel[c], y, aux);
+  }
+
+  TERRACAL_HD void operator()(long i) const {
+    const long g = first + i;
+    if (n_vehicles == 1) {
+      simulate(vehicles[0], i, g);  // shared: every thread reads the same (cached) parameters
+    } else {
+      // Own parameters: a private copy, which the GPU lays out thread-interleaved (its local
+      // memory), so neighbouring threads' reads of one field coalesce instead of striding by
+      // sizeof(RomVehicle).
+      const RomVehicle own = vehicles[g];
+      simulate(own, i, g);
+    }
+  }
+
+  TERRACAL_HD void simulate(const RomVehicle& v, long i, long g) const {
+    const DriverSeriesView& d = drivers[n_drivers == 1 ? 0 : g];
+    double y[M::kStates];
+    int gear = M::initial_state(v, initial_speed, y);
+    RomAux aux;
+    double max_ay = 0, max_r = 0, max_roll = 0, failed_at = -1;
+    if (sample_every > 0) record(0, i, y, aux);
+    for (long k = 0; k < steps; ++k) {
+      if (!half_implicit_step<M>(v, d.at(k * step), gear, y, step, &aux)) {
+        failed_at = (k + 1) * step;
+        break;
+      }
+      max_ay = max_of(max_ay, fabs(aux.ay));
+      max_r = max_of(max_r, fabs(y[M::kYawRate]));
+      max_roll = max_of(max_roll, fabs(M::roll_of(y)));
+      if (sample_every > 0 && (k + 1) % sample_every == 0) record(int((k + 1) / sample_every), i, y, aux);
+    }
+    const double m[kBatchMetricCount] = {y[M::kX], y[M::kY], y[M::kYaw], y[M::kVx], max_ay, max_r, max_roll, failed_at};
+    for (int k = 0; k < kBatchMetricCount; ++k) metrics[long(k) * count + i] = m[k];
+    for (int k = 0; k < M::kStates; ++k) final_state[long(k) * count + i] = y[k];
+  }
+};
+
+}  // namespace terracal::rom

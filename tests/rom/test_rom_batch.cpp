@@ -1,0 +1,89 @@
+// The batch against single runs: every vehicle of a CPU batch equals its own single half-implicit
+// run; its channels are the trajectory's samples; the GPU batch of the same 1000 different vehicles
+// agrees with the CPU batch within 1e-10 relative, in one launch and in chunks.
+#include <cmath>
+
+#include <catch2/catch.hpp>
+
+#include "rom/rom18.hpp"
+#include "rom/rom_batch.hpp"
+#include "tests/rom/rom_test_vehicles.hpp"
+#include "tests/skip.hpp"
+
+using namespace terracal;
+using namespace terracal::rom;
+using namespace terracal::rom::testing;
+
+namespace {
+// 1000 HMMWVs that differ in mass, friction, cornering stiffness and steering.
+std::vector<RomVehicle> varied_vehicles(long n) {
+  std::vector<RomVehicle> vs(n, hmmwv());
+  for (long i = 0; i < n; ++i) {
+    const double u = static_cast<double>(i) / n;
+    vs[i].mass *= 0.8 + 0.4 * u;
+    vs[i].friction = 0.4 + 0.6 * std::fmod(7.0 * u, 1.0);
+    for (auto& t : vs[i].tire) t.y[0].df0 *= 0.9 + 0.2 * std::fmod(13.0 * u, 1.0);
+    vs[i].max_steer *= 0.5 + std::fmod(3.0 * u, 1.0);
+  }
+  return vs;
+}
+
+DriverSeries lane_change() {
+  return DriverSeries::from_rows({0, 0.5, 1.0, 1.5, 2.0}, {0, 0.3, -0.3, 0.1, 0}, {0.4, 0.6, 0.5, 0.5, 0.4},
+                                 {0, 0, 0, 0.2, 0});
+}
+
+double relative(double a, double b) { return std::fabs(a - b) / std::max(1.0, std::fabs(b)); }
+}  // namespace
+
+TEST_CASE("rom batch: each CPU batch vehicle equals its own single run; channels are its samples", "[rom][batch]") {
+  const auto vehicles = varied_vehicles(40);
+  const DriverSeries d = lane_change();
+  BatchOptions o;
+  o.end_time = 2.0;
+  o.initial_speed = 12.0;
+  o.output_rate = 100;
+  o.channels = {kChVx, kChYawRate, kChY};
+  const BatchResult b = run_rom_batch(vehicles, {&d}, 40, o);
+  REQUIRE(b.samples == 201);
+  CHECK(b.failed == 0);
+  for (long i = 0; i < 40; i += 13) {
+    const RomRunResult r = run(vehicles[i], d, options(RomModel::k18Dof, 2.0, 12.0));
+    const RomSample& last = r.samples.back();
+    CHECK(b.metrics[kMetX * 40 + i] == last.x);
+    CHECK(b.metrics[kMetY * 40 + i] == last.y);
+    CHECK(b.metrics[kMetVx * 40 + i] == last.vx);
+    for (int s = 0; s < b.samples; s += 50) {
+      CHECK(b.channels[(0 * b.samples + s) * 40 + i] == r.samples[s].vx);
+      CHECK(b.channels[(1 * b.samples + s) * 40 + i] == r.samples[s].yaw_rate);
+      CHECK(b.channels[(2 * b.samples + s) * 40 + i] == r.samples[s].y);
+    }
+  }
+}
+
+TEST_CASE("rom batch: GPU and CPU batches of 1000 different vehicles agree within 1e-10", "[rom][batch][gpu]") {
+  if (!test::cuda_device_or_skip("rom batch GPU/CPU agreement")) return;
+  const long n = 1000;
+  const auto vehicles = varied_vehicles(n);
+  const DriverSeries d = lane_change();
+  BatchOptions o;
+  o.end_time = 2.0;
+  o.initial_speed = 12.0;
+  o.output_rate = 50;
+  o.channels = {kChVx, kChAy};
+  const BatchResult cpu = run_rom_batch(vehicles, {&d}, n, o);
+  for (long chunk : {0L, 300L}) {
+    o.device = BatchDevice::kCuda;
+    o.max_chunk = chunk;
+    const BatchResult gpu = run_rom_batch(vehicles, {&d}, n, o);
+    INFO("chunk " << chunk << ", " << gpu.chunks << " launches on " << gpu.device);
+    double worst = 0;
+    for (std::size_t k = 0; k < cpu.final_state.size(); ++k)
+      worst = std::max(worst, relative(gpu.final_state[k], cpu.final_state[k]));
+    for (std::size_t k = 0; k < cpu.channels.size(); ++k)
+      worst = std::max(worst, relative(gpu.channels[k], cpu.channels[k]));
+    INFO("largest relative difference " << worst);
+    CHECK(worst < 1e-10);
+    CHECK(gpu.failed == cpu.failed);
+  }
+}
