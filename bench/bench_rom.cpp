@@ -25,8 +25,8 @@ constexpr double kSimulated = 10.0, kStep = 1e-3;
 
 // A double lane change-like steering with throttle: every part of the right-hand side is active.
 DriverSeries inputs() {
-  return DriverSeries::from_rows({0, 2, 3, 4, 5, 6, 10}, {0, 0, 0.2, -0.2, 0.1, 0, 0}, {0.5, 0.5, 0.3, 0.3, 0.5, 0.6, 0.6},
-                                 {0, 0, 0, 0, 0, 0, 0}, "bench inputs");
+  return DriverSeries::from_rows({0, 2, 3, 4, 5, 6, 10}, {0, 0, 0.2, -0.2, 0.1, 0, 0},
+                                 {0.5, 0.5, 0.3, 0.3, 0.5, 0.6, 0.6}, {0, 0, 0, 0, 0, 0, 0}, "bench inputs");
 }
 
 template <class M>
@@ -60,7 +60,8 @@ int main(int argc, char** argv) {
   const int repeats = argc > 1 ? std::atoi(argv[1]) : 7;
   const RomVehicle v = load_rom_vehicle("hmmwv");
   const DriverSeries in = inputs();
-  std::printf("HMMWV, TMeasy, %.0f s simulated, step %.0e s, one core; median of %d runs\n", kSimulated, kStep, repeats);
+  std::printf("HMMWV, TMeasy, %.0f s simulated, step %.0e s, one core; median of %d runs\n", kSimulated, kStep,
+              repeats);
   std::printf("%-8s %-28s %12s %14s\n", "model", "what", "wall [ms]", "x real time");
   auto report = [&](const char* model, const char* what, auto&& f) {
     std::vector<double> t;
@@ -70,9 +71,13 @@ int main(int argc, char** argv) {
   };
   report("11dof", "half-implicit loop", [&] { return loop_seconds<Rom11>(v, in); });
   report("18dof", "half-implicit loop", [&] { return loop_seconds<Rom18>(v, in); });
-  report("11dof", "run_rom half-implicit", [&] { return run_seconds(v, in, RomModel::k11Dof, RomIntegrator::kHalfImplicit); });
-  report("18dof", "run_rom half-implicit", [&] { return run_seconds(v, in, RomModel::k18Dof, RomIntegrator::kHalfImplicit); });
-  report("11dof", "run_rom cvodes (1e-6, 1e-8)", [&] { return run_seconds(v, in, RomModel::k11Dof, RomIntegrator::kCvodes); });
-  report("18dof", "run_rom cvodes (1e-6, 1e-8)", [&] { return run_seconds(v, in, RomModel::k18Dof, RomIntegrator::kCvodes); });
+  report("11dof", "run_rom half-implicit",
+         [&] { return run_seconds(v, in, RomModel::k11Dof, RomIntegrator::kHalfImplicit); });
+  report("18dof", "run_rom half-implicit",
+         [&] { return run_seconds(v, in, RomModel::k18Dof, RomIntegrator::kHalfImplicit); });
+  report("11dof", "run_rom cvodes (1e-6, 1e-8)",
+         [&] { return run_seconds(v, in, RomModel::k11Dof, RomIntegrator::kCvodes); });
+  report("18dof", "run_rom cvodes (1e-6, 1e-8)",
+         [&] { return run_seconds(v, in, RomModel::k18Dof, RomIntegrator::kCvodes); });
   return 0;
 }

@@ -22,19 +22,18 @@ inline constexpr const char* kBatchChannelNames[] = {"x", "y", "yaw", "vx", "vy"
 
 // Per-vehicle summary metrics ("summary/<name>").
 enum BatchMetric : int {
-  kMetX,          // final x [m]
-  kMetY,          // final y [m]
-  kMetYaw,        // final yaw [rad]
-  kMetVx,         // final forward speed [m/s]
-  kMetMaxAy,      // largest |ay| [m/s^2]
-  kMetMaxYawRate, // largest |yaw rate| [rad/s]
-  kMetMaxRoll,    // largest |roll| [rad] (0 for the 11-DOF model)
-  kMetFailedAt,   // time the state diverged (the step too large) [s]; -1 when it did not
+  kMetX,           // final x [m]
+  kMetY,           // final y [m]
+  kMetYaw,         // final yaw [rad]
+  kMetVx,          // final forward speed [m/s]
+  kMetMaxAy,       // largest |ay| [m/s^2]
+  kMetMaxYawRate,  // largest |yaw rate| [rad/s]
+  kMetMaxRoll,     // largest |roll| [rad] (0 for the 11-DOF model)
+  kMetFailedAt,    // time the state diverged (the step too large) [s]; -1 when it did not
   kBatchMetricCount
 };
-inline constexpr const char* kBatchMetricNames[] = {"final_x",        "final_y",   "final_yaw",  "final_vx",
-                                                    "max_abs_ay",     "max_abs_yaw_rate", "max_abs_roll",
-                                                    "failed_at"};
+inline constexpr const char* kBatchMetricNames[] = {"final_x",    "final_y",          "final_yaw",    "final_vx",
+                                                    "max_abs_ay", "max_abs_yaw_rate", "max_abs_roll", "failed_at"};
 
 struct BatchOptions {
   RomModel model = RomModel::k18Dof;
@@ -44,7 +43,7 @@ struct BatchOptions {
   double output_rate = 0.0;    // channel samples per second; 0: summary metrics only
   std::vector<BatchChannel> channels;
   BatchDevice device = BatchDevice::kCpu;
-  long max_chunk = 0;          // vehicles per launch; 0: as many as memory allows
+  long max_chunk = 0;  // vehicles per launch; 0: as many as memory allows
 };
 
 struct BatchResult {
@@ -54,11 +53,11 @@ struct BatchResult {
   std::vector<double> channels;     // [channel][sample][vehicle]
   std::vector<double> final_state;  // [state][vehicle]
   int states = 0;
-  long failed = 0;                  // vehicles whose state diverged
-  double wall_seconds = 0;          // the stepping, launches and copies included
-  std::string device;               // what ran it, in words
+  long failed = 0;          // vehicles whose state diverged
+  double wall_seconds = 0;  // the stepping, launches and copies included
+  std::string device;       // what ran it, in words
   long chunks = 0;
-  double bytes_per_vehicle = 0;     // device memory per vehicle: parameters, driver, outputs
+  double bytes_per_vehicle = 0;  // device memory per vehicle: parameters, driver, outputs
 };
 
 // `vehicles`: one (shared) or n; `drivers`: one (shared) or n. Throws InputError for mismatched

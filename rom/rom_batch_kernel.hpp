@@ -33,20 +33,30 @@ struct BatchKernel {
 
   TERRACAL_HD static double channel_value(int c, const double* y, const RomAux& aux) {
     switch (c) {
-      case kChX: return y[M::kX];
-      case kChY: return y[M::kY];
-      case kChYaw: return y[M::kYaw];
-      case kChVx: return y[M::kVx];
-      case kChVy: return y[M::kVy];
-      case kChYawRate: return y[M::kYawRate];
-      case kChAx: return aux.ax;
-      case kChAy: return aux.ay;
-      default: return M::roll_of(y);
+      case kChX:
+        return y[M::kX];
+      case kChY:
+        return y[M::kY];
+      case kChYaw:
+        return y[M::kYaw];
+      case kChVx:
+        return y[M::kVx];
+      case kChVy:
+        return y[M::kVy];
+      case kChYawRate:
+        return y[M::kYawRate];
+      case kChAx:
+        return aux.ax;
+      case kChAy:
+        return aux.ay;
+      default:
+        return M::roll_of(y);
     }
   }
 
   TERRACAL_HD void record(int s, long i, const double* y, const RomAux& aux) const {
-    for (int c = 0; c < n_channels; ++c) channels[(long(c) * samples + s) * count + i] = channel_value(channel[c], y, aux);
+    for (int c = 0; c < n_channels; ++c)
+      channels[(long(c) * samples + s) * count + i] = channel_value(channel[c], y, aux);
   }
 
   TERRACAL_HD void operator()(long i) const {

@@ -18,9 +18,10 @@ const char* integrator_name(RomIntegrator i) { return i == RomIntegrator::kCvode
 
 void check_model_effects(const RomVehicle& v, RomModel m) {
   if (v.has(kEffectSuspension))
-    throw InputError(fmt::format("effect 'suspension' needs vertical travel per corner (the 24-DOF model); the {} "
-                                 "model has none: remove it from the vehicle's effects",
-                                 model_name(m)));
+    throw InputError(
+        fmt::format("effect 'suspension' needs vertical travel per corner (the 24-DOF model); the {} "
+                    "model has none: remove it from the vehicle's effects",
+                    model_name(m)));
 }
 
 namespace {

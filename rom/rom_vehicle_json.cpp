@@ -146,15 +146,13 @@ bool is_lfdm(const nlohmann::json& j) { return j.is_object() && j.contains("m") 
 
 RomVehicle read_rom_vehicle(const nlohmann::json& j, const std::string& source, const std::string& folder,
                             const TmeasyParams* tire) {
+  if (is_lfdm(j) && !tire)
+    throw InputError(
+        fmt::format("{}: an LFDM vehicle file holds no tire: give its tire file too (--tire TIRE.json)", source));
   JsonObject o(j, source, "");
   RomVehicle v = is_lfdm(j) ? read_lfdm_vehicle(o) : read_own(o, folder, tire != nullptr);
   o.finish();
-  if (tire) {
-    v.tire[0] = v.tire[1] = *tire;
-  } else if (is_lfdm(j)) {
-    throw InputError(
-        fmt::format("{}: an LFDM vehicle file holds no tire: give its tire file too (--tire TIRE.json)", source));
-  }
+  if (tire) v.tire[0] = v.tire[1] = *tire;
   validate(v, source);
   return v;
 }
