@@ -4,6 +4,7 @@
 #include <memory>
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 #include <nlohmann/json.hpp>
 
 #include "apps/cli_checks.hpp"
@@ -11,7 +12,11 @@
 #include "apps/out_dir.hpp"
 #include "apps/report_plots.hpp"
 #include "core/atomic_file.hpp"
+#include "core/device_selftest.hpp"
 #include "core/errors.hpp"
+#include "rom/batch_h5.hpp"
+#include "rom/batch_vary.hpp"
+#include "rom/rom_batch.hpp"
 #include "rom/rom_run.hpp"
 #include "rom/rom_vehicle_json.hpp"
 #include "rom/trajectory_csv.hpp"
@@ -24,12 +29,74 @@ struct RomArgs {
   std::string vehicle, tire, inputs, maneuver, out;
   double friction = 1.0, gravity = 9.81;
   bool plots = true;
+  long batch = 0;
+  std::string vary, device = "auto", channels;
+  std::uint64_t seed = 1;
 };
 
 const std::map<std::string, rom::RomModel> kModels = {{"11dof", rom::RomModel::k11Dof},
                                                       {"18dof", rom::RomModel::k18Dof}};
 const std::map<std::string, rom::RomIntegrator> kIntegrators = {{"cvodes", rom::RomIntegrator::kCvodes},
                                                                 {"half-implicit", rom::RomIntegrator::kHalfImplicit}};
+}  // namespace
+
+namespace {
+std::vector<rom::BatchChannel> parse_channels(const std::string& list) {
+  std::vector<rom::BatchChannel> out;
+  if (list.empty()) return out;
+  std::size_t start = 0;
+  while (start <= list.size()) {
+    const std::size_t end = std::min(list.find(',', start), list.size());
+    const std::string name = list.substr(start, end - start);
+    int found = -1;
+    for (int c = 0; c < rom::kBatchChannelCount; ++c)
+      if (name == rom::kBatchChannelNames[c]) found = c;
+    if (found < 0)
+      throw InputError(
+          fmt::format("--channels: '{}' is not a channel; expected x, y, yaw, vx, vy, yaw_rate, ax, ay, roll", name));
+    for (auto c : out)
+      if (c == found) throw InputError(fmt::format("--channels: '{}' is listed twice", name));
+    out.push_back(static_cast<rom::BatchChannel>(found));
+    start = end + 1;
+  }
+  return out;
+}
+
+int run_batch(const RomArgs& a, const rom::RomVehicle& vehicle, const rom::RomRunOptions& run,
+              const DriverSeries* series) {
+  rom::BatchOptions o;
+  o.model = run.model;
+  o.step = run.step;
+  o.end_time = run.end_time;
+  o.initial_speed = run.initial_speed;
+  o.channels = parse_channels(a.channels);
+  o.output_rate = o.channels.empty() ? 0.0 : run.output_rate;
+  const bool cuda =
+      a.device == "cuda" || (a.device == "auto" && rom::cuda_batch_available() && cuda_device_info().available);
+  o.device = cuda ? rom::BatchDevice::kCuda : rom::BatchDevice::kCpu;
+  std::unique_ptr<rom::VaryDraws> draws;
+  std::vector<rom::RomVehicle> vehicles{vehicle};
+  if (!a.vary.empty()) {
+    draws = std::make_unique<rom::VaryDraws>(rom::draw_vehicles(vehicle, rom::read_vary(a.vary), a.batch, a.seed));
+    vehicles = std::move(draws->vehicles);
+  }
+  std::filesystem::create_directories(a.out);
+  const rom::BatchResult r = rom::run_rom_batch(vehicles, {series}, a.batch, o);
+  rom::BatchH5Info info;
+  info.vehicle = a.vehicle;
+  info.seed = a.seed;
+  rom::write_batch_h5(a.out + "/batch.h5", r, o, draws.get(), info);
+  if (r.failed > 0)
+    spdlog::warn(
+        "rom batch: {} of {} vehicles diverged (summary/failed_at >= 0 in batch.h5): --step {} s is too large for them",
+        r.failed, r.vehicles, o.step);
+  fmt::print(
+      "rom batch ({}, {}): {} vehicles x {:.3g} s in {:.3g} s wall ({:.3g} vehicle-seconds per second); written to "
+      "{}/batch.h5\n",
+      rom::model_name(o.model), r.device, r.vehicles, o.end_time, r.wall_seconds,
+      r.vehicles * o.end_time / std::max(r.wall_seconds, 1e-12), a.out);
+  return 0;
+}
 }  // namespace
 
 Command add_rom(CLI::App& app) {
@@ -67,8 +134,24 @@ Command add_rom(CLI::App& app) {
       ->check(in_range(Range{0.1, 30, false, false}))
       ->capture_default_str();
   sub->add_flag("!--no-plots", a->plots, "skip trajectory.png");
+  sub->add_option("--batch", a->batch, "N vehicles in one batch (half-implicit); writes batch.h5")
+      ->check(whole_in(1, 10000000));
+  sub->add_option("--vary", a->vary, "per-parameter distributions of the batch (JSON)");
+  add_seed_option(sub, a->seed, "seed of the --vary draws");
+  sub->add_option("--device", a->device, "batch on cpu, cuda or auto")
+      ->check(CLI::IsMember({"cpu", "cuda", "auto"}))
+      ->capture_default_str();
+  sub->add_option("--channels", a->channels,
+                  "batch channels sampled at --output-rate: x,y,yaw,vx,vy,yaw_rate,ax,ay,roll");
   sub->add_option("--out", a->out, "output folder")->required();
   return [a, sub] {
+    if (a->batch > 0) {
+      if (!a->maneuver.empty())
+        throw InputError(
+            "--maneuver: a batch runs driver files (--inputs); the manoeuvres' controllers run one vehicle at a time");
+      if (sub->count("--integrator") > 0 && a->run.integrator != rom::RomIntegrator::kHalfImplicit)
+        throw InputError("--integrator cvodes: a batch steps with the half-implicit scheme only");
+    }
     const OutDir out = prepare_out_dir("--out", a->out);
     if (a->inputs.empty() == a->maneuver.empty())
       throw InputError("terracal rom: give the driver as --inputs DRIVER.txt or --maneuver M.json (one of them)");
@@ -96,6 +179,9 @@ Command add_rom(CLI::App& app) {
       throw InputError(fmt::format("--step {} s: must not exceed the output interval 1/--output-rate = {} s", run.step,
                                    1.0 / run.output_rate));
     if (!(run.end_time > 0)) throw InputError(fmt::format("--end-time {}: must be positive", run.end_time));
+    if (a->batch > 0) return run_batch(*a, vehicle, run, series.get());
+    for (const char* o : {"--vary", "--device", "--channels", "--seed"})
+      if (sub->count(o) > 0) throw InputError(fmt::format("{}: only with --batch N", o));
     std::filesystem::create_directories(a->out);
     const rom::RomRunResult r = rom::run_rom(vehicle, driver, run);
     rom::write_trajectory_csv(a->out + "/trajectory.csv", r.samples);

@@ -83,7 +83,8 @@ struct VaryDraws {
   std::vector<std::string> distributions;   // [parameter], vary_distribution_text
 };
 
-// Default memory limit for the drawn vehicles: 8 GiB (RomVehicle is ~2.7 KB: ~3 million vehicles).
+// Default memory limit for the drawn vehicles: 8 GiB (sizeof(RomVehicle) is 3072 bytes today: ~2.8
+// million vehicles).
 inline constexpr std::uint64_t kVaryDefaultMaxBytes = std::uint64_t{8} << 30;
 
 // n vehicles drawn from `spec` around `base`. Throws InputError when n < 1, when

@@ -46,11 +46,15 @@ std::vector<InputFile> common_files() {
 }
 
 BadInput vehicle(const std::string& name, const std::string& json, std::vector<std::string> phrases) {
-  return {name, {{"veh.json", json}},
-          "rom --model 18dof --vehicle {dir}/veh.json --inputs {dir}/drive.txt --out {out}", std::move(phrases)};
+  return {name,
+          {{"veh.json", json}},
+          "rom --model 18dof --vehicle {dir}/veh.json --inputs {dir}/drive.txt --out {out}",
+          std::move(phrases)};
 }
 BadInput driver(const std::string& name, const std::string& text, std::vector<std::string> phrases) {
-  return {name, {{"bad.txt", text}}, "rom --model 11dof --vehicle hmmwv --inputs {dir}/bad.txt --out {out}",
+  return {name,
+          {{"bad.txt", text}},
+          "rom --model 11dof --vehicle hmmwv --inputs {dir}/bad.txt --out {out}",
           std::move(phrases)};
 }
 BadInput option(const std::string& args, std::vector<std::string> phrases) {
@@ -75,13 +79,15 @@ TEST_CASE("bad input, rom: the vehicle file", "[cli][bad_input][rom]") {
               {"veh.json", "downshift speed 2600 rpm", "upshift speed 2500 rpm"}),
       vehicle("unknown effect", vehicle_with("effects", "\"effects\": [\"tire_relaxaton\"]"),
               {"veh.json", "effects", "tire_relaxaton"}),
-      vehicle("suspension on an 18-DOF model", vehicle_with("effects", "\"effects\": [\"suspension\"], \"spring_rate\": 1e5"),
-              {"suspension", "24-DOF"}),
+      vehicle("suspension on an 18-DOF model",
+              vehicle_with("effects", "\"effects\": [\"suspension\"], \"spring_rate\": 1e5"), {"suspension", "24-DOF"}),
       vehicle("tire file missing", vehicle_with("tire", "\"tire\": \"none.json\""), {"none.json"}),
       vehicle("text for a number", vehicle_with("cg_height", "\"cg_height\": \"high\""),
               {"veh.json", "cg_height", "high", "not a number"}),
       vehicle("LFDM vehicle without a tire", R"({"a": 1.6, "b": 1.6, "m": 2000})", {"veh.json", "--tire"}),
-      {"preset that does not exist", {}, "rom --model 18dof --vehicle humvee --inputs {dir}/drive.txt --out {out}",
+      {"preset that does not exist",
+       {},
+       "rom --model 18dof --vehicle humvee --inputs {dir}/drive.txt --out {out}",
        {"humvee"}},
   };
   terracal::test::check_bad_inputs("bad_rom_vehicle", cases, common_files());
@@ -112,18 +118,41 @@ TEST_CASE("bad input, rom: the driver file", "[cli][bad_input][rom]") {
 
 TEST_CASE("bad input, rom: the manoeuvre and the options", "[cli][bad_input][rom]") {
   const std::vector<BadInput> cases = {
-      {"unknown manoeuvre type", {{"m.json", R"({"type": "slalom"})"}},
-       "rom --model 18dof --vehicle hmmwv --maneuver {dir}/m.json --out {out}", {"m.json", "type", "slalom"}},
-      {"both --inputs and --maneuver", {{"m.json", R"({"type": "straight_acceleration"})"}},
-       kRun + "--maneuver {dir}/m.json", {"--inputs", "--maneuver"}},
+      {"unknown manoeuvre type",
+       {{"m.json", R"({"type": "slalom"})"}},
+       "rom --model 18dof --vehicle hmmwv --maneuver {dir}/m.json --out {out}",
+       {"m.json", "type", "slalom"}},
+      {"both --inputs and --maneuver",
+       {{"m.json", R"({"type": "straight_acceleration"})"}},
+       kRun + "--maneuver {dir}/m.json",
+       {"--inputs", "--maneuver"}},
       {"no driver", {}, "rom --model 18dof --vehicle hmmwv --out {out}", {"--inputs", "--maneuver"}},
-      {"unknown model", {}, "rom --model 24dof --vehicle hmmwv --inputs {dir}/drive.txt --out {out}",
+      {"unknown model",
+       {},
+       "rom --model 24dof --vehicle hmmwv --inputs {dir}/drive.txt --out {out}",
        {"--model", "24dof"}},
       option("--step 0", {"--step"}),
       option("--integrator rk4", {"--integrator", "rk4"}),
       option("--step 0.05", {"--step 0.05", "--output-rate"}),
       option("--friction 0", {"--friction"}),
       option("--end-time -1", {"--end-time"}),
+      option("--vary {dir}/drive.txt", {"--vary", "--batch"}),
+      option("--batch 10 --channels vx,speed", {"--channels", "speed"}),
+      option("--batch 10 --channels vx,vx", {"--channels", "twice"}),
+      option("--batch 10 --integrator cvodes", {"--integrator cvodes", "half-implicit"}),
+      option("--batch 0", {"--batch"}),
+      {"a batch with a manoeuvre",
+       {{"m.json", R"({"type": "straight_acceleration"})"}},
+       "rom --model 18dof --vehicle hmmwv --maneuver {dir}/m.json --batch 10 --out {out}",
+       {"--maneuver", "driver files"}},
+      {"vary: unknown parameter",
+       {{"v.json", R"({"weight": {"distribution": "normal", "mean": 1, "sd": 1}})"}},
+       kRun + "--batch 10 --vary {dir}/v.json",
+       {"v.json", "weight"}},
+      {"vary: a draw below zero mass",
+       {{"v.json", R"({"mass": {"distribution": "normal", "mean": 100, "sd": 1000}})"}},
+       kRun + "--batch 1000 --vary {dir}/v.json",
+       {"v.json", "mass"}},
   };
   terracal::test::check_bad_inputs("bad_rom_options", cases, common_files());
 }

@@ -15,9 +15,9 @@ TEST_CASE("terracal rom: a step steer writes trajectory.csv at 100 Hz", "[cli][r
   const ScratchDir dir("cli_rom");
   std::ofstream(dir.str() + "/m.json") << R"({"type": "step_steer", "steering": 0.1, "step_time": 1,
     "initial_speed": 15, "end_time": 3})";
-  const CliResult r = run_cli("rom --model 18dof --vehicle hmmwv --maneuver " + dir.str() + "/m.json --out " +
-                                  dir.str() + "/out --no-plots",
-                              dir.str());
+  const CliResult r = run_cli(
+      "rom --model 18dof --vehicle hmmwv --maneuver " + dir.str() + "/m.json --out " + dir.str() + "/out --no-plots",
+      dir.str());
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   std::ifstream f(dir.str() + "/out/trajectory.csv");
@@ -36,4 +36,44 @@ TEST_CASE("terracal rom: a step steer writes trajectory.csv at 100 Hz", "[cli][r
   CHECK(rows == 301);
   CHECK(yaw_rate_end > 0.05);  // positive steering turns left
   CHECK(std::ifstream(dir.str() + "/out/run.json").good());
+}
+
+#include <hdf5.h>
+
+namespace {
+std::vector<hsize_t> dataset_dims(hid_t file, const char* name) {
+  const hid_t d = H5Dopen2(file, name, H5P_DEFAULT);
+  if (d < 0) return {};
+  const hid_t s = H5Dget_space(d);
+  std::vector<hsize_t> dims(H5Sget_simple_extent_ndims(s));
+  H5Sget_simple_extent_dims(s, dims.data(), nullptr);
+  H5Sclose(s);
+  H5Dclose(d);
+  return dims;
+}
+}  // namespace
+
+TEST_CASE("terracal rom --batch: varied vehicles write batch.h5 with their parameters, metrics and channels",
+          "[cli][rom][batch]") {
+  const ScratchDir dir("cli_rom_batch");
+  std::ofstream(dir.str() + "/drive.txt") << "0 0 0.3 0\n1 0.2 0.5 0\n2 0 0.5 0\n";
+  std::ofstream(dir.str() + "/vary.json")
+      << R"({"mass": {"distribution": "normal", "mean": 2100, "sd": 50}, "friction": {"distribution": "uniform", "low": 0.5, "high": 1}})";
+  const CliResult r = run_cli("rom --model 11dof --vehicle hmmwv --inputs " + dir.str() +
+                                  "/drive.txt --initial-speed 10 "
+                                  "--batch 64 --vary " +
+                                  dir.str() +
+                                  "/vary.json --seed 3 --device cpu --channels vx,ay "
+                                  "--output-rate 50 --out " +
+                                  dir.str() + "/out",
+                              dir.str());
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const hid_t f = H5Fopen((dir.str() + "/out/batch.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  REQUIRE(f >= 0);
+  CHECK(dataset_dims(f, "/parameters/mass") == std::vector<hsize_t>{64});
+  CHECK(dataset_dims(f, "/summary/final_vx") == std::vector<hsize_t>{64});
+  CHECK(dataset_dims(f, "/channels/ay") == std::vector<hsize_t>{64, 101});
+  CHECK(dataset_dims(f, "/time") == std::vector<hsize_t>{101});
+  H5Fclose(f);
 }
