@@ -20,6 +20,8 @@ struct CvodesIntegrator::Impl {
   void* mem = nullptr;
   double t = 0;
   long steps = 0, rhs_evaluations = 0;  // summed over restarts
+  int sens_count = 0;
+  N_Vector* sens = nullptr;
 
   static int rhs(sunrealtype t, N_Vector y, N_Vector dy, void* user) {
     auto* self = static_cast<Impl*>(user);
@@ -57,6 +59,7 @@ CvodesIntegrator::CvodesIntegrator(CvodesProblem problem, const double* y0, doub
 
 CvodesIntegrator::~CvodesIntegrator() {
   Impl& m = *impl_;
+  if (m.sens) N_VDestroyVectorArray(m.sens, m.sens_count);
   CVodeFree(&m.mem);
   SUNLinSolFree(m.solver);
   SUNMatDestroy(m.matrix);
@@ -73,9 +76,36 @@ void CvodesIntegrator::advance(double t_out, double* y) {
 void CvodesIntegrator::restart(double t, const double* y) {
   Impl& m = *impl_;
   m.count();
+  if (m.sens) {
+    double tt = 0;
+    m.check(CVodeGetSens(m.mem, &tt, m.sens), "CVodeGetSens");
+  }
   for (int i = 0; i < m.problem.states; ++i) NV_Ith_S(m.y, i) = y[i];
   m.t = t;
   m.check(CVodeReInit(m.mem, t, m.y), "CVodeReInit");
+  if (m.sens) m.check(CVodeSensReInit(m.mem, CV_STAGGERED, m.sens), "CVodeSensReInit");
+}
+
+void CvodesIntegrator::enable_sensitivities(double* params, int count, const double* scales, const double* initial) {
+  Impl& m = *impl_;
+  m.sens_count = count;
+  m.sens = N_VCloneVectorArray(count, m.y);
+  for (int k = 0; k < count; ++k)
+    for (int i = 0; i < m.problem.states; ++i) NV_Ith_S(m.sens[k], i) = initial[k * m.problem.states + i];
+  m.check(CVodeSensInit1(m.mem, count, CV_STAGGERED, nullptr, m.sens), "CVodeSensInit1");
+  m.check(CVodeSetSensParams(m.mem, params, const_cast<double*>(scales), nullptr), "CVodeSetSensParams");
+  m.check(CVodeSensEEtolerances(m.mem), "CVodeSensEEtolerances");
+  // The states' error test sets the steps; the sensitivities ride along (with the error test on them
+  // too, their absolute tolerances atol / |p| for parameters of order 1e3 stall tight runs).
+  m.check(CVodeSetSensErrCon(m.mem, SUNFALSE), "CVodeSetSensErrCon");
+}
+
+void CvodesIntegrator::sensitivities(double* out) const {
+  Impl& m = *impl_;
+  double t = 0;
+  m.check(CVodeGetSens(m.mem, &t, m.sens), "CVodeGetSens");
+  for (int k = 0; k < m.sens_count; ++k)
+    for (int i = 0; i < m.problem.states; ++i) out[k * m.problem.states + i] = NV_Ith_S(m.sens[k], i);
 }
 
 long CvodesIntegrator::steps() const {

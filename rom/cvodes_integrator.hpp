@@ -20,8 +20,15 @@ class CvodesIntegrator {
   CvodesIntegrator& operator=(const CvodesIntegrator&) = delete;
   // Integrates to t_out and writes the state there. Throws RunError when CVODES fails.
   void advance(double t_out, double* y);
-  // Starts again from (t, y), discarding the solver's history.
+  // Starts again from (t, y), discarding the solver's history (sensitivities carry over).
   void restart(double t, const double* y);
+  // Forward sensitivities dy/dp of every state with respect to `count` parameters that the
+  // right-hand side reads through `params` (CVODES perturbs them in place for its difference
+  // quotients); `scales` are their typical magnitudes. Call before the first advance.
+  // `initial`: dy0/dp, [parameter][state] (the initial state may depend on the parameters).
+  void enable_sensitivities(double* params, int count, const double* scales, const double* initial);
+  // dy/dp at the last advance time: [parameter][state].
+  void sensitivities(double* out) const;
   long steps() const;
   long rhs_evaluations() const;
 
