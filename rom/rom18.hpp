@@ -8,6 +8,7 @@
 #include "core/host_device.hpp"
 #include "core/vehicle/driver_inputs.hpp"
 #include "rom/driveline.hpp"
+#include "rom/four_wheels.hpp"
 #include "rom/loads.hpp"
 #include "rom/rom_sample.hpp"
 #include "rom/wheel_contact.hpp"
@@ -35,8 +36,6 @@ struct Rom18 {
   // Positions: the fixed-step scheme advances these with the velocities already stepped.
   static TERRACAL_HD double roll_of(const double* y) { return y[kRoll]; }
   static TERRACAL_HD bool is_position(int i) { return i <= kRoll; }
-  static TERRACAL_HD double wheel_x(const RomVehicle& v, int w) { return w < 2 ? v.cg_to_front : -v.cg_to_rear; }
-  static TERRACAL_HD double wheel_y(const RomVehicle& v, int w) { return (w % 2 == 0 ? 0.5 : -0.5) * v.track[w / 2]; }
 
   static TERRACAL_HD void kinematics(const RomVehicle& v, const double* y, double* dy) {
     const double c = cos(y[kYaw]), s = sin(y[kYaw]);
@@ -47,10 +46,7 @@ struct Rom18 {
   }
 
   // Tire forces on the chassis for given chassis accelerations (they set the loads).
-  struct Forces {
-    double fx = 0, fy = 0, mz = 0;
-    WheelContact w[4];
-    double fz[4] = {};
+  struct Forces : FourWheelForces {
     double roll = 0, roll_rate = 0;
   };
   static TERRACAL_HD Forces forces(const RomVehicle& v, double cd, double sd, const double* y, double ax, double ay) {
@@ -58,19 +54,12 @@ struct Rom18 {
     const AxleLoads axle = axle_loads(v, ax);
     f.roll = v.has(kEffectRoll) ? y[kRoll] : steady_roll(v, ay);
     f.roll_rate = v.has(kEffectRoll) ? y[kRollRate] : 0.0;
+    double fz[4];
     for (int w = 0; w < 4; ++w) {
-      const int axle_i = w / 2;
-      const double transfer = lateral_transfer(v, axle_i, ay, f.roll, f.roll_rate);
-      f.fz[w] = 0.5 * (axle_i == 0 ? axle.front : axle.rear) + (w % 2 == 0 ? -transfer : transfer);
-      const double px = wheel_x(v, w), py = wheel_y(v, w);
-      const double c = axle_i == 0 ? cd : 1.0, s = axle_i == 0 ? sd : 0.0;
-      const Planar vw = to_wheel_frame(y[kVx] - y[kYawRate] * py, y[kVy] + y[kYawRate] * px, c, s);
-      f.w[w] = wheel_contact(v, v.tire[axle_i], f.fz[w], vw.x, vw.y, y[kSpin + w], y[kXe + w], y[kYe + w], 1.0);
-      const Planar fc = to_chassis_frame(f.w[w].fx, f.w[w].fy, c, s);
-      f.fx += fc.x;
-      f.fy += fc.y;
-      f.mz += px * fc.y - py * fc.x;
+      const double transfer = lateral_transfer(v, w / 2, ay, f.roll, f.roll_rate);
+      fz[w] = 0.5 * (w < 2 ? axle.front : axle.rear) + (w % 2 == 0 ? -transfer : transfer);
     }
+    static_cast<FourWheelForces&>(f) = four_wheel_contacts<Rom18>(v, cd, sd, y, fz);
     return f;
   }
 
@@ -88,13 +77,9 @@ struct Rom18 {
     // (state) give them without a loop; steady tires take one more pass from the first estimate.
     double ax = 0, ay = 0;
     if (v.has(kEffectTireRelaxation)) {
-      for (int w = 0; w < 4; ++w) {
-        const TmeasyParams& t = v.tire[w / 2];
-        const Planar fc = to_chassis_frame(t.longitudinal_stiffness * y[kXe + w], t.lateral_stiffness * y[kYe + w],
-                                           w < 2 ? cd : 1.0, w < 2 ? sd : 0.0);
-        ax += fc.x / m;
-        ay += fc.y / m;
-      }
+      const Planar a = tread_spring_acceleration<Rom18>(v, cd, sd, y);
+      ax = a.x;
+      ay = a.y;
     } else {
       const Forces first = forces(v, cd, sd, y, 0.0, 0.0);
       ax = first.fx / m;
@@ -114,41 +99,11 @@ struct Rom18 {
     } else {
       dy[kRollRate] = 0.0;
     }
-    wheel_spins(v, in, gear, y, f, dy, aux, smooth_dry);
+    four_wheel_spins<Rom18>(v, in, gear, y, f, dy, aux, smooth_dry);
     if (positions) kinematics(v, y, dy);
     aux->ax = ax;
     aux->ay = ay;
     for (int w = 0; w < 4; ++w) aux->fz[w] = f.fz[w];
-  }
-
-  static TERRACAL_HD void wheel_spins(const RomVehicle& v, const DriverInput& in, int gear, const double* y,
-                                      const Forces& f, double* dy, RomAux* aux, bool smooth_dry) {
-    bool driven[4];
-    double j[4], tau[4], mean_spin = 0;
-    int n_driven = 0;
-    for (int w = 0; w < 4; ++w) {
-      driven[w] = is_driven(v.powertrain.drive, w < 2);
-      if (driven[w]) mean_spin += y[kSpin + w], ++n_driven;
-    }
-    mean_spin /= n_driven;
-    const Driveline d = driveline(v, gear, clamp_to(in.throttle, 0.0, 1.0), y[kCrank], mean_spin, n_driven);
-    const double brake = clamp_to(in.braking, 0.0, 1.0) * v.powertrain.max_brake_torque;
-    for (int w = 0; w < 4; ++w) {
-      const TmeasyParams& t = v.tire[w / 2];
-      j[w] = t.wheel_inertia;
-      tau[w] = (driven[w] ? d.wheel_torque : 0.0) - f.w[w].fx * f.w[w].rdyn;
-      double dry = brake;
-      if (v.has(kEffectRollingResistance)) dry += t.rolling_resistance * max_of(f.fz[w], 0.0) * f.w[w].rdyn;
-      if (smooth_dry) tau[w] += dry_friction_torque(dry, y[kSpin + w]);
-      aux->dry_torque[w] = smooth_dry ? 0.0 : dry;
-      aux->spin_inertia[w] = j[w] + (driven[w] ? d.coupling * n_driven : 0.0);
-      dy[kXe + w] = v.has(kEffectTireRelaxation) ? f.w[w].dxe : 0.0;
-      dy[kYe + w] = v.has(kEffectTireRelaxation) ? f.w[w].dye : 0.0;
-    }
-    spin_accelerations(4, driven, j, d.coupling, tau, dy + kSpin);
-    dy[kCrank] = d.crank_accel;
-    aux->engine_speed = d.engine_speed;
-    aux->gearbox_input_speed = d.input_speed;
   }
 
   // A vehicle rolling straight at `speed` with tires at their static loads; returns the gear.

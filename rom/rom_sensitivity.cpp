@@ -95,9 +95,17 @@ void run(RomVehicle v, const DriverSeries& d, const RomRunOptions& o, const std:
 }  // namespace
 
 const std::vector<std::string>& sensitivity_parameter_names() {
-  static const std::vector<std::string> names = {"mass",         "cg_height", "yaw_inertia",         "roll_inertia",
-                                                 "max_steer",    "friction",  "drag_area",           "roll_stiffness_front",
-                                                 "roll_stiffness_rear", "roll_damping_front", "roll_damping_rear"};
+  static const std::vector<std::string> names = {"mass",
+                                                 "cg_height",
+                                                 "yaw_inertia",
+                                                 "roll_inertia",
+                                                 "max_steer",
+                                                 "friction",
+                                                 "drag_area",
+                                                 "roll_stiffness_front",
+                                                 "roll_stiffness_rear",
+                                                 "roll_damping_front",
+                                                 "roll_damping_rear"};
   return names;
 }
 

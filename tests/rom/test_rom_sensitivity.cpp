@@ -27,7 +27,7 @@ TEST_CASE("rom: CVODES sensitivities match central finite differences within 1e-
   const int checked[] = {Rom18::kY, Rom18::kYaw, Rom18::kVx, Rom18::kVy, Rom18::kYawRate, Rom18::kRoll};
   for (std::size_t k = 0; k < params.size(); ++k) {
     RomVehicle plus = v, minus = v;
-    double* fp = params[k] == "mass"        ? &plus.mass
+    double* fp = params[k] == "mass"          ? &plus.mass
                  : params[k] == "yaw_inertia" ? &plus.yaw_inertia
                  : params[k] == "max_steer"   ? &plus.max_steer
                                               : &plus.roll_stiffness[0];
@@ -41,10 +41,10 @@ TEST_CASE("rom: CVODES sensitivities match central finite differences within 1e-
     const RomRunResult rp = run(plus, d, fd), rm = run(minus, d, fd);
     for (int state : checked) {
       const auto pick = [&](const RomSample& x) {
-        return state == Rom18::kY     ? x.y
-               : state == Rom18::kYaw ? x.yaw
-               : state == Rom18::kVx  ? x.vx
-               : state == Rom18::kVy  ? x.vy
+        return state == Rom18::kY         ? x.y
+               : state == Rom18::kYaw     ? x.yaw
+               : state == Rom18::kVx      ? x.vx
+               : state == Rom18::kVy      ? x.vy
                : state == Rom18::kYawRate ? x.yaw_rate
                                           : x.roll;
       };
