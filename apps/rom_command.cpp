@@ -34,8 +34,8 @@ struct RomArgs {
   std::uint64_t seed = 1;
 };
 
-const std::map<std::string, rom::RomModel> kModels = {{"11dof", rom::RomModel::k11Dof},
-                                                      {"18dof", rom::RomModel::k18Dof}};
+const std::map<std::string, rom::RomModel> kModels = {
+    {"11dof", rom::RomModel::k11Dof}, {"18dof", rom::RomModel::k18Dof}, {"24dof", rom::RomModel::k24Dof}};
 const std::map<std::string, rom::RomIntegrator> kIntegrators = {{"cvodes", rom::RomIntegrator::kCvodes},
                                                                 {"half-implicit", rom::RomIntegrator::kHalfImplicit}};
 }  // namespace

@@ -13,6 +13,7 @@
 #include "rom/half_implicit.hpp"
 #include "rom/rom11.hpp"
 #include "rom/rom18.hpp"
+#include "rom/rom24.hpp"
 #include "rom/rom_run.hpp"
 #include "rom/rom_vehicle_json.hpp"
 
@@ -71,6 +72,7 @@ int main(int argc, char** argv) {
   };
   report("11dof", "half-implicit loop", [&] { return loop_seconds<Rom11>(v, in); });
   report("18dof", "half-implicit loop", [&] { return loop_seconds<Rom18>(v, in); });
+  report("24dof", "half-implicit loop", [&] { return loop_seconds<Rom24>(v, in); });
   report("11dof", "run_rom half-implicit",
          [&] { return run_seconds(v, in, RomModel::k11Dof, RomIntegrator::kHalfImplicit); });
   report("18dof", "run_rom half-implicit",
@@ -79,5 +81,9 @@ int main(int argc, char** argv) {
          [&] { return run_seconds(v, in, RomModel::k11Dof, RomIntegrator::kCvodes); });
   report("18dof", "run_rom cvodes (1e-6, 1e-8)",
          [&] { return run_seconds(v, in, RomModel::k18Dof, RomIntegrator::kCvodes); });
+  report("24dof", "run_rom half-implicit",
+         [&] { return run_seconds(v, in, RomModel::k24Dof, RomIntegrator::kHalfImplicit); });
+  report("24dof", "run_rom cvodes (1e-6, 1e-8)",
+         [&] { return run_seconds(v, in, RomModel::k24Dof, RomIntegrator::kCvodes); });
   return 0;
 }

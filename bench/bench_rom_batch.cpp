@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
   o.device = device == "cpu" ? BatchDevice::kCpu : BatchDevice::kCuda;
   std::printf("%-6s %-8s %10s %10s %12s %10s %8s %s\n", "model", "params", "vehicles", "wall [s]", "veh*s/s",
               "B/vehicle", "failed", "device");
-  for (RomModel m : {RomModel::k11Dof, RomModel::k18Dof}) {
+  for (RomModel m : {RomModel::k11Dof, RomModel::k18Dof, RomModel::k24Dof}) {
     o.model = m;
     for (bool varied : {false, true}) {
       for (long n = 10000; n <= max_n; n *= 2) {

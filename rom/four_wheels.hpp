@@ -63,33 +63,32 @@ TERRACAL_HD_INLINE Planar tread_spring_acceleration(const RomVehicle& v, double 
 template <class M>
 TERRACAL_HD_INLINE void four_wheel_spins(const RomVehicle& v, const DriverInput& in, int gear, const double* y,
                                          const FourWheelForces& f, double* dy, RomAux* aux, bool smooth_dry) {
-    bool driven[4];
-    double j[4], tau[4], mean_spin = 0;
-    int n_driven = 0;
-    for (int w = 0; w < 4; ++w) {
-      driven[w] = is_driven(v.powertrain.drive, w < 2);
-      if (driven[w]) mean_spin += y[M::kSpin + w], ++n_driven;
-    }
-    mean_spin /= n_driven;
-    const Driveline d = driveline(v, gear, clamp_to(in.throttle, 0.0, 1.0), y[M::kCrank], mean_spin, n_driven);
-    const double brake = clamp_to(in.braking, 0.0, 1.0) * v.powertrain.max_brake_torque;
-    for (int w = 0; w < 4; ++w) {
-      const TmeasyParams& t = v.tire[w / 2];
-      j[w] = t.wheel_inertia;
-      tau[w] = (driven[w] ? d.wheel_torque : 0.0) - f.w[w].fx * f.w[w].rdyn;
-      double dry = brake;
-      if (v.has(kEffectRollingResistance)) dry += t.rolling_resistance * max_of(f.fz[w], 0.0) * f.w[w].rdyn;
-      if (smooth_dry) tau[w] += dry_friction_torque(dry, y[M::kSpin + w]);
-      aux->dry_torque[w] = smooth_dry ? 0.0 : dry;
-      aux->spin_inertia[w] = j[w] + (driven[w] ? d.coupling * n_driven : 0.0);
-      dy[M::kXe + w] = v.has(kEffectTireRelaxation) ? f.w[w].dxe : 0.0;
-      dy[M::kYe + w] = v.has(kEffectTireRelaxation) ? f.w[w].dye : 0.0;
-    }
-    spin_accelerations(4, driven, j, d.coupling, tau, dy + M::kSpin);
-    dy[M::kCrank] = d.crank_accel;
-    aux->engine_speed = d.engine_speed;
-    aux->gearbox_input_speed = d.input_speed;
+  bool driven[4];
+  double j[4], tau[4], mean_spin = 0;
+  int n_driven = 0;
+  for (int w = 0; w < 4; ++w) {
+    driven[w] = is_driven(v.powertrain.drive, w < 2);
+    if (driven[w]) mean_spin += y[M::kSpin + w], ++n_driven;
   }
-
+  mean_spin /= n_driven;
+  const Driveline d = driveline(v, gear, clamp_to(in.throttle, 0.0, 1.0), y[M::kCrank], mean_spin, n_driven);
+  const double brake = clamp_to(in.braking, 0.0, 1.0) * v.powertrain.max_brake_torque;
+  for (int w = 0; w < 4; ++w) {
+    const TmeasyParams& t = v.tire[w / 2];
+    j[w] = t.wheel_inertia;
+    tau[w] = (driven[w] ? d.wheel_torque : 0.0) - f.w[w].fx * f.w[w].rdyn;
+    double dry = brake;
+    if (v.has(kEffectRollingResistance)) dry += t.rolling_resistance * max_of(f.fz[w], 0.0) * f.w[w].rdyn;
+    if (smooth_dry) tau[w] += dry_friction_torque(dry, y[M::kSpin + w]);
+    aux->dry_torque[w] = smooth_dry ? 0.0 : dry;
+    aux->spin_inertia[w] = j[w] + (driven[w] ? d.coupling * n_driven : 0.0);
+    dy[M::kXe + w] = v.has(kEffectTireRelaxation) ? f.w[w].dxe : 0.0;
+    dy[M::kYe + w] = v.has(kEffectTireRelaxation) ? f.w[w].dye : 0.0;
+  }
+  spin_accelerations(4, driven, j, d.coupling, tau, dy + M::kSpin);
+  dy[M::kCrank] = d.crank_accel;
+  aux->engine_speed = d.engine_speed;
+  aux->gearbox_input_speed = d.input_speed;
+}
 
 }  // namespace terracal::rom

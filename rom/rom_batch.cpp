@@ -9,6 +9,7 @@
 #include "core/parallel_for.hpp"
 #include "rom/rom11.hpp"
 #include "rom/rom18.hpp"
+#include "rom/rom24.hpp"
 #include "rom/rom_batch_kernel.hpp"
 #if TERRACAL_HAVE_CUDA
 #include "rom/rom_batch_device.hpp"
@@ -87,8 +88,10 @@ BatchResult run_rom_batch(const std::vector<RomVehicle>& vehicles, const std::ve
   const auto start = std::chrono::steady_clock::now();
   if (o.model == RomModel::k11Dof)
     run_cpu<Rom11>(vehicles, views, n, o, r);
-  else
+  else if (o.model == RomModel::k18Dof)
     run_cpu<Rom18>(vehicles, views, n, o, r);
+  else
+    run_cpu<Rom24>(vehicles, views, n, o, r);
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   for (long i = 0; i < n; ++i) r.failed += r.metrics[static_cast<std::size_t>(kMetFailedAt) * n + i] >= 0;
   return r;

@@ -10,6 +10,7 @@
 #include "core/parallel_for_cuda.cuh"
 #include "rom/rom11.hpp"
 #include "rom/rom18.hpp"
+#include "rom/rom24.hpp"
 #include "rom/rom_batch_device.hpp"
 #include "rom/rom_batch_kernel.hpp"
 
@@ -117,8 +118,10 @@ BatchResult run_rom_batch_cuda(const std::vector<RomVehicle>& vehicles, const st
   const auto start = std::chrono::steady_clock::now();
   if (o.model == RomModel::k11Dof)
     run_device<Rom11>(vehicles, drivers, n, o, r);
-  else
+  else if (o.model == RomModel::k18Dof)
     run_device<Rom18>(vehicles, drivers, n, o, r);
+  else
+    run_device<Rom24>(vehicles, drivers, n, o, r);
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   for (long i = 0; i < n; ++i) r.failed += r.metrics[static_cast<std::size_t>(kMetFailedAt) * n + i] >= 0;
   return r;

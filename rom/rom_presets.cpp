@@ -12,11 +12,12 @@ namespace {
 constexpr const char* kHmmwv = R"json({
   "type": "ROM vehicle",
   "name": "HMMWV",
-  "source": "LFDM wheeled_vehicle_models/18dof/data/json/HMMWV.json and TMeasy.json (Chrono HMMWV)",
+  "source": "LFDM wheeled_vehicle_models/18dof/data/json/HMMWV.json and TMeasy.json (Chrono HMMWV); pitch inertia and suspension from 24dof-gpu/data/json/HMMWV/vehicle.json and suspension.json",
   "effects": ["tire_relaxation", "torque_converter", "roll", "rolling_resistance"],
   "mass": 2097.85, "unsprung_mass": [139.133, 139.133],
   "cg_to_front": 1.6889, "cg_to_rear": 1.6889, "cg_height": 0.713,
-  "yaw_inertia": 4519, "roll_inertia": 1289, "track": [1.82, 1.82],
+  "yaw_inertia": 4519, "roll_inertia": 1289, "pitch_inertia": 3718.28, "track": [1.82, 1.82],
+  "spring_rate": 150000, "damper_rate": 19015.5692,
   "roll_center_height": [0.379, 0.327], "roll_stiffness": [31000, 31000], "roll_damping": [3300, 3300],
   "max_steer": 0.6525249,
   "powertrain": {
@@ -46,11 +47,12 @@ constexpr const char* kHmmwv = R"json({
 constexpr const char* kSedan = R"json({
   "type": "ROM vehicle",
   "name": "sedan",
-  "source": "LFDM wheeled_vehicle_models/18dof/data/json/Sedan/vehicle.json and sedan_TMeasy.json (Chrono sedan)",
+  "source": "LFDM wheeled_vehicle_models/18dof/data/json/Sedan/vehicle.json and sedan_TMeasy.json (Chrono sedan); pitch inertia and suspension from 24dof-gpu/data/json/Sedan/vehicle.json and 24dof/data/json/Sedan/suspension.json",
   "effects": ["tire_relaxation", "roll", "rolling_resistance"],
   "mass": 1671.26, "unsprung_mass": [54.543, 54.543],
   "cg_to_front": 1.388, "cg_to_rear": 1.388, "cg_height": 0.3,
-  "yaw_inertia": 1242.33, "roll_inertia": 296.868, "track": [1.5958, 1.5958],
+  "yaw_inertia": 1242.33, "roll_inertia": 296.868, "pitch_inertia": 1119.47, "track": [1.5958, 1.5958],
+  "spring_rate": 500000, "damper_rate": 10000,
   "roll_center_height": [0.41, 0.40], "roll_stiffness": [60000, 60000], "roll_damping": [3300, 3300],
   "max_steer": 0.69,
   "powertrain": {

@@ -10,13 +10,23 @@
 #include "rom/half_implicit.hpp"
 #include "rom/rom11.hpp"
 #include "rom/rom18.hpp"
+#include "rom/rom24.hpp"
 
 namespace terracal::rom {
 
-const char* model_name(RomModel m) { return m == RomModel::k11Dof ? Rom11::kName : Rom18::kName; }
+const char* model_name(RomModel m) {
+  return m == RomModel::k11Dof ? Rom11::kName : m == RomModel::k18Dof ? Rom18::kName : Rom24::kName;
+}
 const char* integrator_name(RomIntegrator i) { return i == RomIntegrator::kCvodes ? "cvodes" : "half-implicit"; }
 
 void check_model_effects(const RomVehicle& v, RomModel m) {
+  if (m == RomModel::k24Dof) {
+    if (!(v.spring_rate[0] > 0 && v.spring_rate[1] > 0 && v.pitch_inertia > 0))
+      throw InputError(
+          "the 24-DOF model needs the vehicle's 'spring_rate', 'damper_rate' (per axle) and "
+          "'pitch_inertia'");
+    return;
+  }
   if (v.has(kEffectSuspension))
     throw InputError(
         fmt::format("effect 'suspension' needs vertical travel per corner (the 24-DOF model); the {} "
@@ -126,8 +136,10 @@ RomRunResult run_rom(const RomVehicle& vehicle, RomDriver& driver, const RomRunO
   const auto start = std::chrono::steady_clock::now();
   if (options.model == RomModel::k11Dof)
     run_model<Rom11>(vehicle, driver, options, r);
-  else
+  else if (options.model == RomModel::k18Dof)
     run_model<Rom18>(vehicle, driver, options, r);
+  else
+    run_model<Rom24>(vehicle, driver, options, r);
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }

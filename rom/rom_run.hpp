@@ -13,7 +13,7 @@
 
 namespace terracal::rom {
 
-enum class RomModel { k11Dof, k18Dof };
+enum class RomModel { k11Dof, k18Dof, k24Dof };
 enum class RomIntegrator { kCvodes, kHalfImplicit };
 
 const char* model_name(RomModel m);

@@ -8,6 +8,7 @@
 #include "rom/cvodes_integrator.hpp"
 #include "rom/rom11.hpp"
 #include "rom/rom18.hpp"
+#include "rom/rom24.hpp"
 
 namespace terracal::rom {
 
@@ -121,8 +122,10 @@ RomSensitivityResult run_rom_sensitivities(const RomVehicle& vehicle, const Driv
   r.parameters = parameters;
   if (options.model == RomModel::k11Dof)
     run<Rom11>(v, driver, options, parameters, r);
-  else
+  else if (options.model == RomModel::k18Dof)
     run<Rom18>(v, driver, options, parameters, r);
+  else
+    run<Rom24>(v, driver, options, parameters, r);
   return r;
 }
 

@@ -30,12 +30,14 @@ struct RomVehicle {
   double cg_height = 0;               // h of the sprung mass above ground [m]
   double yaw_inertia = 0;             // Jz [kg m^2]
   double roll_inertia = 0;            // Jx of the sprung mass about its CG [kg m^2]
+  double pitch_inertia = 0;           // Jy of the sprung mass about its CG [kg m^2] (24 DOF)
   double track[2] = {};               // front, rear [m]
   double roll_center_height[2] = {};  // front, rear [m]
   double roll_stiffness[2] = {};      // front, rear [N m/rad]
   double roll_damping[2] = {};        // front, rear [N m s/rad]
   double max_steer = 0;               // road-wheel angle at steering = 1 [rad]
-  // Suspension per corner (24 DOF): spring rate, damping, static ride height of the sprung CG.
+  // Suspension per corner (24 DOF): a spring and a damper between the body corner and the wheel,
+  // preloaded to carry the static corner load with the body at cg_height.
   double spring_rate[2] = {};  // front, rear [N/m]
   double damper_rate[2] = {};  // front, rear [N s/m]
   // Tires (front, rear), powertrain, resistance, environment.

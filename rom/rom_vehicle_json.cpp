@@ -118,6 +118,7 @@ RomVehicle read_own(JsonObject& o, const std::string& folder, bool tire_given) {
   v.cg_height = o.number("cg_height", 0, 100, true);
   v.yaw_inertia = o.number("yaw_inertia", 0, 1e9, true);
   v.roll_inertia = o.number("roll_inertia", 0, 1e9, true);
+  v.pitch_inertia = o.number_or("pitch_inertia", 0.0, 0, 1e9, true);
   axle_pair(o, "track", v.track, 0, 100);
   axle_pair(o, "roll_center_height", v.roll_center_height, -100, 100);
   axle_pair(o, "roll_stiffness", v.roll_stiffness, 0, 1e12);

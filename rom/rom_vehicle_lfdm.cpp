@@ -47,6 +47,7 @@ RomVehicle read_lfdm_vehicle(JsonObject& o) {
   v.cg_height = o.number("h", 0, 100, true);
   v.yaw_inertia = o.number("jz", 0, 1e9, true);
   v.roll_inertia = o.number("jx", 0, 1e9, true);
+  v.pitch_inertia = o.number_or("jy", 0.0, 0, 1e9, true);  // LFDM's 24-DOF files
   // The roll-yaw product of inertia: the 18-DOF model keeps roll and yaw uncoupled, as LFDM's does
   // for the sprung mass's quasi-static load transfer; accepted for the file to load, not used.
   if (o.has("jxz")) o.number("jxz", -1e9, 1e9);

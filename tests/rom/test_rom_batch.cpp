@@ -61,7 +61,8 @@ TEST_CASE("rom batch: each CPU batch vehicle equals its own single run; channels
   }
 }
 
-TEST_CASE("rom batch: GPU and CPU batches of 1000 different vehicles agree within 1e-10", "[rom][batch][gpu]") {
+TEST_CASE("rom batch: GPU and CPU batches of 1000 different vehicles agree within 1e-10 (11, 18, 24 DOF)",
+          "[rom][batch][gpu]") {
   if (!test::cuda_device_or_skip("rom batch GPU/CPU agreement")) return;
   const long n = 1000;
   const auto vehicles = varied_vehicles(n);
@@ -71,19 +72,24 @@ TEST_CASE("rom batch: GPU and CPU batches of 1000 different vehicles agree withi
   o.initial_speed = 12.0;
   o.output_rate = 50;
   o.channels = {kChVx, kChAy};
-  const BatchResult cpu = run_rom_batch(vehicles, {&d}, n, o);
-  for (long chunk : {0L, 300L}) {
-    o.device = BatchDevice::kCuda;
-    o.max_chunk = chunk;
-    const BatchResult gpu = run_rom_batch(vehicles, {&d}, n, o);
-    INFO("chunk " << chunk << ", " << gpu.chunks << " launches on " << gpu.device);
-    double worst = 0;
-    for (std::size_t k = 0; k < cpu.final_state.size(); ++k)
-      worst = std::max(worst, relative(gpu.final_state[k], cpu.final_state[k]));
-    for (std::size_t k = 0; k < cpu.channels.size(); ++k)
-      worst = std::max(worst, relative(gpu.channels[k], cpu.channels[k]));
-    INFO("largest relative difference " << worst);
-    CHECK(worst < 1e-10);
-    CHECK(gpu.failed == cpu.failed);
+  for (RomModel m : {RomModel::k11Dof, RomModel::k18Dof, RomModel::k24Dof}) {
+    o.model = m;
+    o.device = BatchDevice::kCpu;
+    o.max_chunk = 0;
+    const BatchResult cpu = run_rom_batch(vehicles, {&d}, n, o);
+    for (long chunk : {0L, 300L}) {
+      o.device = BatchDevice::kCuda;
+      o.max_chunk = chunk;
+      const BatchResult gpu = run_rom_batch(vehicles, {&d}, n, o);
+      INFO(model_name(m) << ", chunk " << chunk << ", " << gpu.chunks << " launches on " << gpu.device);
+      double worst = 0;
+      for (std::size_t k = 0; k < cpu.final_state.size(); ++k)
+        worst = std::max(worst, relative(gpu.final_state[k], cpu.final_state[k]));
+      for (std::size_t k = 0; k < cpu.channels.size(); ++k)
+        worst = std::max(worst, relative(gpu.channels[k], cpu.channels[k]));
+      INFO("largest relative difference " << worst);
+      CHECK(worst < 1e-10);
+      CHECK(gpu.failed == cpu.failed);
+    }
   }
 }

@@ -24,7 +24,7 @@ double axle_cornering_stiffness(const RomVehicle& v, int axle) {
 
 TEST_CASE("rom: at 2 m/s under a small constant steer the path radius is wheelbase / tan(delta)", "[rom]") {
   const RomVehicle v = frictionless_hmmwv();
-  for (RomModel m : {RomModel::k11Dof, RomModel::k18Dof}) {
+  for (RomModel m : {RomModel::k11Dof, RomModel::k18Dof, RomModel::k24Dof}) {
     const double steering = 0.05, delta = steering * v.max_steer;
     const RomRunResult r = run(v, constant_inputs(steering, 0, 0), options(m, 20.0, 2.0));
     const RomSample& s = r.samples.back();
@@ -45,7 +45,7 @@ TEST_CASE("rom: steady yaw-rate gain matches the linear bicycle model below 0.3 
   const double cf = axle_cornering_stiffness(v, 0), cr = axle_cornering_stiffness(v, 1);
   const double k_us = axle_loads(v, 0).front / g / cf - axle_loads(v, 0).rear / g / cr;
   REQUIRE(k_us > 0);
-  for (RomModel m : {RomModel::k11Dof, RomModel::k18Dof}) {
+  for (RomModel m : {RomModel::k11Dof, RomModel::k18Dof, RomModel::k24Dof}) {
     for (double speed : {10.0, 20.0}) {
       const double steering = 0.02, delta = steering * v.max_steer;
       const RomRunResult r = run(v, constant_inputs(steering, 0, 0), options(m, 6.0, speed));

@@ -26,7 +26,7 @@ void check_finite(const RomRunResult& r, double max_speed) {
 
 TEST_CASE("rom: 60 s at standstill, straight and at full lock: no creep, no jitter", "[rom][hard]") {
   const RomVehicle v = hmmwv();
-  for (RomModel m : {RomModel::k11Dof, RomModel::k18Dof})
+  for (RomModel m : {RomModel::k11Dof, RomModel::k18Dof, RomModel::k24Dof})
     for (double steering : {0.0, 1.0}) {
       const RomRunResult r = run(v, constant_inputs(steering, 0, 0), options(m, 60.0, 0.0));
       double max_speed = 0;
@@ -58,7 +58,7 @@ TEST_CASE("rom: reverse, low friction, Moon gravity and full lock at speed stay 
     check_finite(r, 50.0);
   }
   SECTION("full lock at 25 m/s spins the vehicle without NaN") {
-    for (RomModel m : {RomModel::k11Dof, RomModel::k18Dof}) {
+    for (RomModel m : {RomModel::k11Dof, RomModel::k18Dof, RomModel::k24Dof}) {
       const RomRunResult r = run(base, constant_inputs(1, 0, 0), options(m, 10.0, 25.0));
       check_finite(r, 30.0);
       CHECK(std::fabs(r.samples.back().yaw) > 1.0);

@@ -29,7 +29,7 @@ TEST_CASE("rom: the half-implicit scheme converges to CVODES at first order", "[
   v.effects &= ~kEffectRollingResistance;
   const DriverSeries inputs =
       DriverSeries::from_rows({0, 1, 2, 3, 4}, {0, 0.3, -0.3, 0.1, 0}, {0.2, 0.6, 0.4, 0.5, 0.3}, {0, 0, 0, 0, 0});
-  for (RomModel m : {RomModel::k11Dof, RomModel::k18Dof}) {
+  for (RomModel m : {RomModel::k11Dof, RomModel::k18Dof, RomModel::k24Dof}) {
     RomRunOptions o = options(m, 4.0, 10.0);
     o.integrator = RomIntegrator::kCvodes;
     o.rtol = 1e-10;

@@ -13,7 +13,7 @@ using namespace terracal::rom::testing;
 
 TEST_CASE("rom: full throttle from rest: speed rises, shifts at the upshift speed, no lateral drift", "[rom]") {
   const RomVehicle v = hmmwv();
-  for (RomModel m : {RomModel::k11Dof, RomModel::k18Dof}) {
+  for (RomModel m : {RomModel::k11Dof, RomModel::k18Dof, RomModel::k24Dof}) {
     const RomRunResult r = run(v, constant_inputs(0, 1, 0), options(m, 15.0, 0.0));
     int shifts = 0;
     for (std::size_t i = 1; i < r.samples.size(); ++i) {
