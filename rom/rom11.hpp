@@ -120,18 +120,7 @@ struct Rom11 {
   }
 
   static TERRACAL_HD RomSample sample(const RomVehicle&, double t, const double* y, const RomAux& aux, int gear) {
-    RomSample s;
-    s.time = t;
-    s.x = y[kX];
-    s.y = y[kY];
-    s.yaw = y[kYaw];
-    s.vx = y[kVx];
-    s.vy = y[kVy];
-    s.yaw_rate = y[kYawRate];
-    s.ax = aux.ax;
-    s.ay = aux.ay;
-    s.engine_speed_rpm = aux.engine_speed * 30.0 / 3.14159265358979323846;
-    s.gear = gear + 1;
+    RomSample s = planar_sample<Rom11>(t, y, aux, gear);
     return s;
   }
 };

@@ -122,20 +122,9 @@ struct Rom18 {
   }
 
   static TERRACAL_HD RomSample sample(const RomVehicle& v, double t, const double* y, const RomAux& aux, int gear) {
-    RomSample s;
-    s.time = t;
-    s.x = y[kX];
-    s.y = y[kY];
-    s.yaw = y[kYaw];
+    RomSample s = planar_sample<Rom18>(t, y, aux, gear);
     s.roll = v.has(kEffectRoll) ? y[kRoll] : steady_roll(v, aux.ay);
     s.roll_rate = v.has(kEffectRoll) ? y[kRollRate] : 0.0;
-    s.vx = y[kVx];
-    s.vy = y[kVy];
-    s.yaw_rate = y[kYawRate];
-    s.ax = aux.ax;
-    s.ay = aux.ay;
-    s.engine_speed_rpm = aux.engine_speed * 30.0 / 3.14159265358979323846;
-    s.gear = gear + 1;
     return s;
   }
 };

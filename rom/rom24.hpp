@@ -127,22 +127,11 @@ struct Rom24 {
   }
 
   static TERRACAL_HD RomSample sample(const RomVehicle&, double t, const double* y, const RomAux& aux, int gear) {
-    RomSample s;
-    s.time = t;
-    s.x = y[kX];
-    s.y = y[kY];
+    RomSample s = planar_sample<Rom24>(t, y, aux, gear);
     s.z = y[kZ];
-    s.yaw = y[kYaw];
     s.roll = y[kRoll];
     s.pitch = y[kPitch];
     s.roll_rate = y[kRollRate];
-    s.vx = y[kVx];
-    s.vy = y[kVy];
-    s.yaw_rate = y[kYawRate];
-    s.ax = aux.ax;
-    s.ay = aux.ay;
-    s.engine_speed_rpm = aux.engine_speed * 30.0 / 3.14159265358979323846;
-    s.gear = gear + 1;
     return s;
   }
 };

@@ -7,9 +7,7 @@
 
 #include "core/errors.hpp"
 #include "core/parallel_for.hpp"
-#include "rom/rom11.hpp"
-#include "rom/rom18.hpp"
-#include "rom/rom24.hpp"
+#include "rom/rom_models.hpp"
 #include "rom/rom_batch_kernel.hpp"
 #if TERRACAL_HAVE_CUDA
 #include "rom/rom_batch_device.hpp"
@@ -35,24 +33,10 @@ void check_batch(const std::vector<RomVehicle>& vehicles, const std::vector<cons
 template <class M>
 void run_cpu(const std::vector<RomVehicle>& vehicles, const std::vector<DriverSeriesView>& views, long n,
              const BatchOptions& o, BatchResult& r) {
-  BatchKernel<M> k;
+  BatchKernel<M> k = configure_batch<M>(o, static_cast<long>(vehicles.size()), static_cast<long>(views.size()), n, r);
   k.vehicles = vehicles.data();
-  k.n_vehicles = static_cast<long>(vehicles.size());
   k.drivers = views.data();
-  k.n_drivers = static_cast<long>(views.size());
   k.count = n;
-  k.step = o.step;
-  k.steps = std::lround(o.end_time / o.step);
-  k.initial_speed = o.initial_speed;
-  k.sample_every = o.output_rate > 0 ? std::lround(1.0 / (o.output_rate * o.step)) : 0;
-  k.samples = k.sample_every > 0 ? static_cast<int>(k.steps / k.sample_every) + 1 : 0;
-  k.n_channels = k.sample_every > 0 ? static_cast<int>(o.channels.size()) : 0;
-  for (int c = 0; c < k.n_channels; ++c) k.channel[c] = o.channels[c];
-  r.samples = k.samples;
-  r.states = M::kStates;
-  r.metrics.assign(static_cast<std::size_t>(kBatchMetricCount) * n, 0.0);
-  r.channels.assign(static_cast<std::size_t>(k.n_channels) * k.samples * n, 0.0);
-  r.final_state.assign(static_cast<std::size_t>(M::kStates) * n, 0.0);
   k.metrics = r.metrics.data();
   k.channels = r.channels.data();
   k.final_state = r.final_state.data();
@@ -81,19 +65,13 @@ BatchResult run_rom_batch(const std::vector<RomVehicle>& vehicles, const std::ve
 #endif
   }
   BatchResult r;
-  r.vehicles = n;
   r.device = "cpu (OpenMP)";
   std::vector<DriverSeriesView> views;
   for (const DriverSeries* d : drivers) views.push_back(d->view());
   const auto start = std::chrono::steady_clock::now();
-  if (o.model == RomModel::k11Dof)
-    run_cpu<Rom11>(vehicles, views, n, o, r);
-  else if (o.model == RomModel::k18Dof)
-    run_cpu<Rom18>(vehicles, views, n, o, r);
-  else
-    run_cpu<Rom24>(vehicles, views, n, o, r);
+  with_model(o.model, [&](auto model) { run_cpu<decltype(model)>(vehicles, views, n, o, r); });
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  for (long i = 0; i < n; ++i) r.failed += r.metrics[static_cast<std::size_t>(kMetFailedAt) * n + i] >= 0;
+  r.failed = count_failed(r);
   return r;
 }
 

@@ -8,9 +8,7 @@
 #include "core/cuda_check.hpp"
 #include "core/errors.hpp"
 #include "core/parallel_for_cuda.cuh"
-#include "rom/rom11.hpp"
-#include "rom/rom18.hpp"
-#include "rom/rom24.hpp"
+#include "rom/rom_models.hpp"
 #include "rom/rom_batch_device.hpp"
 #include "rom/rom_batch_kernel.hpp"
 
@@ -53,20 +51,9 @@ void run_device(const std::vector<RomVehicle>& vehicles, const std::vector<const
   }
   DeviceArray<DriverSeriesView> d_views(views.data(), views.size());
 
-  BatchKernel<M> k;
+  BatchKernel<M> k = configure_batch<M>(o, static_cast<long>(vehicles.size()), static_cast<long>(views.size()), n, r);
   k.vehicles = d_vehicles.p;
-  k.n_vehicles = static_cast<long>(vehicles.size());
   k.drivers = d_views.p;
-  k.n_drivers = static_cast<long>(views.size());
-  k.step = o.step;
-  k.steps = std::lround(o.end_time / o.step);
-  k.initial_speed = o.initial_speed;
-  k.sample_every = o.output_rate > 0 ? std::lround(1.0 / (o.output_rate * o.step)) : 0;
-  k.samples = k.sample_every > 0 ? static_cast<int>(k.steps / k.sample_every) + 1 : 0;
-  k.n_channels = k.sample_every > 0 ? static_cast<int>(o.channels.size()) : 0;
-  for (int c = 0; c < k.n_channels; ++c) k.channel[c] = o.channels[c];
-  r.samples = k.samples;
-  r.states = M::kStates;
 
   // Outputs per vehicle; the chunk is what fits in 80 % of the free memory (or max_chunk).
   const std::size_t out_doubles = kBatchMetricCount + static_cast<std::size_t>(k.n_channels) * k.samples + M::kStates;
@@ -77,10 +64,6 @@ void run_device(const std::vector<RomVehicle>& vehicles, const std::vector<const
   chunk = std::min(chunk, n);
   r.bytes_per_vehicle = out_doubles * sizeof(double) + (vehicles.size() > 1 ? sizeof(RomVehicle) : 0) +
                         (drivers.size() > 1 ? sizeof(DriverSeriesView) + 4 * sizeof(double) * drivers[0]->size() : 0);
-
-  r.metrics.assign(static_cast<std::size_t>(kBatchMetricCount) * n, 0.0);
-  r.channels.assign(static_cast<std::size_t>(k.n_channels) * k.samples * n, 0.0);
-  r.final_state.assign(static_cast<std::size_t>(M::kStates) * n, 0.0);
   DeviceArray<double> d_out(out_doubles * chunk);
   for (long first = 0; first < n; first += chunk) {
     const long count = std::min(chunk, n - first);
@@ -111,19 +94,13 @@ BatchResult run_rom_batch_cuda(const std::vector<RomVehicle>& vehicles, const st
   if (cudaGetDeviceCount(&count) != cudaSuccess || count == 0)
     throw RunError("rom batch: --device cuda, but no CUDA device is present");
   BatchResult r;
-  r.vehicles = n;
   cudaDeviceProp prop{};
   TERRACAL_CUDA_CHECK(cudaGetDeviceProperties(&prop, 0));
   r.device = fmt::format("cuda: {}", prop.name);
   const auto start = std::chrono::steady_clock::now();
-  if (o.model == RomModel::k11Dof)
-    run_device<Rom11>(vehicles, drivers, n, o, r);
-  else if (o.model == RomModel::k18Dof)
-    run_device<Rom18>(vehicles, drivers, n, o, r);
-  else
-    run_device<Rom24>(vehicles, drivers, n, o, r);
+  with_model(o.model, [&](auto model) { run_device<decltype(model)>(vehicles, drivers, n, o, r); });
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  for (long i = 0; i < n; ++i) r.failed += r.metrics[static_cast<std::size_t>(kMetFailedAt) * n + i] >= 0;
+  r.failed = count_failed(r);
   return r;
 }
 

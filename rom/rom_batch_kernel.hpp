@@ -95,4 +95,34 @@ struct BatchKernel {
   }
 };
 
+// The loop's settings from the options, and the result's arrays sized for n vehicles (host code;
+// the CPU and GPU batches share it).
+template <class M>
+BatchKernel<M> configure_batch(const BatchOptions& o, long n_vehicles, long n_drivers, long n, BatchResult& r) {
+  BatchKernel<M> k;
+  k.n_vehicles = n_vehicles;
+  k.n_drivers = n_drivers;
+  k.step = o.step;
+  k.steps = static_cast<long>(o.end_time / o.step + 0.5);
+  k.initial_speed = o.initial_speed;
+  k.sample_every = o.output_rate > 0 ? static_cast<long>(1.0 / (o.output_rate * o.step) + 0.5) : 0;
+  k.samples = k.sample_every > 0 ? static_cast<int>(k.steps / k.sample_every) + 1 : 0;
+  k.n_channels = k.sample_every > 0 ? static_cast<int>(o.channels.size()) : 0;
+  for (int c = 0; c < k.n_channels; ++c) k.channel[c] = o.channels[c];
+  r.vehicles = n;
+  r.samples = k.samples;
+  r.states = M::kStates;
+  r.metrics.assign(static_cast<std::size_t>(kBatchMetricCount) * n, 0.0);
+  r.channels.assign(static_cast<std::size_t>(k.n_channels) * k.samples * n, 0.0);
+  r.final_state.assign(static_cast<std::size_t>(M::kStates) * n, 0.0);
+  return k;
+}
+
+// Vehicles whose state diverged (a failure time was recorded).
+inline long count_failed(const BatchResult& r) {
+  long failed = 0;
+  for (long i = 0; i < r.vehicles; ++i) failed += r.metrics[static_cast<std::size_t>(kMetFailedAt) * r.vehicles + i] >= 0;
+  return failed;
+}
+
 }  // namespace terracal::rom

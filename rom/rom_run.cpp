@@ -11,6 +11,7 @@
 #include "rom/rom11.hpp"
 #include "rom/rom18.hpp"
 #include "rom/rom24.hpp"
+#include "rom/rom_models.hpp"
 
 namespace terracal::rom {
 
@@ -134,12 +135,7 @@ RomRunResult run_rom(const RomVehicle& vehicle, RomDriver& driver, const RomRunO
   check_model_effects(vehicle, options.model);
   RomRunResult r;
   const auto start = std::chrono::steady_clock::now();
-  if (options.model == RomModel::k11Dof)
-    run_model<Rom11>(vehicle, driver, options, r);
-  else if (options.model == RomModel::k18Dof)
-    run_model<Rom18>(vehicle, driver, options, r);
-  else
-    run_model<Rom24>(vehicle, driver, options, r);
+  with_model(options.model, [&](auto model) { run_model<decltype(model)>(vehicle, driver, options, r); });
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }

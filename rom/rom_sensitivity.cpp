@@ -6,9 +6,7 @@
 
 #include "core/errors.hpp"
 #include "rom/cvodes_integrator.hpp"
-#include "rom/rom11.hpp"
-#include "rom/rom18.hpp"
-#include "rom/rom24.hpp"
+#include "rom/rom_models.hpp"
 
 namespace terracal::rom {
 
@@ -120,12 +118,7 @@ RomSensitivityResult run_rom_sensitivities(const RomVehicle& vehicle, const Driv
   check_model_effects(v, options.model);
   RomSensitivityResult r;
   r.parameters = parameters;
-  if (options.model == RomModel::k11Dof)
-    run<Rom11>(v, driver, options, parameters, r);
-  else if (options.model == RomModel::k18Dof)
-    run<Rom18>(v, driver, options, parameters, r);
-  else
-    run<Rom24>(v, driver, options, parameters, r);
+  with_model(options.model, [&](auto model) { run<decltype(model)>(v, driver, options, parameters, r); });
   return r;
 }
 
