@@ -100,7 +100,8 @@ int run_batch(const RomArgs& a, const rom::RomVehicle& vehicle, const rom::RomRu
 }  // namespace
 
 Command add_rom(CLI::App& app) {
-  auto* sub = app.add_subcommand("rom", "A reduced-order vehicle (11, 18 or 24 DOF) on rigid ground; writes trajectory.csv");
+  auto* sub =
+      app.add_subcommand("rom", "A reduced-order vehicle (11, 18 or 24 DOF) on rigid ground; writes trajectory.csv");
   auto a = std::make_shared<RomArgs>();
   add_choice(sub, "--model", a->run.model, kModels, "vehicle model")->required()->default_str("");
   sub->add_option("--vehicle", a->vehicle, "vehicle file (JSON, ours or LFDM's) or preset: hmmwv, sedan")->required();

@@ -53,8 +53,8 @@ TERRACAL_HD_INLINE FourWheelForces four_wheel_contacts(const RomVehicle& v, doub
       c.dxe = -y[M::kXe + w] * tire.longitudinal_stiffness / tire.longitudinal_damping;
       c.dye = -y[M::kYe + w] * tire.lateral_stiffness / tire.lateral_damping;
     } else if (v.has(kEffectTireRelaxation)) {
-      const TmeasyRelaxed r =
-          tmeasy_relaxed(tire, k[w], sl[w], vw[w].x, vw[w].y, y[M::kSpin + w], st[w].rdyn, y[M::kXe + w], y[M::kYe + w]);
+      const TmeasyRelaxed r = tmeasy_relaxed(tire, k[w], sl[w], vw[w].x, vw[w].y, y[M::kSpin + w], st[w].rdyn,
+                                             y[M::kXe + w], y[M::kYe + w]);
       c.fx = r.fx;
       c.fy = r.fy;
       c.dxe = r.dxe;

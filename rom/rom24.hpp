@@ -19,10 +19,24 @@ struct Rom24 {
   static constexpr const char* kName = "24dof";
   static constexpr int kWheels = 4;  // FL, FR, RL, RR
   enum : int {
-    kX, kY, kZ, kYaw, kRoll, kPitch,            // body CG position (ground frame) and angles
-    kVx, kVy, kVz, kYawRate, kRollRate, kPitchRate,
-    kWheelZ, kWheelVz = kWheelZ + 4,            // wheel centre heights above ground, their rates
-    kSpin = kWheelVz + 4, kXe = kSpin + 4, kYe = kXe + 4, kCrank = kYe + 4
+    kX,
+    kY,
+    kZ,
+    kYaw,
+    kRoll,
+    kPitch,  // body CG position (ground frame) and angles
+    kVx,
+    kVy,
+    kVz,
+    kYawRate,
+    kRollRate,
+    kPitchRate,
+    kWheelZ,
+    kWheelVz = kWheelZ + 4,  // wheel centre heights above ground, their rates
+    kSpin = kWheelVz + 4,
+    kXe = kSpin + 4,
+    kYe = kXe + 4,
+    kCrank = kYe + 4
   };
   static constexpr int kStates = kCrank + 1;
   static TERRACAL_HD double roll_of(const double* y) { return y[kRoll]; }

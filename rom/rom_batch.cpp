@@ -7,8 +7,8 @@
 
 #include "core/errors.hpp"
 #include "core/parallel_for.hpp"
-#include "rom/rom_models.hpp"
 #include "rom/rom_batch_kernel.hpp"
+#include "rom/rom_models.hpp"
 #if TERRACAL_HAVE_CUDA
 #include "rom/rom_batch_device.hpp"
 #endif

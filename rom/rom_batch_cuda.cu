@@ -8,9 +8,9 @@
 #include "core/cuda_check.hpp"
 #include "core/errors.hpp"
 #include "core/parallel_for_cuda.cuh"
-#include "rom/rom_models.hpp"
 #include "rom/rom_batch_device.hpp"
 #include "rom/rom_batch_kernel.hpp"
+#include "rom/rom_models.hpp"
 
 namespace terracal::rom {
 

@@ -121,7 +121,8 @@ BatchKernel<M> configure_batch(const BatchOptions& o, long n_vehicles, long n_dr
 // Vehicles whose state diverged (a failure time was recorded).
 inline long count_failed(const BatchResult& r) {
   long failed = 0;
-  for (long i = 0; i < r.vehicles; ++i) failed += r.metrics[static_cast<std::size_t>(kMetFailedAt) * r.vehicles + i] >= 0;
+  for (long i = 0; i < r.vehicles; ++i)
+    failed += r.metrics[static_cast<std::size_t>(kMetFailedAt) * r.vehicles + i] >= 0;
   return failed;
 }
 

@@ -11,9 +11,15 @@ namespace terracal::rom {
 template <class F>
 void with_model(RomModel m, F&& f) {
   switch (m) {
-    case RomModel::k11Dof: f(Rom11{}); break;
-    case RomModel::k18Dof: f(Rom18{}); break;
-    case RomModel::k24Dof: f(Rom24{}); break;
+    case RomModel::k11Dof:
+      f(Rom11{});
+      break;
+    case RomModel::k18Dof:
+      f(Rom18{});
+      break;
+    case RomModel::k24Dof:
+      f(Rom24{});
+      break;
   }
 }
 

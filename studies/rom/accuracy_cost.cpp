@@ -87,9 +87,11 @@ int main(int argc, char** argv) {
     for (double h : {4e-3, 2e-3, 1e-3, 5e-4, 2.5e-4}) configs.push_back({m, RomIntegrator::kHalfImplicit, h});
     for (double tol : {1e-4, 1e-6, 1e-8}) configs.push_back({m, RomIntegrator::kCvodes, tol});
   }
-  std::string csv = "case,model,integrator,step_or_rtol,wall_s,real_time_factor,rms_yaw_rate_rel,rms_ay_rel,max_path_m\n";
-  std::string md = "| case | model | integrator | step / rtol | wall [ms] | × real time | yaw rate RMS err | ay RMS err | "
-                   "max path dev [m] |\n|---|---|---|---|---|---|---|---|---|\n";
+  std::string csv =
+      "case,model,integrator,step_or_rtol,wall_s,real_time_factor,rms_yaw_rate_rel,rms_ay_rel,max_path_m\n";
+  std::string md =
+      "| case | model | integrator | step / rtol | wall [ms] | × real time | yaw rate RMS err | ay RMS err | "
+      "max path dev [m] |\n|---|---|---|---|---|---|---|---|---|\n";
   for (const Case& c : cases) {
     const RomRunResult ref = run_case(v, c, {RomModel::k24Dof, RomIntegrator::kCvodes, 1e-10});
     const double sim = ref.samples.back().time;

@@ -40,7 +40,7 @@ void require_identical_outputs(const std::string& a, const std::string& b) {
 
 }  // namespace
 
-TEST_CASE("calibrate writes the contract outputs; the same seed gives byte-identical files", "[cli][calibrate]") {
+TEST_CASE("calibrate writes the contract outputs, the same seed gives byte-identical files", "[cli][calibrate]") {
   const ScratchDir scratch("determinism");
   const std::string dir = scratch.str();
   const CliResult r1 = run_cli(calibrate_args(dir + "/a", "--min-ess 400"), dir);

@@ -309,7 +309,7 @@ TEST_CASE("DRAM: Gibbs on the noise variance gives the Normal-inverse-gamma post
   check_expectations(nig.expectations(), run.values, 3000);
 }
 
-TEST_CASE("DRAM: failed evaluations are rejected and counted; the truncated target is sampled", "[samplers][dram]") {
+TEST_CASE("DRAM: failed evaluations are rejected and counted, the truncated target is sampled", "[samplers][dram]") {
   const BrokenGaussian broken;
   const Target t = broken.target();
   const DramRun run = run_dram(t, broken.expectations(), vec({0, 0}), VectorXd(), MatrixXd::Identity(2, 2),
@@ -390,7 +390,7 @@ TEST_CASE("ensemble: per-walker Gibbs on the noise variance gives the Normal-inv
   check_expectations(nig.expectations(), run.values, 1000);
 }
 
-TEST_CASE("ensemble: failed evaluations are rejected and counted; the truncated target is sampled",
+TEST_CASE("ensemble: failed evaluations are rejected and counted, the truncated target is sampled",
           "[samplers][ensemble]") {
   const BrokenGaussian broken;
   const Target t = broken.target();

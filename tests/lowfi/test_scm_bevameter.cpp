@@ -117,7 +117,7 @@ TEST_CASE("SCM annulus rig: torque against angle follows the analytic annulus wi
 // z = (W / (A (Kc/b + Kphi)))^(1/n). The CRM annulus shows the same (results/plate_bin_check,
 // twelfth study), which is why the bevameter and pipeline commands ramp the load by default
 // (--shear-load-ramp 0.5; ShearTest itself drops it unless told otherwise).
-TEST_CASE("SCM annulus under a ramped load rests at Bekker's static sinkage; a dropped one overshoots",
+TEST_CASE("SCM annulus under a ramped load rests at Bekker's static sinkage, a dropped one overshoots",
           "[lowfi][scm]") {
   const lowfi::ScmSoil soil = test::scm_dry_sand();
   const auto site = annulus_site(soil);

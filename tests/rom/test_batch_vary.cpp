@@ -74,7 +74,7 @@ std::string thrown(const char* text) {
 
 }  // namespace
 
-TEST_CASE("vary: 20000 normal draws have the asked mean and sd; every vehicle gets its own value", "[rom_batch_vary]") {
+TEST_CASE("vary: 20000 normal draws have the asked mean and sd, every vehicle gets its own value", "[rom_batch_vary]") {
   const RomVehicle base = testing::hmmwv();
   const VaryDraws d =
       draw_vehicles(base, spec(R"({"mass": {"distribution": "normal", "mean": 2100, "sd": 50}})"), 20000, 42);
@@ -94,7 +94,7 @@ TEST_CASE("vary: 20000 normal draws have the asked mean and sd; every vehicle ge
   }
 }
 
-TEST_CASE("vary: lognormal draws are positive with mean exp(mu + sigma^2 / 2); uniform ones stay in (low, high)",
+TEST_CASE("vary: lognormal draws are positive with mean exp(mu + sigma^2 / 2), uniform ones stay in (low, high)",
           "[rom_batch_vary]") {
   const double mu = std::log(4519.0), sigma = 0.1;
   const VaryDraws d = draw_vehicles(testing::hmmwv(),
@@ -126,7 +126,7 @@ TEST_CASE("vary: lognormal draws are positive with mean exp(mu + sigma^2 / 2); u
   CHECK(d.vehicles[17].friction == d.values[index_of(d, "friction")][17]);
 }
 
-TEST_CASE("vary: one seed gives the same draws, another different ones; streams are per parameter",
+TEST_CASE("vary: one seed gives the same draws, another different ones, streams are per parameter",
           "[rom_batch_vary]") {
   const RomVehicle base = testing::hmmwv();
   const VarySpec two = spec(R"({"mass": {"distribution": "normal", "mean": 2100, "sd": 50},
@@ -156,7 +156,7 @@ TEST_CASE("vary: one seed gives the same draws, another different ones; streams 
   for (int i = 0; i < 5; ++i) CHECK(mass_only.values[0][i] == std::fma(50, rng.normal(), 2100));
 }
 
-TEST_CASE("vary: scales multiply the base's values; cg_to_front keeps the wheelbase", "[rom_batch_vary]") {
+TEST_CASE("vary: scales multiply the base's values, cg_to_front keeps the wheelbase", "[rom_batch_vary]") {
   const RomVehicle base = testing::hmmwv();
   const VaryDraws d = draw_vehicles(base, spec(R"({
       "cg_to_front": {"distribution": "uniform", "low": 1.5, "high": 1.9},
@@ -426,7 +426,7 @@ TEST_CASE("batch.h5: shapes, attributes and transposed channels and final state"
   CHECK(number_attribute<std::uint64_t>(file, "seed", H5T_NATIVE_UINT64) == 99);
 }
 
-TEST_CASE("batch.h5: without draws or channels; inconsistent results are refused", "[rom_batch_vary]") {
+TEST_CASE("batch.h5: without draws or channels, inconsistent results are refused", "[rom_batch_vary]") {
   BatchOptions o;  // no output rate, no channels
   BatchResult r;
   r.vehicles = 2;

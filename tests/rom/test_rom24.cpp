@@ -55,6 +55,6 @@ TEST_CASE("rom 24-DOF: braking pitches the nose down, accelerating lifts it", "[
   const RomVehicle v = hmmwv();
   const RomRunResult brake = run(v, constant_inputs(0, 0, 0.5), options(RomModel::k24Dof, 1.0, 20.0));
   const RomRunResult accel = run(v, constant_inputs(0, 1, 0), options(RomModel::k24Dof, 1.0, 3.0));
-  CHECK(brake.samples.back().pitch > 1e-3);   // ISO 8855: positive pitch is nose down
+  CHECK(brake.samples.back().pitch > 1e-3);  // ISO 8855: positive pitch is nose down
   CHECK(accel.samples.back().pitch < -1e-4);
 }

@@ -36,7 +36,7 @@ DriverSeries lane_change() {
 double relative(double a, double b) { return std::fabs(a - b) / std::max(1.0, std::fabs(b)); }
 }  // namespace
 
-TEST_CASE("rom batch: each CPU batch vehicle equals its own single run; channels are its samples", "[rom][batch]") {
+TEST_CASE("rom batch: each CPU batch vehicle equals its own single run, channels are its samples", "[rom][batch]") {
   const auto vehicles = varied_vehicles(40);
   const DriverSeries d = lane_change();
   BatchOptions o;

@@ -34,7 +34,7 @@ TEST_CASE("rom: at 2 m/s under a small constant steer the path radius is wheelba
   }
 }
 
-TEST_CASE("rom: steady yaw-rate gain matches the linear bicycle model below 0.3 g; the understeer has its sign",
+TEST_CASE("rom: steady yaw-rate gain matches the linear bicycle model below 0.3 g, the understeer has its sign",
           "[rom]") {
   RomVehicle v = frictionless_hmmwv();
   // Front-heavy: the front axle's cornering stiffness grows less than its load (TMeasy's degressive
