@@ -85,5 +85,21 @@ int main(int argc, char** argv) {
          [&] { return run_seconds(v, in, RomModel::k24Dof, RomIntegrator::kHalfImplicit); });
   report("24dof", "run_rom cvodes (1e-6, 1e-8)",
          [&] { return run_seconds(v, in, RomModel::k24Dof, RomIntegrator::kCvodes); });
+  // What each effect costs: the 18-DOF loop with the preset's effects, one of them switched off at a
+  // time, and aerodynamic drag switched on. (Without tire_relaxation the tires are steady: a
+  // different model, whose loads take a second pass.)
+  std::printf("\n18dof half-implicit loop, effects\n");
+  const std::pair<const char*, unsigned> toggles[] = {{"preset's effects", 0u},
+                                                      {"- tire_relaxation", kEffectTireRelaxation},
+                                                      {"- torque_converter", kEffectTorqueConverter},
+                                                      {"- roll", kEffectRoll},
+                                                      {"- rolling_resistance", kEffectRollingResistance},
+                                                      {"+ aero_drag", kEffectAeroDrag}};
+  for (const auto& [what, bit] : toggles) {
+    RomVehicle e = v;
+    e.effects ^= bit;
+    e.drag_area = 3.0;
+    report("18dof", what, [&] { return loop_seconds<Rom18>(e, in); });
+  }
   return 0;
 }
