@@ -71,8 +71,10 @@ int run_batch(const RomArgs& a, const rom::RomVehicle& vehicle, const rom::RomRu
   o.initial_speed = run.initial_speed;
   o.channels = parse_channels(a.channels);
   o.output_rate = o.channels.empty() ? 0.0 : run.output_rate;
-  const bool cuda =
-      a.device == "cuda" || (a.device == "auto" && rom::cuda_batch_available() && cuda_device_info().available);
+  const CudaDeviceInfo gpu = cuda_device_info();
+  if (a.device == "cuda" && !gpu.available)
+    throw InputError(fmt::format("--device cuda: no CUDA device available ({})", gpu.description));
+  const bool cuda = a.device == "cuda" || (a.device == "auto" && rom::cuda_batch_available() && gpu.available);
   o.device = cuda ? rom::BatchDevice::kCuda : rom::BatchDevice::kCpu;
   std::unique_ptr<rom::VaryDraws> draws;
   std::vector<rom::RomVehicle> vehicles{vehicle};

@@ -1,5 +1,6 @@
 // `terracal rom` end to end: a manoeuvre and a driver file write trajectory.csv with the contract's
 // header, 100 Hz rows, and run.json.
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -7,7 +8,9 @@
 #include <catch2/catch.hpp>
 
 #include "rom/trajectory_csv.hpp"
+#include "core/device_selftest.hpp"
 #include "tests/apps/cli_runner.hpp"
+#include "tests/skip.hpp"
 
 using namespace terracal::test;
 
@@ -76,4 +79,19 @@ TEST_CASE("terracal rom --batch: varied vehicles write batch.h5 with their param
   CHECK(dataset_dims(f, "/channels/ay") == std::vector<hsize_t>{64, 101});
   CHECK(dataset_dims(f, "/time") == std::vector<hsize_t>{101});
   H5Fclose(f);
+}
+
+TEST_CASE("terracal rom --batch --device cuda without a CUDA device: exit 2, nothing written", "[cli][rom][batch]") {
+  if (terracal::cuda_device_info().available) {
+    terracal::test::report_skip("rom --device cuda refusal", "a CUDA device is present here");
+    return;
+  }
+  const ScratchDir dir("cli_rom_nocuda");
+  std::ofstream(dir.str() + "/drive.txt") << "0 0 0.3 0\n1 0 0.3 0\n";
+  const CliResult r = run_cli("rom --model 18dof --vehicle hmmwv --inputs " + dir.str() +
+                                  "/drive.txt --batch 10 --device cuda --out " + dir.str() + "/out",
+                              dir.str());
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find("--device cuda: no CUDA device available") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(dir.str() + "/out"));
 }
