@@ -26,7 +26,8 @@ namespace terracal::app {
 namespace {
 struct RomArgs {
   rom::RomRunOptions run;
-  std::string vehicle, tire, inputs, maneuver, out;
+  std::string vehicle, tire, maneuver, out;
+  std::vector<std::string> inputs;
   double friction = 1.0, gravity = 9.81;
   bool plots = true;
   long batch = 0;
@@ -63,7 +64,7 @@ std::vector<rom::BatchChannel> parse_channels(const std::string& list) {
 }
 
 int run_batch(const RomArgs& a, const rom::RomVehicle& vehicle, const rom::RomRunOptions& run,
-              const DriverSeries* series) {
+              const std::vector<DriverSeries>& series) {
   rom::BatchOptions o;
   o.model = run.model;
   o.step = run.step;
@@ -83,7 +84,13 @@ int run_batch(const RomArgs& a, const rom::RomVehicle& vehicle, const rom::RomRu
     vehicles = std::move(draws->vehicles);
   }
   std::filesystem::create_directories(a.out);
-  const rom::BatchResult r = rom::run_rom_batch(vehicles, {series}, a.batch, o);
+  std::vector<const DriverSeries*> drivers;
+  if (series.size() == 1) {
+    drivers.push_back(&series.front());
+  } else {
+    for (long i = 0; i < a.batch; ++i) drivers.push_back(&series[i % series.size()]);
+  }
+  const rom::BatchResult r = rom::run_rom_batch(vehicles, drivers, a.batch, o);
   rom::BatchH5Info info;
   info.vehicle = a.vehicle;
   info.seed = a.seed;
@@ -108,7 +115,9 @@ Command add_rom(CLI::App& app) {
   add_choice(sub, "--model", a->run.model, kModels, "vehicle model")->required()->default_str("");
   sub->add_option("--vehicle", a->vehicle, "vehicle file (JSON, ours or LFDM's) or preset: hmmwv, sedan")->required();
   sub->add_option("--tire", a->tire, "TMeasy tire file replacing the vehicle's (needed with an LFDM vehicle file)");
-  auto* inputs = sub->add_option("--inputs", a->inputs, "driver file: rows 'time steering throttle braking'");
+  auto* inputs = sub->add_option("--inputs", a->inputs,
+                                 "driver file: rows 'time steering throttle braking' (with --batch: several files, "
+                                 "vehicle i driven by file i mod their number)");
   auto* maneuver = sub->add_option("--maneuver", a->maneuver, "built-in manoeuvre (JSON, docs/formats.md)");
   inputs->excludes(maneuver);
   sub->add_option("--end-time", a->run.end_time,
@@ -164,13 +173,19 @@ Command add_rom(CLI::App& app) {
     rom::validate(vehicle, a->vehicle);
     rom::RomRunOptions run = a->run;
     const bool end_given = sub->count("--end-time") > 0;
-    std::unique_ptr<DriverSeries> series;
+    std::vector<DriverSeries> series;
     std::unique_ptr<Maneuver> maneuver;
     rom::RomDriver driver;
     if (!a->inputs.empty()) {
-      series = std::make_unique<DriverSeries>(DriverSeries::read(a->inputs));
-      driver.series = series.get();
-      if (!end_given) run.end_time = series->end_time();
+      if (a->inputs.size() > 1 && a->batch == 0)
+        throw InputError(fmt::format("--inputs: {} driver files for one vehicle; several files are for --batch N",
+                                     a->inputs.size()));
+      for (const std::string& path : a->inputs) series.push_back(DriverSeries::read(path));
+      driver.series = &series.front();
+      if (!end_given) {  // the longest file's; the others hold their last row
+        run.end_time = 0;
+        for (const DriverSeries& s : series) run.end_time = std::max(run.end_time, s.end_time());
+      }
     } else {
       const ManeuverVehicle mv{vehicle.wheelbase(), vehicle.max_steer, std::max(vehicle.track[0], vehicle.track[1])};
       maneuver = std::make_unique<Maneuver>(Maneuver::read(a->maneuver, mv));
@@ -182,7 +197,7 @@ Command add_rom(CLI::App& app) {
       throw InputError(fmt::format("--step {} s: must not exceed the output interval 1/--output-rate = {} s", run.step,
                                    1.0 / run.output_rate));
     if (!(run.end_time > 0)) throw InputError(fmt::format("--end-time {}: must be positive", run.end_time));
-    if (a->batch > 0) return run_batch(*a, vehicle, run, series.get());
+    if (a->batch > 0) return run_batch(*a, vehicle, run, series);
     for (const char* o : {"--vary", "--device", "--channels", "--seed"})
       if (sub->count(o) > 0) throw InputError(fmt::format("{}: only with --batch N", o));
     std::filesystem::create_directories(a->out);

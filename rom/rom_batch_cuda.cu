@@ -2,6 +2,8 @@
 // CUDA thread each (the same BatchKernel as the CPU), and only the reduced outputs come back.
 #include <chrono>
 #include <cmath>
+#include <map>
+#include <memory>
 
 #include <fmt/format.h>
 
@@ -38,16 +40,21 @@ void run_device(const std::vector<RomVehicle>& vehicles, const std::vector<const
   // Each driver's four columns on the device, and the views that point at them.
   std::vector<std::unique_ptr<DeviceArray<double>>> columns;
   std::vector<DriverSeriesView> views;
+  // Vehicles often share a few series: each distinct one is copied once.
+  std::map<const DriverSeries*, DriverSeriesView> copied;
   for (const DriverSeries* d : drivers) {
-    DriverSeriesView v;
-    v.n = d->size();
-    const std::vector<double>* cols[4] = {&d->times(), &d->steering(), &d->throttle(), &d->braking()};
-    const double** slots[4] = {&v.time, &v.steering, &v.throttle, &v.braking};
-    for (int c = 0; c < 4; ++c) {
-      columns.push_back(std::make_unique<DeviceArray<double>>(cols[c]->data(), cols[c]->size()));
-      *slots[c] = columns.back()->p;
+    auto [it, fresh] = copied.try_emplace(d);
+    if (fresh) {
+      DriverSeriesView& v = it->second;
+      v.n = d->size();
+      const std::vector<double>* cols[4] = {&d->times(), &d->steering(), &d->throttle(), &d->braking()};
+      const double** slots[4] = {&v.time, &v.steering, &v.throttle, &v.braking};
+      for (int c = 0; c < 4; ++c) {
+        columns.push_back(std::make_unique<DeviceArray<double>>(cols[c]->data(), cols[c]->size()));
+        *slots[c] = columns.back()->p;
+      }
     }
-    views.push_back(v);
+    views.push_back(it->second);
   }
   DeviceArray<DriverSeriesView> d_views(views.data(), views.size());
 
@@ -62,8 +69,10 @@ void run_device(const std::vector<RomVehicle>& vehicles, const std::vector<const
   long chunk = std::max<long>(1, static_cast<long>(0.8 * free_bytes / (out_doubles * sizeof(double))));
   if (o.max_chunk > 0) chunk = std::min(chunk, o.max_chunk);
   chunk = std::min(chunk, n);
+  // Per vehicle: its outputs, its own parameter set and driver view where it has them (the drivers'
+  // columns are shared by the vehicles that use them).
   r.bytes_per_vehicle = out_doubles * sizeof(double) + (vehicles.size() > 1 ? sizeof(RomVehicle) : 0) +
-                        (drivers.size() > 1 ? sizeof(DriverSeriesView) + 4 * sizeof(double) * drivers[0]->size() : 0);
+                        (drivers.size() > 1 ? sizeof(DriverSeriesView) : 0);
   DeviceArray<double> d_out(out_doubles * chunk);
   for (long first = 0; first < n; first += chunk) {
     const long count = std::min(chunk, n - first);

@@ -145,6 +145,7 @@ TEST_CASE("bad input, rom: the manoeuvre and the options", "[cli][bad_input][rom
       option("--batch 10 --channels vx,vx", {"--channels", "twice"}),
       option("--batch 10 --integrator cvodes", {"--integrator cvodes", "half-implicit"}),
       option("--batch 0", {"--batch"}),
+      option("--inputs {dir}/drive.txt", {"--inputs", "2 driver files", "--batch"}),
       {"a batch with a manoeuvre",
        {{"m.json", R"({"type": "straight_acceleration"})"}},
        "rom --model 18dof --vehicle hmmwv --maneuver {dir}/m.json --batch 10 --out {out}",

@@ -7,8 +7,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "rom/trajectory_csv.hpp"
 #include "core/device_selftest.hpp"
+#include "rom/trajectory_csv.hpp"
 #include "tests/apps/cli_runner.hpp"
 #include "tests/skip.hpp"
 
@@ -94,4 +94,27 @@ TEST_CASE("terracal rom --batch --device cuda without a CUDA device: exit 2, not
   CHECK(r.exit_code == 2);
   CHECK(r.err.find("--device cuda: no CUDA device available") != std::string::npos);
   CHECK_FALSE(std::filesystem::exists(dir.str() + "/out"));
+}
+
+TEST_CASE("terracal rom --batch with several driver files: vehicle i follows file i mod their number",
+          "[cli][rom][batch]") {
+  const ScratchDir dir("cli_rom_drivers");
+  std::ofstream(dir.str() + "/left.txt") << "0 0.2 0.3 0\n2 0.2 0.3 0\n";
+  std::ofstream(dir.str() + "/right.txt") << "0 -0.2 0.3 0\n2 -0.2 0.3 0\n";
+  const CliResult r = run_cli("rom --model 11dof --vehicle hmmwv --inputs " + dir.str() + "/left.txt " + dir.str() +
+                                  "/right.txt --initial-speed 10 --batch 4 --device cpu --out " + dir.str() + "/out",
+                              dir.str());
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const hid_t f = H5Fopen((dir.str() + "/out/batch.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  REQUIRE(f >= 0);
+  const hid_t d = H5Dopen2(f, "/summary/final_yaw", H5P_DEFAULT);
+  double yaw[4] = {};
+  H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, yaw);
+  H5Dclose(d);
+  H5Fclose(f);
+  CHECK(yaw[0] > 0.1);   // left
+  CHECK(yaw[1] < -0.1);  // right
+  CHECK(yaw[2] == yaw[0]);
+  CHECK(yaw[3] == yaw[1]);
 }
