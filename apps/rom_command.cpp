@@ -126,7 +126,7 @@ Command add_rom(CLI::App& app) {
       ->check(in_range(Range{0, 1e5, true, false}));
   sub->add_option("--initial-speed", a->run.initial_speed, "initial forward speed [m/s] (negative: backwards)")
       ->check(in_range(Range{-100, 100, false, false}));
-  add_choice(sub, "--integrator", a->run.integrator, kIntegrators, "time integrator")->capture_default_str();
+  add_choice(sub, "--integrator", a->run.integrator, kIntegrators, "time integrator");
   sub->add_option("--step", a->run.step, "fixed step of the half-implicit scheme [s]")
       ->check(in_range(Range{1e-6, 0.1, false, false}))
       ->capture_default_str();
