@@ -9,6 +9,7 @@
 
 #include "apps/cli_checks.hpp"
 #include "apps/commands.hpp"
+#include "apps/memory_check.hpp"
 #include "apps/out_dir.hpp"
 #include "apps/report_plots.hpp"
 #include "core/atomic_file.hpp"
@@ -77,6 +78,13 @@ int run_batch(const RomArgs& a, const rom::RomVehicle& vehicle, const rom::RomRu
     throw InputError(fmt::format("--device cuda: no CUDA device available ({})", gpu.description));
   const bool cuda = a.device == "cuda" || (a.device == "auto" && rom::cuda_batch_available() && gpu.available);
   o.device = cuda ? rom::BatchDevice::kCuda : rom::BatchDevice::kCpu;
+  // Host memory: every vehicle's summary, final state and channel samples (the GPU runs them in
+  // chunks), and with --vary its own parameter set.
+  const double samples = o.output_rate > 0 ? std::floor(run.end_time * o.output_rate + 0.5) + 1 : 0;
+  const double per_vehicle = 8.0 * (rom::kBatchMetricCount + 33 + o.channels.size() * samples) +
+                             (a.vary.empty() ? 0.0 : sizeof(rom::RomVehicle));
+  check_memory("--batch " + std::to_string(a.batch), "the batch's outputs", per_vehicle * a.batch, 0.0,
+               "fewer vehicles, channels or a lower --output-rate", true);
   std::unique_ptr<rom::VaryDraws> draws;
   std::vector<rom::RomVehicle> vehicles{vehicle};
   if (!a.vary.empty()) {

@@ -145,6 +145,8 @@ TEST_CASE("bad input, rom: the manoeuvre and the options", "[cli][bad_input][rom
       option("--batch 10 --channels vx,vx", {"--channels", "twice"}),
       option("--batch 10 --integrator cvodes", {"--integrator cvodes", "half-implicit"}),
       option("--batch 0", {"--batch"}),
+      option("--batch 10000000 --channels x,y,yaw,vx,vy,yaw_rate,ax,ay,roll --output-rate 1000 --end-time 100",
+             {"--batch 10000000", "memory", "--output-rate"}),
       option("--inputs {dir}/drive.txt", {"--inputs", "2 driver files", "--batch"}),
       {"a batch with a manoeuvre",
        {{"m.json", R"({"type": "straight_acceleration"})"}},
