@@ -114,56 +114,84 @@ int run_batch(const RomArgs& a, const rom::RomVehicle& vehicle, const rom::RomRu
       r.vehicles * o.end_time / std::max(r.wall_seconds, 1e-12), a.out);
   return 0;
 }
+// One vehicle: trajectory.csv, run.json and trajectory.png.
+int run_single(const RomArgs& a, const rom::RomVehicle& vehicle, const rom::RomRunOptions& run,
+               rom::RomDriver& driver) {
+  std::filesystem::create_directories(a.out);
+  const rom::RomRunResult r = rom::run_rom(vehicle, driver, run);
+  rom::write_trajectory_csv(a.out + "/trajectory.csv", r.samples);
+  const nlohmann::json j = {{"model", rom::model_name(run.model)},
+                            {"integrator", rom::integrator_name(run.integrator)},
+                            {"vehicle", a.vehicle},
+                            {"end_time", run.end_time},
+                            {"steps", r.steps},
+                            {"rhs_evaluations", r.rhs_evaluations},
+                            {"wall_seconds", r.wall_seconds},
+                            {"real_time_factor", run.end_time / std::max(r.wall_seconds, 1e-12)}};
+  write_text_atomically(a.out + "/run.json", j.dump(2) + "\n");
+  if (a.plots)
+    plot_trajectory(
+        a.out, fmt::format("{} {} ({})", a.vehicle, rom::model_name(run.model), rom::integrator_name(run.integrator)));
+  fmt::print("rom ({}, {}): {:.3g} s simulated in {:.3g} s wall ({:.0f}x real time); written to {}/trajectory.csv\n",
+             rom::model_name(run.model), rom::integrator_name(run.integrator), run.end_time, r.wall_seconds,
+             run.end_time / std::max(r.wall_seconds, 1e-12), a.out);
+  return 0;
+}
+
+void add_rom_options(CLI::App* sub, RomArgs& a) {
+  add_choice(sub, "--model", a.run.model, kModels, "vehicle model")->required()->default_str("");
+  sub->add_option("--vehicle", a.vehicle, "vehicle file (JSON, ours or LFDM's) or preset: hmmwv, sedan")->required();
+  sub->add_option("--tire", a.tire, "TMeasy tire file replacing the vehicle's (needed with an LFDM vehicle file)");
+  auto* inputs = sub->add_option("--inputs", a.inputs,
+                                 "driver file: rows 'time steering throttle braking' (with --batch: several files, "
+                                 "vehicle i driven by file i mod their number)");
+  auto* maneuver = sub->add_option("--maneuver", a.maneuver, "built-in manoeuvre (JSON, docs/formats.md)");
+  inputs->excludes(maneuver);
+  sub->add_option("--end-time", a.run.end_time,
+                  "simulated seconds (default: the driver file's last time or the "
+                  "manoeuvre's end_time)")
+      ->check(in_range(Range{0, 1e5, true, false}));
+  sub->add_option("--initial-speed", a.run.initial_speed, "initial forward speed [m/s] (negative: backwards)")
+      ->check(in_range(Range{-100, 100, false, false}));
+  add_choice(sub, "--integrator", a.run.integrator, kIntegrators, "time integrator");
+  sub->add_option("--step", a.run.step, "fixed step of the half-implicit scheme [s]")
+      ->check(in_range(Range{1e-6, 0.1, false, false}))
+      ->capture_default_str();
+  sub->add_option("--rtol", a.run.rtol, "CVODES relative tolerance")
+      ->check(in_range(Range{1e-12, 1e-1, false, false}))
+      ->capture_default_str();
+  sub->add_option("--atol", a.run.atol, "CVODES absolute tolerance")
+      ->check(in_range(Range{1e-14, 1e-1, false, false}))
+      ->capture_default_str();
+  sub->add_option("--output-rate", a.run.output_rate, "samples per second in trajectory.csv [Hz]")
+      ->check(in_range(Range{0.1, 1e4, false, false}))
+      ->capture_default_str();
+  sub->add_option("--friction", a.friction, "road friction relative to the tire data's")
+      ->check(in_range(Range{0.01, 2, false, false}))
+      ->capture_default_str();
+  sub->add_option("--gravity", a.gravity, "gravitational acceleration [m/s^2] (Moon: 1.62)")
+      ->check(in_range(Range{0.1, 30, false, false}))
+      ->capture_default_str();
+  sub->add_flag("!--no-plots", a.plots, "skip trajectory.png");
+  sub->add_option("--batch", a.batch, "N vehicles in one batch (half-implicit); writes batch.h5")
+      ->check(whole_in(1, 10000000));
+  sub->add_option("--vary", a.vary, "per-parameter distributions of the batch (JSON)");
+  add_seed_option(sub, a.seed, "seed of the --vary draws");
+  sub->add_option("--device", a.device, "batch on cpu, cuda or auto")
+      ->check(CLI::IsMember({"cpu", "cuda", "auto"}))
+      ->capture_default_str();
+  sub->add_option("--channels", a.channels,
+                  "batch channels sampled at --output-rate: x,y,yaw,vx,vy,yaw_rate,ax,ay,roll");
+  sub->add_option("--out", a.out, "output folder")->required();
+}
+
 }  // namespace
 
 Command add_rom(CLI::App& app) {
   auto* sub =
       app.add_subcommand("rom", "A reduced-order vehicle (11, 18 or 24 DOF) on rigid ground; writes trajectory.csv");
   auto a = std::make_shared<RomArgs>();
-  add_choice(sub, "--model", a->run.model, kModels, "vehicle model")->required()->default_str("");
-  sub->add_option("--vehicle", a->vehicle, "vehicle file (JSON, ours or LFDM's) or preset: hmmwv, sedan")->required();
-  sub->add_option("--tire", a->tire, "TMeasy tire file replacing the vehicle's (needed with an LFDM vehicle file)");
-  auto* inputs = sub->add_option("--inputs", a->inputs,
-                                 "driver file: rows 'time steering throttle braking' (with --batch: several files, "
-                                 "vehicle i driven by file i mod their number)");
-  auto* maneuver = sub->add_option("--maneuver", a->maneuver, "built-in manoeuvre (JSON, docs/formats.md)");
-  inputs->excludes(maneuver);
-  sub->add_option("--end-time", a->run.end_time,
-                  "simulated seconds (default: the driver file's last time or the "
-                  "manoeuvre's end_time)")
-      ->check(in_range(Range{0, 1e5, true, false}));
-  sub->add_option("--initial-speed", a->run.initial_speed, "initial forward speed [m/s] (negative: backwards)")
-      ->check(in_range(Range{-100, 100, false, false}));
-  add_choice(sub, "--integrator", a->run.integrator, kIntegrators, "time integrator");
-  sub->add_option("--step", a->run.step, "fixed step of the half-implicit scheme [s]")
-      ->check(in_range(Range{1e-6, 0.1, false, false}))
-      ->capture_default_str();
-  sub->add_option("--rtol", a->run.rtol, "CVODES relative tolerance")
-      ->check(in_range(Range{1e-12, 1e-1, false, false}))
-      ->capture_default_str();
-  sub->add_option("--atol", a->run.atol, "CVODES absolute tolerance")
-      ->check(in_range(Range{1e-14, 1e-1, false, false}))
-      ->capture_default_str();
-  sub->add_option("--output-rate", a->run.output_rate, "samples per second in trajectory.csv [Hz]")
-      ->check(in_range(Range{0.1, 1e4, false, false}))
-      ->capture_default_str();
-  sub->add_option("--friction", a->friction, "road friction relative to the tire data's")
-      ->check(in_range(Range{0.01, 2, false, false}))
-      ->capture_default_str();
-  sub->add_option("--gravity", a->gravity, "gravitational acceleration [m/s^2] (Moon: 1.62)")
-      ->check(in_range(Range{0.1, 30, false, false}))
-      ->capture_default_str();
-  sub->add_flag("!--no-plots", a->plots, "skip trajectory.png");
-  sub->add_option("--batch", a->batch, "N vehicles in one batch (half-implicit); writes batch.h5")
-      ->check(whole_in(1, 10000000));
-  sub->add_option("--vary", a->vary, "per-parameter distributions of the batch (JSON)");
-  add_seed_option(sub, a->seed, "seed of the --vary draws");
-  sub->add_option("--device", a->device, "batch on cpu, cuda or auto")
-      ->check(CLI::IsMember({"cpu", "cuda", "auto"}))
-      ->capture_default_str();
-  sub->add_option("--channels", a->channels,
-                  "batch channels sampled at --output-rate: x,y,yaw,vx,vy,yaw_rate,ax,ay,roll");
-  sub->add_option("--out", a->out, "output folder")->required();
+  add_rom_options(sub, *a);
   return [a, sub] {
     if (a->batch > 0) {
       if (!a->maneuver.empty())
@@ -208,25 +236,7 @@ Command add_rom(CLI::App& app) {
     if (a->batch > 0) return run_batch(*a, vehicle, run, series);
     for (const char* o : {"--vary", "--device", "--channels", "--seed"})
       if (sub->count(o) > 0) throw InputError(fmt::format("{}: only with --batch N", o));
-    std::filesystem::create_directories(a->out);
-    const rom::RomRunResult r = rom::run_rom(vehicle, driver, run);
-    rom::write_trajectory_csv(a->out + "/trajectory.csv", r.samples);
-    const nlohmann::json j = {{"model", rom::model_name(run.model)},
-                              {"integrator", rom::integrator_name(run.integrator)},
-                              {"vehicle", a->vehicle},
-                              {"end_time", run.end_time},
-                              {"steps", r.steps},
-                              {"rhs_evaluations", r.rhs_evaluations},
-                              {"wall_seconds", r.wall_seconds},
-                              {"real_time_factor", run.end_time / std::max(r.wall_seconds, 1e-12)}};
-    write_text_atomically(a->out + "/run.json", j.dump(2) + "\n");
-    if (a->plots)
-      plot_trajectory(a->out, fmt::format("{} {} ({})", a->vehicle, rom::model_name(run.model),
-                                          rom::integrator_name(run.integrator)));
-    fmt::print("rom ({}, {}): {:.3g} s simulated in {:.3g} s wall ({:.0f}x real time); written to {}/trajectory.csv\n",
-               rom::model_name(run.model), rom::integrator_name(run.integrator), run.end_time, r.wall_seconds,
-               run.end_time / std::max(r.wall_seconds, 1e-12), a->out);
-    return 0;
+    return run_single(*a, vehicle, run, driver);
   };
 }
 
