@@ -53,10 +53,10 @@ struct Rom11 {
 
   static TERRACAL_HD void rhs(const RomVehicle& v, const DriverInput& in, int gear, const double* y, double* dy,
                               RomAux* aux, bool smooth_dry, bool positions = true) {
-    const double delta = clamp_to(in.steering, -1.0, 1.0) * v.max_steer;
+    const double delta = steer_angle(v, in);
     const double cd = cos(delta), sd = sin(delta);
     const double m = v.total_mass();
-    const double drag = v.has(kEffectAeroDrag) ? 0.5 * v.air_density * v.drag_area * y[kVx] * fabs(y[kVx]) : 0.0;
+    const double drag = aero_drag(v, y[kVx]);
     double ax = 0;  // for the load transfer, as in Rom18::rhs
     if (v.has(kEffectTireRelaxation)) {
       for (int w = 0; w < 2; ++w) {

@@ -77,7 +77,7 @@ struct Rom24 {
 
   static TERRACAL_HD void rhs(const RomVehicle& v, const DriverInput& in, int gear, const double* y, double* dy,
                               RomAux* aux, bool smooth_dry, bool positions = true) {
-    const double delta = clamp_to(in.steering, -1.0, 1.0) * v.max_steer;
+    const double delta = steer_angle(v, in);
     const double cd = cos(delta), sd = sin(delta);
     const Statics st = statics(v);
     const double sr = sin(y[kRoll]), sp = sin(y[kPitch]);
@@ -95,7 +95,7 @@ struct Rom24 {
     }
     const FourWheelForces f = four_wheel_contacts<Rom24>(v, cd, sd, y, fz);
     const double m = v.total_mass();
-    const double drag = v.has(kEffectAeroDrag) ? 0.5 * v.air_density * v.drag_area * y[kVx] * fabs(y[kVx]) : 0.0;
+    const double drag = aero_drag(v, y[kVx]);
     const double ax = (f.fx - drag) / m, ay = f.fy / m;
     dy[kVx] = ax + y[kVy] * y[kYawRate];
     dy[kVy] = ay - y[kVx] * y[kYawRate];

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/host_device.hpp"
+#include "core/vehicle/driver_inputs.hpp"
 #include "core/vehicle/tmeasy.hpp"
 #include "rom/rom_vehicle.hpp"
 
@@ -40,6 +41,16 @@ TERRACAL_HD_INLINE WheelContact wheel_contact(const RomVehicle& v, const TmeasyP
     w.fy = count * k.ky * s.sy;
   }
   return w;
+}
+
+// The road-wheel angle of the front wheels for a steering input (-1..1 of the maximum).
+TERRACAL_HD_INLINE double steer_angle(const RomVehicle& v, const DriverInput& in) {
+  return clamp_to(in.steering, -1.0, 1.0) * v.max_steer;
+}
+
+// The `aero_drag` effect: 0.5 rho CdA vx|vx| against the forward motion [N]; nothing when off.
+TERRACAL_HD_INLINE double aero_drag(const RomVehicle& v, double vx) {
+  return v.has(kEffectAeroDrag) ? 0.5 * v.air_density * v.drag_area * vx * fabs(vx) : 0.0;
 }
 
 // Velocity of a chassis point (px, py) in the chassis frame, turned into a wheel frame steered by
