@@ -15,6 +15,7 @@
 #include "core/errors.hpp"
 #include "core/vtu_writer.hpp"
 #include "highfi/crm/crm_checkpoint.hpp"
+#include "highfi/crm/crm_run_check.hpp"
 
 namespace terracal {
 namespace fs = std::filesystem;
@@ -25,15 +26,6 @@ namespace {
 // The rms particle speed above which a settled bed counts as still moving: ten times that of a
 // quiet bed (about 0.002 m/s at 0.06 m, results/crm_settling).
 constexpr double kSettledRmsSpeed = 0.02;
-
-void check_finite(const CrmSolver& s, const char* phase) {
-  const SoilStats st = s.stats();
-  if (st.nonfinite > 0)
-    throw RunError(
-        fmt::format("{}: {} particles have a non-finite state at step {} (t = {:.6g} s, dt = {:.4g} s); the "
-                    "scene is unstable at this step size: lower resolution.cfl or resolution.time_step",
-                    phase, st.nonfinite, s.steps(), s.time(), s.time_step()));
-}
 
 // Progress in the style of a long solver run: simulated time, speed and real-time factor.
 class Progress {
@@ -98,11 +90,14 @@ HostSoil settled_bed(const CrmScene& scene, CrmDevice device, const fs::path& ca
   CrmSolver solver(bed, device, &start);
   Progress progress("settling", scene.settle_time, scene.output.progress_seconds);
   progress.start(solver);
+  const CrmRunCheck health(solver);
   while (solver.time() < scene.settle_time - 0.5 * solver.time_step()) {
     solver.step();
+    if (solver.steps() % kCrmCheckEvery == 0)
+      if (const auto bad = health.check(solver)) throw RunError("settling: " + bad->message);
     progress.maybe(solver);
   }
-  check_finite(solver, "settling");
+  if (const auto bad = health.check(solver)) throw RunError("settling: " + bad->message);
   progress.maybe(solver, true);
   // A bed released from the exact lattice (settle_jitter 0) stays still for a while, then rearranges
   // in a burst that takes about a second to die out (results/crm_settling; sooner in deeper beds and
@@ -244,7 +239,9 @@ void write_summary_json(const fs::path& path, const CrmRunSummary& sum, std::siz
       {"lost_particles", sum.lost},
       {"bed_from_cache", sum.bed_from_cache},
       {"device", sum.device},
-      {"device_bytes_per_particle", double(device_bytes) / double(std::max<std::size_t>(1, sum.particles))}};
+      {"device_bytes_per_particle", double(device_bytes) / double(std::max<std::size_t>(1, sum.particles))},
+      {"status", sum.status}};
+  if (sum.status != "completed") j["failure"] = sum.failure;
   write_text_atomically(path.string(), j.dump(2) + "\n");
 }
 }  // namespace
@@ -294,19 +291,32 @@ CrmRunSummary run_crm_scene(const CrmScene& scene, const CrmRunOptions& o) {
   progress.start(solver);
   const long first = solver.steps();
   if (scene.output.vtu_every > 0 && !from.resumed) snapshot();
+  const CrmRunCheck health(solver);
+  std::optional<CrmFailure> failure;
   while (solver.time() < scene.duration - 0.5 * solver.time_step()) {
     solver.step();
     const long k = solver.steps();
     if (o.record_every > 0 && k % o.record_every == 0) record();
+    // Checked before anything of this step is saved: a checkpoint never holds a failed state.
+    if (k % kCrmCheckEvery == 0 && (failure = health.check(solver))) break;
     if (scene.output.vtu_every > 0 && k % scene.output.vtu_every == 0) snapshot();
-    if (scene.output.checkpoint_every > 0 && k % scene.output.checkpoint_every == 0) {
-      check_finite(solver, "run");
-      checkpoint();
-    }
+    if (scene.output.checkpoint_every > 0 && k % scene.output.checkpoint_every == 0) checkpoint();
     progress.maybe(solver);
   }
-  check_finite(solver, "run");
+  if (!failure) failure = health.check(solver);
   progress.maybe(solver, true);
+  if (failure) {
+    // What was measured up to the failure is kept: bodies.csv to that step, and summary.json says
+    // that the run failed, when and why. The last checkpoint (if any) stays that of a sound state.
+    if (rows.empty() || solver.steps() % std::max(1L, o.record_every) != 0) record();
+    write_rows();
+    fill_summary(solver, first, progress.wall(), sum);
+    sum.status = "failed";
+    sum.failure = failure->message;
+    write_summary_json(o.out / "summary.json", sum, solver.engine().device_bytes());
+    throw RunError(fmt::format("run: {} (bodies.csv and summary.json in {} keep the run up to here)", failure->message,
+                               o.out.string()));
+  }
   checkpoint();
   fill_summary(solver, first, progress.wall(), sum);
   write_summary_json(o.out / "summary.json", sum, solver.engine().device_bytes());

@@ -24,6 +24,8 @@ struct CrmRunSummary {
   long lost = 0;
   bool bed_from_cache = false;
   std::string device;
+  std::string status = "completed";  // or "failed" (summary.json; the run then throws RunError)
+  std::string failure;               // why it failed: what, when, where, what to try
 };
 
 // The bed of a scene after settle_time seconds without bodies; cached per (soil, bin, spacing,
@@ -31,7 +33,9 @@ struct CrmRunSummary {
 HostSoil settled_bed(const CrmScene& scene, CrmDevice device, const std::filesystem::path& cache_dir,
                      bool* from_cache = nullptr);
 
-// Runs the scene for scene.duration; throws RunError naming the step when the state turns non-finite.
+// Runs the scene for scene.duration, checking its health every kCrmCheckEvery steps (crm_run_check.hpp);
+// a run that goes bad writes bodies.csv and summary.json (status "failed") up to that step and
+// throws RunError naming the time, the place and what to try.
 CrmRunSummary run_crm_scene(const CrmScene& scene, const CrmRunOptions& options);
 
 // Writes the soil (and body markers) as VTU for ParaView.

@@ -68,6 +68,11 @@ struct CrmOutputSettings {
   double progress_seconds = 5;  // wall seconds between progress lines
 };
 
+// What a run tolerates before it stops as failed (crm_run_check.hpp).
+struct CrmRunLimits {
+  double max_lost_fraction = 1e-3;  // particles that may leave the soil's room, as a fraction of all
+};
+
 // The seed of the settling jitter when a scene names none.
 constexpr long kDefaultSettleSeed = 20221;
 
@@ -78,6 +83,7 @@ struct CrmScene {
   CrmNumerics numerics;
   CrmEffectChoice effects;
   CrmOutputSettings output;
+  CrmRunLimits checks;
   double duration = 0;       // simulated seconds after settling
   double settle_time = 0;    // simulated seconds of settling (cached per soil, bin and spacing)
   double settle_jitter = 0;  // settling starts up to this fraction of the spacing off the lattice (seeded)

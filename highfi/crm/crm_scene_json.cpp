@@ -96,6 +96,13 @@ CrmOutputSettings read_output(JsonObject out) {
   return s;
 }
 
+CrmRunLimits read_checks(JsonObject o) {
+  CrmRunLimits c;
+  c.max_lost_fraction = o.number_or("max_lost_fraction", c.max_lost_fraction, 0, 1);
+  o.finish();
+  return c;
+}
+
 }  // namespace
 
 CrmScene parse_crm_scene(const nlohmann::json& j, const std::string& where) {
@@ -111,6 +118,7 @@ CrmScene parse_crm_scene(const nlohmann::json& j, const std::string& where) {
   read_settling(o, sc);
   sc.duration = o.number_or("duration", 0, 0, 1e6);
   if (o.has("output")) sc.output = read_output(o.object("output"));
+  if (o.has("checks")) sc.checks = read_checks(o.object("checks"));
   o.finish();
   validate_crm_scene(sc);
   return sc;

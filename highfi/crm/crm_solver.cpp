@@ -201,6 +201,7 @@ void CrmSolver::step() {
   const std::vector<double> w1 = engine_->stage(1, dt);
   for (std::size_t b = 0; b < nb; ++b) {
     wrenches_[b] = unpack(w1, b + 1);
+    work_on_soil_ -= dt * (dot(wrenches_[b].force, half[b].velocity) + dot(wrenches_[b].torque, half[b].omega));
     bodies_[b] = advance_body(scene_.bodies[b], bodies_[b], half[b], wrenches_[b], scene_.soil.gravity, dt, time_ + dt);
   }
   wall_wrench_ = unpack(w1, 0);

@@ -42,6 +42,9 @@ class CrmSolver {
   const std::vector<BodyState>& bodies() const { return bodies_; }
   const std::vector<BodyWrench>& wrenches() const { return wrenches_; }
   const BodyWrench& wall_wrench() const { return wall_wrench_; }
+  // Work the bodies have done on the soil since the solver was made [J] (midpoint rule: the stage's
+  // wrench times the bodies' half-step velocities); the bin's walls are at rest and do none.
+  double work_on_soil() const { return work_on_soil_; }
 
   SoilStats stats() const { return engine_->stats(); }
   HostSoil soil() const;
@@ -62,6 +65,7 @@ class CrmSolver {
   std::vector<std::vector<Vec3<double>>> body_local_;
   double time_ = 0;
   long steps_ = 0;
+  double work_on_soil_ = 0;
 };
 
 // What an effect's before_step hook sees of a step (CrmEffect::before_step): the scene's bodies,

@@ -78,11 +78,12 @@ std::string CrmTerrain::description() const {
 
 void CrmTerrain::step() {
   solver_.step();
-  // The wrenches every step (cheap); the whole soil every 200 steps (a reduction over all particles).
+  // The wrenches every step (cheap); the soil's health every kCrmCheckEvery steps (crm_run_check.hpp).
   bool finite = true;
   for (const auto& w : solver_.wrenches())
     finite = finite && std::isfinite(w.force.x + w.force.y + w.force.z + w.torque.x + w.torque.y + w.torque.z);
-  if (finite && solver_.steps() % 200 == 0) finite = solver_.stats().nonfinite == 0;
+  if (finite && solver_.steps() % kCrmCheckEvery == 0)
+    if (const auto bad = health_.check(solver_)) throw RunError("CRM: " + bad->message);
   // A body that reaches the bin's floor was not carried by the soil: the spacing is too coarse for
   // it (particles leak past its markers) or its load is above the soil's bearing capacity.
   const CrmScene& sc = solver_.scene();

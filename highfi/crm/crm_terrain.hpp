@@ -6,6 +6,7 @@
 
 #include "core/terrain.hpp"
 #include "highfi/crm/crm_run.hpp"
+#include "highfi/crm/crm_run_check.hpp"
 #include "highfi/crm/crm_solver.hpp"
 
 namespace terracal {
@@ -28,7 +29,8 @@ CrmMemoryNeed crm_memory_need(const CrmScene& scene, CrmDevice device);
 
 class CrmTerrain final : public Terrain {
  public:
-  CrmTerrain(const CrmScene& scene, CrmDevice device, const HostSoil& bed) : solver_(scene, device, &bed) {}
+  CrmTerrain(const CrmScene& scene, CrmDevice device, const HostSoil& bed)
+      : solver_(scene, device, &bed), health_(solver_) {}
   std::string description() const override;
   void step() override;
   double time() const override { return solver_.time(); }
@@ -39,6 +41,7 @@ class CrmTerrain final : public Terrain {
 
  private:
   CrmSolver solver_;
+  CrmRunCheck health_;  // after solver_: made from it
 };
 
 class CrmSite final : public TerrainSite {

@@ -69,6 +69,7 @@ struct EngineSetup {
 struct SoilStats {
   double mass = 0, kinetic_energy = 0;
   Vec3<double> momentum{};
+  Vec3<double> first_moment{};  // sum of m x: the soil's potential energy is -g . first_moment
   double max_speed = 0;
   long nonfinite = 0, lost = 0, frozen = 0;
 };

@@ -74,9 +74,9 @@ struct CpuBackend {
   template <typename T>
   static SoilStats soil_stats(const SoilArrays<T>& s, long n, double mass) {
     SoilStats st;
-    double ke = 0, px = 0, py = 0, pz = 0, vmax = 0;
+    double ke = 0, px = 0, py = 0, pz = 0, mx = 0, my = 0, mz = 0, vmax = 0;
     long bad = 0, lost = 0, frozen = 0;
-#pragma omp parallel for reduction(+ : ke, px, py, pz, bad, lost, frozen) reduction(max : vmax)
+#pragma omp parallel for reduction(+ : ke, px, py, pz, mx, my, mz, bad, lost, frozen) reduction(max : vmax)
     for (long i = 0; i < n; ++i) {
       const Vec4<T> v = s.vel[i], p = s.pos[i];
       const double vx = v.x, vy = v.y, vz = v.z;
@@ -96,11 +96,15 @@ struct CpuBackend {
       px += mass * vx;
       py += mass * vy;
       pz += mass * vz;
+      mx += mass * double(p.x);
+      my += mass * double(p.y);
+      mz += mass * double(p.z);
       vmax = std::max(vmax, std::sqrt(v2));
     }
     st.mass = mass * double(n - lost - bad);
     st.kinetic_energy = ke;
     st.momentum = {px, py, pz};
+    st.first_moment = {mx, my, mz};
     st.max_speed = vmax;
     st.nonfinite = bad;
     st.lost = lost;

@@ -92,8 +92,8 @@ __global__ void wrench_kernel(MarkerArrays<T> mk, long nm, const BodyPose<T>* po
 
 template <typename T>
 __global__ void stats_kernel(SoilArrays<T> s, long n, double mass, double* out) {
-  // out: ke, px, py, pz, vmax, nonfinite, lost, frozen
-  double acc[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  // out: ke, px, py, pz, vmax, nonfinite, lost, frozen, mx, my, mz
+  double acc[11] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
   for (long i = blockIdx.x * long(blockDim.x) + threadIdx.x; i < n; i += long(blockDim.x) * gridDim.x) {
     const Vec4<T> v = s.vel[i], p = s.pos[i];
     const double vx = v.x, vy = v.y, vz = v.z;
@@ -114,8 +114,11 @@ __global__ void stats_kernel(SoilArrays<T> s, long n, double mass, double* out) 
     acc[2] += mass * vy;
     acc[3] += mass * vz;
     acc[4] = fmax(acc[4], sqrt(v2));
+    acc[8] += mass * double(p.x);
+    acc[9] += mass * double(p.y);
+    acc[10] += mass * double(p.z);
   }
-  for (int q = 0; q < 8; ++q) {
+  for (int q = 0; q < 11; ++q) {
     const double r = q == 4 ? warp_max(acc[q]) : warp_sum(acc[q]);
     if ((threadIdx.x & 31) == 0) {
       if (q == 4)
@@ -210,17 +213,18 @@ struct CudaBackend {
 
   template <typename T>
   static SoilStats soil_stats(const SoilArrays<T>& s, long n, double mass) {
-    double* d = alloc<double>(8);
+    double* d = alloc<double>(11);
     const int threads = 256;
     const int blocks = int(std::max<long>(1, std::min<long>((n + threads - 1) / threads, 2048)));
     stats_kernel<<<blocks, threads>>>(s, n, mass, d);
     TERRACAL_CUDA_CHECK(cudaGetLastError());
-    double h[8];
-    download(h, d, 8);
+    double h[11];
+    download(h, d, 11);
     release(d);
     SoilStats st;
     st.kinetic_energy = h[0];
     st.momentum = {h[1], h[2], h[3]};
+    st.first_moment = {h[8], h[9], h[10]};
     st.max_speed = h[4];
     st.nonfinite = long(h[5]);
     st.lost = long(h[6]);
