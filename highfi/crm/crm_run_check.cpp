@@ -68,7 +68,8 @@ std::string where(const CrmSolver& solver, const std::string& kind) {
   if (used == 1) return fmt::format("1 particle at [{:.4g}, {:.4g}, {:.4g}] m, {}", c.x, c.y, c.z, place_of(c, solver));
   // Several: their centroid (and its place), and the box they spread over.
   return fmt::format(
-      "{} particles around [{:.4g}, {:.4g}, {:.4g}] m (within [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] m), "
+      "{} particles around [{:.4g}, {:.4g}, {:.4g}] m (within [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] "
+      "m), "
       "{}",
       pick.size(), c.x, c.y, c.z, lo.x, hi.x, lo.y, hi.y, lo.z, hi.z, place_of(c, solver));
 }
@@ -110,11 +111,13 @@ std::optional<CrmFailure> CrmRunCheck::check(const CrmSolver& solver) const {
                 "more resolution.h_over_d0 or boundary layers); thrown out of the top, the soil blew up (" +
                     step_hint + ")");
   if (st.max_speed > speed_limit_)
-    return fail("too fast",
-                fmt::format("a particle moves at {:.3g} m/s, above c_s + 2 v_max = {:.3g} m/s (c_s = {:.3g} m/s, "
-                            "bodies at most {:.3g} m/s): the soil is blowing up",
-                            st.max_speed, speed_limit_, sc.soil.sound_speed(), sc.numerics.expected_speed),
-                step_hint);
+    return fail(
+        "too fast",
+        fmt::format("a particle moves at {:.3g} m/s, above c_s + 2 v_max = {:.3g} m/s (c_s = {:.3g} m/s, "
+                    "v_max = {:.3g} m/s, the bodies' largest speed or a fall over the wall height): the soil is "
+                    "blowing up",
+                    st.max_speed, speed_limit_, sc.soil.sound_speed(), sc.numerics.expected_speed),
+        step_hint);
   const double gained = soil_mechanical_energy(st, sc.soil.gravity) - energy0_;
   const double work = solver.work_on_soil() - work0_;
   if (gained > std::max(work, 0.0) + slack_ + 0.1 * std::abs(work))

@@ -28,8 +28,9 @@ class CrmRunCheck {
   // Checks the solver's state; an empty result when the run is sound. The criteria:
   // - any particle with a non-finite state;
   // - more than scene.checks.max_lost_fraction of the particles lost since the reference;
-  // - a particle faster than c_s + 2 v_max (v_max: the bodies' largest speed, c_s the soil's sound
-  //   speed): the soil is driven far slower than sound, so such speed comes from no source;
+  // - a particle faster than c_s + 2 v_max (c_s the soil's sound speed; v_max the speed the CFL step
+  //   covers: the bodies' largest, or a free fall over the wall height): the soil is driven far slower
+  //   than sound, so such speed comes from no source;
   // - the soil's kinetic plus potential energy above its reference plus the work the bodies did on
   //   it (plus a margin for the elastic energy the soil can give back).
   std::optional<CrmFailure> check(const CrmSolver& solver) const;
