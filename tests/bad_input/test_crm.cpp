@@ -41,9 +41,16 @@ TEST_CASE("bad input, crm: the scene", "[cli][bad_input]") {
             {"bin.size", "too coarse"}),
       scene("spacing too coarse for the body", [](auto& j) { j["bodies"][0]["shape"]["radius"] = 0.015; },
             {"shape.radius", "too coarse"}),
-      scene("lost fraction above 1", [](auto& j) { j["checks"] = {{"max_lost_fraction", 2}}; },
+      scene("lost fraction above 1",
+            [](auto& j) {
+              j["checks"] = {{"max_lost_fraction", 2}};
+            },
             {"checks.max_lost_fraction", "2", "[0, 1]"}),
-      scene("unknown key in checks", [](auto& j) { j["checks"] = {{"max_lost", 0.1}}; }, {"checks.max_lost"}),
+      scene("unknown key in checks",
+            [](auto& j) {
+              j["checks"] = {{"max_lost", 0.1}};
+            },
+            {"checks.max_lost"}),
       scene("h/d0 out of range", [](auto& j) { j["resolution"]["h_over_d0"] = 2.0; }, {"h_over_d0", "2", "[1, 1.6]"}),
       scene("marker velocity not a known rule", [](auto& j) { j["resolution"]["marker_velocity"] = "slip"; },
             {"marker_velocity", "slip", "mirror"}),

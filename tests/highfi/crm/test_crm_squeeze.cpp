@@ -69,9 +69,10 @@ TEST_CASE("CRM: soil squeezed to 83 % of its volume in a closed box keeps its ma
     tie_sum += K * std::log(s.pos[i].w / sc.soil.density);
   }
   const double box = size * size * lid_bottom, n = double(s.size());
-  std::printf("closed box: lid at %.4f m, soil volume %.4g m^3 against %.4g m^3 under the lid; mean p %.4g Pa, "
-              "K ln(rho/rho0) %.4g Pa\n",
-              lid_bottom, volume, box, p_sum / n, tie_sum / n);
+  std::printf(
+      "closed box: lid at %.4f m, soil volume %.4g m^3 against %.4g m^3 under the lid; mean p %.4g Pa, "
+      "K ln(rho/rho0) %.4g Pa\n",
+      lid_bottom, volume, box, p_sum / n, tie_sum / n);
   CHECK(solver.stats().lost == 0);
   CHECK(volume == Approx(box).epsilon(0.05));
   CHECK(p_sum / n == Approx(tie_sum / n).epsilon(0.1));
