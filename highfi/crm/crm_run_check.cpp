@@ -91,10 +91,10 @@ CrmRunCheck::CrmRunCheck(const CrmSolver& solver) {
 std::optional<CrmFailure> CrmRunCheck::check(const CrmSolver& solver) const {
   const SoilStats st = solver.stats();
   const CrmScene& sc = solver.scene();
-  const double t = solver.time();
-  const std::string at = fmt::format("at t = {:.6g} s (step {}, dt = {:.4g} s)", t, solver.steps(), solver.time_step());
+  const std::string at =
+      fmt::format("at t = {:.6g} s (step {}, dt = {:.4g} s)", solver.time(), solver.steps(), solver.time_step());
   auto fail = [&](const char* kind, const std::string& what, const std::string& hint) {
-    return CrmFailure{kind, fmt::format("{} {}: {}; {}", what, at, where(solver, kind), hint), t, solver.steps()};
+    return CrmFailure{kind, fmt::format("{} {}: {}; {}", what, at, where(solver, kind), hint)};
   };
   const std::string step_hint = fmt::format(
       "try a smaller step (resolution.cfl, now {:.3g}, or resolution.time_step) or a finer spacing (now {} m)",

@@ -16,8 +16,6 @@ constexpr long kCrmCheckEvery = 10;
 struct CrmFailure {
   std::string kind;     // "non-finite", "lost", "too fast", "energy"
   std::string message;  // what happened, when and where, and what to try
-  double time = 0;
-  long step = 0;
 };
 
 class CrmRunCheck {
@@ -34,8 +32,6 @@ class CrmRunCheck {
   // - the soil's kinetic plus potential energy above its reference plus the work the bodies did on
   //   it (plus a margin for the elastic energy the soil can give back).
   std::optional<CrmFailure> check(const CrmSolver& solver) const;
-
-  double speed_limit() const { return speed_limit_; }
 
  private:
   long lost0_ = 0;
