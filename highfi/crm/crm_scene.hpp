@@ -43,6 +43,9 @@ struct CrmNumerics {
   // The velocity boundary markers carry into the soil's velocity gradient and viscosity (scene key
   // resolution.marker_velocity, rigs' --marker-velocity), see MarkerVelocity.
   MarkerVelocity marker_velocity = MarkerVelocity::kMirror;
+  // The walls' contact pressure, in units of the soil's own pressure (scene key
+  // resolution.wall_contact; 0: off): highfi/crm/wall_contact.hpp, docs/decisions.md.
+  double wall_contact = 0;
   int grid_reach = 2;  // neighbour cells of size 2h / reach (1: the plain 2h grid)
   CrmPrecision cpu_precision = CrmPrecision::kDouble;
   double smoothing_length() const { return h_over_d0 * spacing; }

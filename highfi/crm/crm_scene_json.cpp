@@ -76,6 +76,7 @@ CrmNumerics read_resolution(JsonObject r) {
   n.free_surface_support = r.number_or("free_surface_support", n.free_surface_support, 0, 1);
   n.marker_velocity = marker_velocity_from_name(
       r.string_or("marker_velocity", "mirror", {std::begin(kMarkerVelocityNames), std::end(kMarkerVelocityNames)}));
+  n.wall_contact = r.number_or("wall_contact", n.wall_contact, 0, 100);
   n.grid_reach = int(r.integer_or("grid_reach", n.grid_reach, 1, 2));
   r.finish();
   return n;

@@ -33,6 +33,8 @@ SphConstants<double> crm_constants(const CrmScene& sc) {
   k.free_surface_support = n.free_surface_support;
   k.spacing = n.spacing;
   k.marker_velocity = n.marker_velocity;
+  k.wall_contact = n.wall_contact;
+  k.wall_contact_inv_reach = 1.0 / n.spacing;
   return k;
 }
 

@@ -5,6 +5,7 @@
 // with terms in this pass (CrmEffect::kInMarkerLoop).
 #include "highfi/crm/soil_arrays.hpp"
 #include "highfi/crm/sph_neighbours.hpp"
+#include "highfi/crm/wall_contact.hpp"
 
 namespace terracal {
 
@@ -141,8 +142,11 @@ struct MarkerStage {
       const T r2 = dot(r, r);
       const typename SphKernel<T>::Values kv = k.kernel.values(std::sqrt(r2));
       const T rho_j = pj.w;
-      f -= pair_acceleration<T, Mx>(k, ec, stress_of(soil.s0[j], soil.s1[j]), T(1) / (rho_j * rho_j), rho_j,
-                                    soil.vel[j].xyz(), ms.s, ms.inv_rho2, ms.rho, ms.v, r, r2, kv.f * r);
+      const Sym3<T> sj = stress_of(soil.s0[j], soil.s1[j]);
+      // The marker's stress as soil particle j sees it: with the contact pressure (wall_contact.hpp).
+      const Sym3<T> sm = plus_pressure(ms.s, wall_contact_pressure(k, std::sqrt(r2), sj));
+      f -= pair_acceleration<T, Mx>(k, ec, sj, T(1) / (rho_j * rho_j), rho_j, soil.vel[j].xyz(), sm, ms.inv_rho2,
+                                    ms.rho, ms.v, r, r2, kv.f * r);
       for_each_effect(Mx{}, [&](auto tag) {
         using E = typename decltype(tag)::type;
         Vec4<T> record{};

@@ -40,6 +40,8 @@ SphConstants<T> constants_in(const SphConstants<double>& c) {
   k.free_surface_support = T(c.free_surface_support);
   k.spacing = T(c.spacing);
   k.marker_velocity = c.marker_velocity;
+  k.wall_contact = T(c.wall_contact);
+  k.wall_contact_inv_reach = T(c.wall_contact_inv_reach);
   return k;
 }
 template <typename T>

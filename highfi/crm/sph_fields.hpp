@@ -103,6 +103,8 @@ struct SphConstants {
   T free_surface_support = 0;  // kernel support (Shepard sum) below which a particle is on the free surface
   T spacing = 0;               // d0
   MarkerVelocity marker_velocity = MarkerVelocity::kMirror;  // CrmNumerics::marker_velocity
+  T wall_contact = 0;            // the walls' contact pressure in units of the soil's (wall_contact.hpp)
+  T wall_contact_inv_reach = 0;  // 1 / d0
 };
 
 // A body's pose and rigid motion, as the marker update reads it.

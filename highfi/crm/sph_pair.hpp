@@ -7,6 +7,7 @@
 
 #include "core/effect_list.hpp"
 #include "highfi/crm/sph_fields.hpp"
+#include "highfi/crm/wall_contact.hpp"
 
 namespace terracal {
 
@@ -102,8 +103,10 @@ TERRACAL_HD inline SoilSums<T> neighbour_share(const SphConstants<T>& k, const E
   nb.vol = k.mass * nb.inv_rho;
   nb.dv = vj - me.v;
   SoilSums<T> c;
-  c.acc = pair_acceleration<T, Fx>(k, ec, me.s, me.inv_rho2, me.rho, me.v, stress_of(s0j, s1j), nb.inv_rho * nb.inv_rho,
-                                   pj.w, vj, nb.r, nb.r2, nb.grad);
+  Sym3<T> sj = stress_of(s0j, s1j);
+  if constexpr (!kSoil) sj = plus_pressure(sj, wall_contact_pressure(k, std::sqrt(nb.r2), me.s));
+  c.acc = pair_acceleration<T, Fx>(k, ec, me.s, me.inv_rho2, me.rho, me.v, sj, nb.inv_rho * nb.inv_rho, pj.w, vj, nb.r,
+                                   nb.r2, nb.grad);
   if constexpr (kSoil) {
     for_each_effect(Fx{}, [&](auto tag) {
       using E = typename decltype(tag)::type;
