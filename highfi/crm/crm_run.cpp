@@ -290,7 +290,10 @@ CrmRunSummary run_crm_scene(const CrmScene& scene, const CrmRunOptions& o) {
   Progress progress("run", scene.duration, scene.output.progress_seconds);
   progress.start(solver);
   const long first = solver.steps();
-  if (scene.output.vtu_every > 0 && !from.resumed) snapshot();
+  const auto snapshot_due = [&](long k) {
+    return scene.output.vtu_every > 0 && k % scene.output.vtu_every == 0 && solver.time() >= scene.output.vtu_from;
+  };
+  if (snapshot_due(0) && !from.resumed) snapshot();
   const CrmRunCheck health(solver);
   std::optional<CrmFailure> failure;
   while (solver.time() < scene.duration - 0.5 * solver.time_step()) {
@@ -299,7 +302,7 @@ CrmRunSummary run_crm_scene(const CrmScene& scene, const CrmRunOptions& o) {
     if (o.record_every > 0 && k % o.record_every == 0) record();
     // Checked before anything of this step is saved: a checkpoint never holds a failed state.
     if (k % kCrmCheckEvery == 0 && (failure = health.check(solver))) break;
-    if (scene.output.vtu_every > 0 && k % scene.output.vtu_every == 0) snapshot();
+    if (snapshot_due(k)) snapshot();
     if (scene.output.checkpoint_every > 0 && k % scene.output.checkpoint_every == 0) checkpoint();
     progress.maybe(solver);
   }
@@ -310,6 +313,8 @@ CrmRunSummary run_crm_scene(const CrmScene& scene, const CrmRunOptions& o) {
     // that the run failed, when and why. The last checkpoint (if any) stays that of a sound state.
     if (rows.empty() || solver.steps() % std::max(1L, o.record_every) != 0) record();
     write_rows();
+    // The failed state itself is the snapshot one wants to look at in ParaView.
+    if (scene.output.vtu_every > 0 && (snapshots.empty() || snapshots.back().first < solver.time())) snapshot();
     fill_summary(solver, first, progress.wall(), sum);
     sum.status = "failed";
     sum.failure = failure->message;

@@ -67,6 +67,7 @@ struct CrmRanges {
 
 struct CrmOutputSettings {
   long vtu_every = 0;           // steps between ParaView snapshots; 0 = none
+  double vtu_from = 0;          // simulated time from which snapshots are written, s
   long checkpoint_every = 0;    // steps between checkpoints; 0 = only at the end
   double progress_seconds = 5;  // wall seconds between progress lines
 };

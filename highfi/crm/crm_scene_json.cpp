@@ -91,6 +91,7 @@ void read_settling(JsonObject& o, CrmScene& sc) {
 CrmOutputSettings read_output(JsonObject out) {
   CrmOutputSettings s;
   s.vtu_every = out.integer_or("vtu_every", 0, 0, 1L << 40);
+  s.vtu_from = out.number_or("vtu_from", 0, 0, 1e6);
   s.checkpoint_every = out.integer_or("checkpoint_every", 0, 0, 1L << 40);
   s.progress_seconds = out.number_or("progress_seconds", s.progress_seconds, 0, 1e6, true);
   out.finish();

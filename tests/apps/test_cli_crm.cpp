@@ -55,3 +55,20 @@ TEST_CASE("terracal crm: a resumed run ends with exactly the files of an uninter
   CHECK(c.err.find("the run starts from the beginning") != std::string::npos);
   CHECK(test::read_file(root + "/a/bodies.csv") == test::read_file(root + "/c/bodies.csv"));
 }
+
+TEST_CASE("terracal crm: snapshots start at output.vtu_from", "[apps][crm]") {
+  ScratchDir dir("crm_vtu_from");
+  nlohmann::json j = terracal::test::plate_scene_json();
+  j["duration"] = 0.006;
+  j["output"] = {{"vtu_every", 2}, {"vtu_from", 0.003}};
+  const std::string scene = dir.path.string() + "/scene.json";
+  test::write(scene, j.dump());
+  const CliResult r = test::run_cli("crm --scene " + scene + " --out " + dir.path.string() + "/o --cache ''", dir.path);
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const auto snaps = terracal::read_pvd(dir.path.string() + "/o/soil.pvd");
+  REQUIRE(snaps.size() >= 2);
+  for (const auto& s : snaps) CHECK(s.first >= 0.003);
+  // Every snapshot from 0.003 s on is there: none more than two steps after that time.
+  CHECK(snaps.front().first < 0.003 + 2 * (snaps[1].first - snaps[0].first));
+}
