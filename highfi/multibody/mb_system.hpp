@@ -1,0 +1,68 @@
+#pragma once
+// A multibody system in maximal coordinates: bodies, joints and force elements, with the pieces the
+// integrators need: the constraint values and their velocity Jacobian, the applied wrenches, the mass,
+// and the packing of positions and velocities into flat vectors. A moving body has 7 coordinates
+// (position, unit quaternion w x y z) and 6 velocities (linear world, angular body); fixed bodies
+// (the ground) have none.
+#include <functional>
+#include <vector>
+
+#include "highfi/multibody/force_elements.hpp"
+#include "highfi/multibody/joints.hpp"
+
+namespace terracal::mb {
+
+class MbSystem {
+ public:
+  // Forces that are neither gravity nor an element (tires, soil, a driver's push): added to the
+  // wrenches at each evaluation, at time t.
+  using ExternalForces = std::function<void(double t, const std::vector<RigidBody>&, std::vector<Wrench>&)>;
+
+  Vec3 gravity{0, 0, -9.81};
+  std::vector<RigidBody> bodies;
+  std::vector<Joint> joints;
+  std::vector<SpringDamper> springs;
+  std::vector<RotationalSpringDamper> rotational_springs;
+  std::vector<Bushing> bushings;
+  std::vector<ExternalForces> external;
+
+  int add_body(RigidBody b);
+  // A joint placed as bodies are now (Joint::place).
+  int add_joint(const std::string& name, JointType type, int i, int j, const Vec3& where,
+                const Mat3& axes = Mat3::Identity(), const Vec3& other = Vec3::Zero());
+
+  // Call after the last body is added (and again if bodies change from fixed to moving).
+  void index();
+  int moving() const { return int(moving_.size()); }
+  int velocities() const { return 6 * moving(); }
+  int coordinates() const { return 7 * moving(); }
+  int constraint_rows() const;
+
+  void get_positions(double* q) const;  // 7 per moving body
+  void set_positions(const double* q);
+  void get_velocities(double* u) const;  // 6 per moving body
+  void set_velocities(const double* u);
+  // d/dt of the coordinates for velocities u: r' = v, quaternion' = q (0, w) / 2.
+  void coordinate_rates(const double* q, const double* u, double* qdot) const;
+
+  // The joints' constraint values (m) and their Jacobian against the velocities (m x 6 n).
+  void constraints(Eigen::VectorXd& phi, Eigen::MatrixXd& jac) const;
+  // The applied wrenches on the moving bodies at time t, minus the gyroscopic term w x J w: the
+  // right-hand side of M u' = f - J^T lambda, 6 per moving body.
+  Eigen::VectorXd applied(double t) const;
+  // The diagonal blocks of the mass matrix: mass and body-frame inertia per moving body.
+  Eigen::MatrixXd mass_matrix() const;
+
+  // Kinetic energy plus the potential of gravity (springs' energy is not counted).
+  double mechanical_energy() const;
+  // Moves the positions onto the constraints (least-norm Gauss-Newton) and projects the velocities
+  // onto their constraints (least kinetic energy). Throws if the constraints cannot be met or are
+  // redundant.
+  void assemble(double tolerance = 1e-12, int max_iterations = 50);
+
+ private:
+  std::vector<int> moving_;  // body index of each moving body
+  std::vector<int> slot_;    // moving slot of each body, -1 for a fixed one
+};
+
+}  // namespace terracal::mb
