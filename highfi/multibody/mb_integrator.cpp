@@ -29,7 +29,7 @@ void move_along(MbSystem& s, const VectorXd& q0, const VectorXd& u, double eps) 
 
 struct MbIntegrator::Impl {
   MbSystem& sys;
-  int nq = 0, nu = 0, m = 0, nb = 0, size = 0;
+  int nq = 0, nu = 0, m = 0, mh = 0, nb = 0, size = 0;  // m all constraint rows, mh the position ones
   SUNContext context = nullptr;
   N_Vector yy = nullptr, yp = nullptr, ids = nullptr, atol = nullptr;
   SUNMatrix matrix = nullptr;
@@ -46,22 +46,22 @@ struct MbIntegrator::Impl {
 
   // The GGL residual (see the header).
   int residual(double time, const double* y, const double* ydot, double* r) {
-    const Eigen::Map<const VectorXd> q(y, nq), u(y + nq, nu), lambda(y + nq + nu, m), mu(y + nq + nu + m, m + nb);
+    const Eigen::Map<const VectorXd> q(y, nq), u(y + nq, nu), lambda(y + nq + nu, m), mu(y + nq + nu + m, mh + nb);
     sys.set_positions(q.data());
     sys.set_velocities(u.data());
     VectorXd phi;
     Eigen::MatrixXd jac;
     sys.constraints(phi, jac);
     const VectorXd f = sys.applied(time);
-    const VectorXd corrected = u + jac.transpose() * mu.head(m);
+    const VectorXd corrected = u + jac.topRows(mh).transpose() * mu.head(mh);
     VectorXd qdot(nq);
     sys.coordinate_rates(q.data(), corrected.data(), qdot.data());
-    for (int k = 0; k < nb; ++k) qdot.segment<4>(7 * k + 3) += q.segment<4>(7 * k + 3) * mu[m + k];
-    Eigen::Map<VectorXd> rq(r, nq), ru(r + nq, nu), rphi(r + nq + nu, m + nb), rvel(r + nq + nu + m + nb, m);
+    for (int k = 0; k < nb; ++k) qdot.segment<4>(7 * k + 3) += q.segment<4>(7 * k + 3) * mu[mh + k];
+    Eigen::Map<VectorXd> rq(r, nq), ru(r + nq, nu), rphi(r + nq + nu, mh + nb), rvel(r + nq + nu + mh + nb, m);
     rq = Eigen::Map<const VectorXd>(ydot, nq) - qdot;
     ru = mass * Eigen::Map<const VectorXd>(ydot + nq, nu) - f + jac.transpose() * lambda;
-    rphi.head(m) = phi;
-    for (int k = 0; k < nb; ++k) rphi[m + k] = 0.5 * (q.segment<4>(7 * k + 3).squaredNorm() - 1);
+    rphi.head(mh) = phi;
+    for (int k = 0; k < nb; ++k) rphi[mh + k] = 0.5 * (q.segment<4>(7 * k + 3).squaredNorm() - 1);
     rvel = jac * u;
     return phi.allFinite() && f.allFinite() ? 0 : 1;  // a recoverable failure: IDAS retries smaller
   }
@@ -111,7 +111,8 @@ MbIntegrator::MbIntegrator(MbSystem& system, MbIntegratorOptions o, double t0) :
   s.nq = system.coordinates();
   s.nu = system.velocities();
   s.m = system.constraint_rows();
-  s.size = s.nq + s.nu + 2 * s.m + s.nb;
+  s.mh = system.position_rows();
+  s.size = s.nq + s.nu + s.m + s.mh + s.nb;
   s.mass = system.mass_matrix();
   s.check(SUNContext_Create(nullptr, &s.context), "SUNContext_Create");
   s.yy = N_VNew_Serial(s.size, s.context);

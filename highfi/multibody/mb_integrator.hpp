@@ -4,7 +4,9 @@
 // multipliers lambda of the velocity constraints and mu of the position constraints,
 //   q' = H(q) (u + Phi_v^T mu_j) + q mu_n     (mu is zero on the exact solution: it projects q' so
 //   M u' = f(q, u, t) - Phi_v^T lambda         that the position constraints hold too)
-//   0 = Phi(q), 0 = (|q|^2 - 1) / 2 per body,  0 = Phi_v(q) u.
+//   0 = Phi(q), 0 = (|q|^2 - 1) / 2 per body,  0 = Phi_v(q) u,
+// where Phi are the joints' position constraints and Phi_v u holds their velocity form and the shafts'
+// couplings (velocity constraints only, with a lambda and no mu).
 // Before the run, positions, velocities, accelerations and lambda are made consistent
 // (MbSystem::assemble, then the acceleration-level saddle system): IDACalcIC alone cannot do this
 // here, since the algebraic equations do not contain the algebraic unknowns.

@@ -28,7 +28,7 @@ void MbSystem::index() {
     }
 }
 
-int MbSystem::constraint_rows() const {
+int MbSystem::position_rows() const {
   int m = 0;
   for (const Joint& j : joints) m += joint_rows(j.type);
   return m;
@@ -41,6 +41,7 @@ void MbSystem::get_positions(double* q) const {
     p[0] = b.position.x(), p[1] = b.position.y(), p[2] = b.position.z();
     p[3] = b.orientation.w(), p[4] = b.orientation.x(), p[5] = b.orientation.y(), p[6] = b.orientation.z();
   }
+  for (std::size_t k = 0; k < shafts.size(); ++k) q[7 * moving() + int(k)] = shafts[k].angle;
 }
 
 void MbSystem::set_positions(const double* q) {
@@ -51,6 +52,7 @@ void MbSystem::set_positions(const double* q) {
     // The integrator keeps |q| = 1 as a constraint; the rotation matrix is taken from the unit quaternion.
     b.orientation = Quat(p[3], p[4], p[5], p[6]).normalized();
   }
+  for (std::size_t k = 0; k < shafts.size(); ++k) shafts[k].angle = q[7 * moving() + int(k)];
 }
 
 void MbSystem::get_velocities(double* u) const {
@@ -58,6 +60,7 @@ void MbSystem::get_velocities(double* u) const {
     const RigidBody& b = bodies[std::size_t(moving_[std::size_t(k)])];
     for (int c = 0; c < 3; ++c) u[6 * k + c] = b.velocity[c], u[6 * k + 3 + c] = b.omega[c];
   }
+  for (std::size_t k = 0; k < shafts.size(); ++k) u[6 * moving() + int(k)] = shafts[k].speed;
 }
 
 void MbSystem::set_velocities(const double* u) {
@@ -66,6 +69,7 @@ void MbSystem::set_velocities(const double* u) {
     b.velocity = Vec3(u[6 * k], u[6 * k + 1], u[6 * k + 2]);
     b.omega = Vec3(u[6 * k + 3], u[6 * k + 4], u[6 * k + 5]);
   }
+  for (std::size_t k = 0; k < shafts.size(); ++k) shafts[k].speed = u[6 * moving() + int(k)];
 }
 
 void MbSystem::coordinate_rates(const double* q, const double* u, double* qdot) const {
@@ -81,20 +85,29 @@ void MbSystem::coordinate_rates(const double* q, const double* u, double* qdot) 
     d[5] = 0.5 * (w * b + z * a - x * c);
     d[6] = 0.5 * (w * c + x * b - y * a);
   }
+  for (std::size_t k = 0; k < shafts.size(); ++k) qdot[7 * moving() + int(k)] = u[6 * moving() + int(k)];
 }
 
 void MbSystem::constraints(Eigen::VectorXd& phi, Eigen::MatrixXd& jac) const {
   std::vector<ConstraintRow> rows;
   rows.reserve(std::size_t(constraint_rows()));
   for (const Joint& j : joints) j.rows(bodies, rows);
-  phi.resize(Eigen::Index(rows.size()));
-  jac.setZero(Eigen::Index(rows.size()), velocities());
+  const Eigen::Index held = Eigen::Index(rows.size()), shaft0 = 6 * moving();
+  std::vector<Row6> shaft_parts(shaft_bodies.size());
+  for (std::size_t k = 0; k < shaft_bodies.size(); ++k) rows.push_back(shaft_bodies[k].row(bodies, shaft_parts[k]));
+  phi.resize(held);
+  jac.setZero(Eigen::Index(rows.size() + linkages.size()), velocities());
   for (std::size_t r = 0; r < rows.size(); ++r) {
-    phi[Eigen::Index(r)] = rows[r].value;
+    if (Eigen::Index(r) < held) phi[Eigen::Index(r)] = rows[r].value;
     const int si = slot_[std::size_t(rows[r].i)], sj = slot_[std::size_t(rows[r].j)];
     if (si >= 0) jac.block<1, 6>(Eigen::Index(r), 6 * si) += rows[r].ji;
     if (sj >= 0) jac.block<1, 6>(Eigen::Index(r), 6 * sj) += rows[r].jj;
   }
+  for (std::size_t k = 0; k < shaft_bodies.size(); ++k)
+    jac(held + Eigen::Index(k), shaft0 + shaft_bodies[k].shaft) = shaft_parts[k][0];
+  for (std::size_t k = 0; k < linkages.size(); ++k)
+    for (std::size_t c = 0; c < linkages[k].shafts.size(); ++c)
+      jac(Eigen::Index(rows.size() + k), shaft0 + linkages[k].shafts[c]) += linkages[k].coefficients[c];
 }
 
 Eigen::VectorXd MbSystem::applied(double t) const {
@@ -110,6 +123,17 @@ Eigen::VectorXd MbSystem::applied(double t) const {
     f.segment<3>(6 * k) = w[std::size_t(moving_[std::size_t(k)])].force;
     f.segment<3>(6 * k + 3) = w[std::size_t(moving_[std::size_t(k)])].torque - b.omega.cross(b.inertia * b.omega);
   }
+  const Eigen::Index shaft0 = 6 * moving();
+  for (std::size_t k = 0; k < shafts.size(); ++k) f[shaft0 + Eigen::Index(k)] = 0;
+  for (const ShaftTorque& st : shaft_torques) {
+    const Shaft& sh = shafts[std::size_t(st.shaft)];
+    f[shaft0 + st.shaft] += st.torque(t, sh.angle, sh.speed);
+  }
+  for (const Clutch& c : clutches) {
+    const double tq = c.torque(shafts[std::size_t(c.a)].speed, shafts[std::size_t(c.b)].speed);
+    f[shaft0 + c.b] += tq;
+    f[shaft0 + c.a] -= tq;
+  }
   return f;
 }
 
@@ -120,6 +144,7 @@ Eigen::MatrixXd MbSystem::mass_matrix() const {
     m.block<3, 3>(6 * k, 6 * k) = b.mass * Mat3::Identity();
     m.block<3, 3>(6 * k + 3, 6 * k + 3) = b.inertia;
   }
+  for (std::size_t k = 0; k < shafts.size(); ++k) m(6 * moving() + Eigen::Index(k), 6 * moving() + Eigen::Index(k)) = shafts[k].inertia;
   return m;
 }
 
@@ -130,6 +155,7 @@ double MbSystem::mechanical_energy() const {
     e += 0.5 * b.mass * b.velocity.squaredNorm() + 0.5 * b.omega.dot(b.inertia * b.omega);
     e -= b.mass * gravity.dot(b.position);
   }
+  for (const Shaft& sh : shafts) e += 0.5 * sh.inertia * sh.speed * sh.speed;
   return e;
 }
 
@@ -137,7 +163,7 @@ void MbSystem::assemble(double tolerance, int max_iterations) {
   Eigen::VectorXd phi;
   Eigen::MatrixXd jac;
   constraints(phi, jac);
-  if (phi.size() == 0) return;
+  if (jac.rows() == 0) return;
   const Eigen::FullPivLU<Eigen::MatrixXd> rank(jac);
   if (rank.rank() < jac.rows())
     throw InputError(fmt::format("multibody: {} constraint rows but only {} independent ones: the joints constrain "
@@ -145,12 +171,12 @@ void MbSystem::assemble(double tolerance, int max_iterations) {
                                  "universal joint)",
                                  jac.rows(), rank.rank()));
   for (int it = 0;; ++it) {
-    if (phi.lpNorm<Eigen::Infinity>() <= tolerance) break;
+    if (phi.size() == 0 || phi.lpNorm<Eigen::Infinity>() <= tolerance) break;
     if (it == max_iterations)
       throw InputError(fmt::format("multibody: the joints cannot be assembled: constraint error {:.3g} after {} "
                                    "iterations (are the hardpoints consistent?)",
                                    phi.lpNorm<Eigen::Infinity>(), max_iterations));
-    const Eigen::VectorXd step = jac.completeOrthogonalDecomposition().solve(-phi);  // least-norm correction
+    const Eigen::VectorXd step = jac.topRows(phi.size()).completeOrthogonalDecomposition().solve(-phi);  // least norm
     for (int k = 0; k < moving(); ++k) {
       RigidBody& b = bodies[std::size_t(moving_[std::size_t(k)])];
       b.position += step.segment<3>(6 * k);

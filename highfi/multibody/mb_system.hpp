@@ -1,14 +1,16 @@
 #pragma once
-// A multibody system in maximal coordinates: bodies, joints and force elements, with the pieces the
-// integrators need: the constraint values and their velocity Jacobian, the applied wrenches, the mass,
-// and the packing of positions and velocities into flat vectors. A moving body has 7 coordinates
-// (position, unit quaternion w x y z) and 6 velocities (linear world, angular body); fixed bodies
-// (the ground) have none.
+// A multibody system in maximal coordinates: bodies, joints and force elements, and the driveline's
+// shafts, with the pieces the integrators need: the constraint values and their velocity Jacobian, the
+// applied wrenches, the mass, and the packing of positions and velocities into flat vectors. A moving
+// body has 7 coordinates (position, unit quaternion w x y z) and 6 velocities (linear world, angular
+// body); fixed bodies (the ground) have none; a shaft has its angle and its speed, after the bodies'.
+// Joints are position constraints; the shafts' couplings are velocity constraints only.
 #include <functional>
 #include <vector>
 
 #include "highfi/multibody/force_elements.hpp"
 #include "highfi/multibody/joints.hpp"
+#include "highfi/multibody/shafts.hpp"
 
 namespace terracal::mb {
 
@@ -25,6 +27,11 @@ class MbSystem {
   std::vector<RotationalSpringDamper> rotational_springs;
   std::vector<Bushing> bushings;
   std::vector<ExternalForces> external;
+  std::vector<Shaft> shafts;
+  std::vector<ShaftLinkage> linkages;
+  std::vector<ShaftToBody> shaft_bodies;
+  std::vector<ShaftTorque> shaft_torques;
+  std::vector<Clutch> clutches;
 
   int add_body(RigidBody b);
   // A joint placed as bodies are now (Joint::place).
@@ -34,26 +41,29 @@ class MbSystem {
   // Call after the last body is added (and again if bodies change from fixed to moving).
   void index();
   int moving() const { return int(moving_.size()); }
-  int velocities() const { return 6 * moving(); }
-  int coordinates() const { return 7 * moving(); }
-  int constraint_rows() const;
+  int velocities() const { return 6 * moving() + int(shafts.size()); }
+  int coordinates() const { return 7 * moving() + int(shafts.size()); }
+  // Rows of position constraints (the joints') and of all constraints (joints', then the couplings').
+  int position_rows() const;
+  int constraint_rows() const { return position_rows() + int(linkages.size() + shaft_bodies.size()); }
 
-  void get_positions(double* q) const;  // 7 per moving body
+  void get_positions(double* q) const;  // 7 per moving body, then 1 per shaft
   void set_positions(const double* q);
-  void get_velocities(double* u) const;  // 6 per moving body
+  void get_velocities(double* u) const;  // 6 per moving body, then 1 per shaft
   void set_velocities(const double* u);
   // d/dt of the coordinates for velocities u: r' = v, quaternion' = q (0, w) / 2.
   void coordinate_rates(const double* q, const double* u, double* qdot) const;
 
-  // The joints' constraint values (m) and their Jacobian against the velocities (m x 6 n).
+  // The joints' constraint values (position_rows()) and the Jacobian of all constraints against the
+  // velocities (constraint_rows() x velocities()).
   void constraints(Eigen::VectorXd& phi, Eigen::MatrixXd& jac) const;
-  // The applied wrenches on the moving bodies at time t, minus the gyroscopic term w x J w: the
-  // right-hand side of M u' = f - J^T lambda, 6 per moving body.
+  // The applied wrenches on the moving bodies at time t, minus the gyroscopic term w x J w, and the
+  // shafts' torques: the right-hand side of M u' = f - J^T lambda.
   Eigen::VectorXd applied(double t) const;
-  // The diagonal blocks of the mass matrix: mass and body-frame inertia per moving body.
+  // The mass matrix: mass and body-frame inertia per moving body, then the shafts' inertias.
   Eigen::MatrixXd mass_matrix() const;
 
-  // Kinetic energy plus the potential of gravity (springs' energy is not counted).
+  // Kinetic energy (bodies and shafts) plus the potential of gravity (springs' energy is not counted).
   double mechanical_energy() const;
   // Moves the positions onto the constraints (least-norm Gauss-Newton) and projects the velocities
   // onto their constraints (least kinetic energy). Throws if the constraints cannot be met or are
