@@ -52,8 +52,8 @@ void row_dot2(const RigidBody& bi, int i, const Vec3& ai, const Vec3& si, const 
   out.push_back(r);
 }
 
-void row_distance(const RigidBody& bi, int i, const Vec3& si, const RigidBody& bj, int j, const Vec3& sj,
-                  double length, std::vector<ConstraintRow>& out) {
+void row_distance(const RigidBody& bi, int i, const Vec3& si, const RigidBody& bj, int j, const Vec3& sj, double length,
+                  std::vector<ConstraintRow>& out) {
   const Mat3 Ai = bi.rotation(), Aj = bj.rotation();
   const Vec3 d = bj.point(sj) - bi.point(si);
   ConstraintRow r;

@@ -29,7 +29,7 @@ void row_perpendicular(const RigidBody& bi, int i, const Vec3& ai, const RigidBo
 void row_dot2(const RigidBody& bi, int i, const Vec3& ai, const Vec3& si, const RigidBody& bj, int j, const Vec3& sj,
               std::vector<ConstraintRow>& out);
 // The distance between two points is `length`: (d.d - L^2) / (2 L) = 0 (a length, like the others).
-void row_distance(const RigidBody& bi, int i, const Vec3& si, const RigidBody& bj, int j, const Vec3& sj,
-                  double length, std::vector<ConstraintRow>& out);
+void row_distance(const RigidBody& bi, int i, const Vec3& si, const RigidBody& bj, int j, const Vec3& sj, double length,
+                  std::vector<ConstraintRow>& out);
 
 }  // namespace terracal::mb

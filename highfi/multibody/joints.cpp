@@ -4,26 +4,44 @@ namespace terracal::mb {
 
 int joint_rows(JointType type) {
   switch (type) {
-    case JointType::revolute: return 5;
-    case JointType::spherical: return 3;
-    case JointType::universal: return 4;
-    case JointType::prismatic: return 5;
-    case JointType::fixed: return 6;
-    case JointType::distance: return 1;
-    case JointType::point_on_line: return 2;
+    case JointType::revolute:
+      return 5;
+    case JointType::spherical:
+      return 3;
+    case JointType::universal:
+      return 4;
+    case JointType::prismatic:
+      return 5;
+    case JointType::fixed:
+      return 6;
+    case JointType::distance:
+      return 1;
+    case JointType::point_on_line:
+      return 2;
+    case JointType::point_on_plane:
+      return 1;
   }
   return 0;
 }
 
 const char* joint_type_name(JointType type) {
   switch (type) {
-    case JointType::revolute: return "revolute";
-    case JointType::spherical: return "spherical";
-    case JointType::universal: return "universal";
-    case JointType::prismatic: return "prismatic";
-    case JointType::fixed: return "fixed";
-    case JointType::distance: return "distance";
-    case JointType::point_on_line: return "point_on_line";
+    case JointType::revolute:
+      return "revolute";
+    case JointType::spherical:
+      return "spherical";
+    case JointType::universal:
+      return "universal";
+    case JointType::prismatic:
+      return "prismatic";
+    case JointType::fixed:
+      return "fixed";
+    case JointType::distance:
+      return "distance";
+    case JointType::point_on_line:
+      return "point_on_line";
+    case JointType::point_on_plane:
+      return "point_on_plane";
   }
   return "?";
 }
@@ -50,7 +68,9 @@ void Joint::rows(const std::vector<RigidBody>& b, std::vector<ConstraintRow>& ou
   const Vec3 xi = frame_i.col(0), yi = frame_i.col(1), zi = frame_i.col(2);
   const Vec3 xj = frame_j.col(0), yj = frame_j.col(1);
   switch (type) {
-    case JointType::spherical: rows_point(bi, i, si, bj, j, sj, out); break;
+    case JointType::spherical:
+      rows_point(bi, i, si, bj, j, sj, out);
+      break;
     case JointType::revolute:  // the point, and body i's axis z stays normal to body j's x and y
       rows_point(bi, i, si, bj, j, sj, out);
       row_perpendicular(bi, i, zi, bj, j, xj, out);
@@ -77,7 +97,12 @@ void Joint::rows(const std::vector<RigidBody>& b, std::vector<ConstraintRow>& ou
       row_dot2(bi, i, xi, si, bj, j, sj, out);
       row_dot2(bi, i, yi, si, bj, j, sj, out);
       break;
-    case JointType::distance: row_distance(bi, i, si, bj, j, sj, length, out); break;
+    case JointType::point_on_plane:  // body j's point stays on body i's plane (through s_i, normal z)
+      row_dot2(bi, i, zi, si, bj, j, sj, out);
+      break;
+    case JointType::distance:
+      row_distance(bi, i, si, bj, j, sj, length, out);
+      break;
   }
 }
 

@@ -10,7 +10,7 @@
 
 namespace terracal::mb {
 
-enum class JointType { revolute, spherical, universal, prismatic, fixed, distance, point_on_line };
+enum class JointType { revolute, spherical, universal, prismatic, fixed, distance, point_on_line, point_on_plane };
 
 // The number of constraint rows of each type.
 int joint_rows(JointType type);

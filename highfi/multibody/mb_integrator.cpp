@@ -66,7 +66,8 @@ struct MbIntegrator::Impl {
     return phi.allFinite() && f.allFinite() ? 0 : 1;  // a recoverable failure: IDAS retries smaller
   }
   static int res(sunrealtype time, N_Vector y, N_Vector yd, N_Vector r, void* user) {
-    return static_cast<Impl*>(user)->residual(time, N_VGetArrayPointer(y), N_VGetArrayPointer(yd), N_VGetArrayPointer(r));
+    return static_cast<Impl*>(user)->residual(time, N_VGetArrayPointer(y), N_VGetArrayPointer(yd),
+                                              N_VGetArrayPointer(r));
   }
 
   // Consistent initial values: assembled positions and velocities, then accelerations and lambda from
@@ -174,7 +175,8 @@ double MbIntegrator::constraint_violation() const {
 Wrench MbIntegrator::reaction(int joint, int body) const {
   const Impl& s = *impl_;
   const Joint& jt = s.sys.joints.at(std::size_t(joint));
-  if (body != jt.i && body != jt.j) throw InputError(fmt::format("multibody: body {} is not in joint '{}'", body, jt.name));
+  if (body != jt.i && body != jt.j)
+    throw InputError(fmt::format("multibody: body {} is not in joint '{}'", body, jt.name));
   if (s.sys.bodies[std::size_t(body)].fixed) throw InputError("multibody: a fixed body's reaction is not computed");
   int row0 = 0, slot = 0;
   for (int k = 0; k < joint; ++k) row0 += joint_rows(s.sys.joints[std::size_t(k)].type);

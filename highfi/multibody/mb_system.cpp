@@ -144,7 +144,8 @@ Eigen::MatrixXd MbSystem::mass_matrix() const {
     m.block<3, 3>(6 * k, 6 * k) = b.mass * Mat3::Identity();
     m.block<3, 3>(6 * k + 3, 6 * k + 3) = b.inertia;
   }
-  for (std::size_t k = 0; k < shafts.size(); ++k) m(6 * moving() + Eigen::Index(k), 6 * moving() + Eigen::Index(k)) = shafts[k].inertia;
+  for (std::size_t k = 0; k < shafts.size(); ++k)
+    m(6 * moving() + Eigen::Index(k), 6 * moving() + Eigen::Index(k)) = shafts[k].inertia;
   return m;
 }
 
@@ -166,22 +167,25 @@ void MbSystem::assemble(double tolerance, int max_iterations) {
   if (jac.rows() == 0) return;
   const Eigen::FullPivLU<Eigen::MatrixXd> rank(jac);
   if (rank.rank() < jac.rows())
-    throw InputError(fmt::format("multibody: {} constraint rows but only {} independent ones: the joints constrain "
-                                 "some motions twice (replace a revolute in a closed loop by a spherical or a "
-                                 "universal joint)",
-                                 jac.rows(), rank.rank()));
+    throw InputError(
+        fmt::format("multibody: {} constraint rows but only {} independent ones: the joints constrain "
+                    "some motions twice (replace a revolute in a closed loop by a spherical or a "
+                    "universal joint)",
+                    jac.rows(), rank.rank()));
   for (int it = 0;; ++it) {
     if (phi.size() == 0 || phi.lpNorm<Eigen::Infinity>() <= tolerance) break;
     if (it == max_iterations)
-      throw InputError(fmt::format("multibody: the joints cannot be assembled: constraint error {:.3g} after {} "
-                                   "iterations (are the hardpoints consistent?)",
-                                   phi.lpNorm<Eigen::Infinity>(), max_iterations));
+      throw InputError(
+          fmt::format("multibody: the joints cannot be assembled: constraint error {:.3g} after {} "
+                      "iterations (are the hardpoints consistent?)",
+                      phi.lpNorm<Eigen::Infinity>(), max_iterations));
     const Eigen::VectorXd step = jac.topRows(phi.size()).completeOrthogonalDecomposition().solve(-phi);  // least norm
     for (int k = 0; k < moving(); ++k) {
       RigidBody& b = bodies[std::size_t(moving_[std::size_t(k)])];
       b.position += step.segment<3>(6 * k);
       const Vec3 rot = step.segment<3>(6 * k + 3);
-      if (rot.norm() > 0) b.orientation = (b.orientation * Quat(Eigen::AngleAxisd(rot.norm(), rot.normalized()))).normalized();
+      if (rot.norm() > 0)
+        b.orientation = (b.orientation * Quat(Eigen::AngleAxisd(rot.norm(), rot.normalized()))).normalized();
     }
     constraints(phi, jac);
   }

@@ -4,7 +4,9 @@
 
 namespace terracal::mb {
 
-ShaftLinkage gear(std::string name, int in, int out, double ratio) { return {std::move(name), {out, in}, {1.0, -ratio}}; }
+ShaftLinkage gear(std::string name, int in, int out, double ratio) {
+  return {std::move(name), {out, in}, {1.0, -ratio}};
+}
 
 ShaftLinkage differential(std::string name, int case_shaft, int left, int right) {
   return {std::move(name), {left, right, case_shaft}, {1.0, 1.0, -2.0}};

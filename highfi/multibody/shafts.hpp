@@ -50,7 +50,7 @@ struct ShaftTorque {
 struct Clutch {
   std::string name;
   int a = -1, b = -1;
-  double max_torque = 0;  // N m
+  double max_torque = 0;      // N m
   double slip_damping = 1e4;  // N m s/rad: how firmly a locked clutch holds the speeds together
   double torque(double wa, double wb) const;
 };

@@ -48,20 +48,8 @@ TEST_CASE("multibody: a slider-crank's slider is where the crank angle puts it",
 }
 
 TEST_CASE("multibody: a four-bar's loop stays closed within 1e-8 over 100 s", "[multibody]") {
-  // Ground pivots 0.4 m apart, crank 0.1 m, coupler 0.447 m, rocker 0.3 m (a crank-rocker): hinges
-  // at the ground, ball joints on the coupler (its spin about its own axis is free and stays still).
   MbSystem s;
-  const int g = test::add_ground(s);
-  const Vec3 a(0, 0, 0), b(0, 0, 0.1), c(0.4, 0, 0.3), d(0.4, 0, 0);
-  const int crank = test::add_rod(s, "crank", a, b, 1.0);
-  const int coupler = test::add_rod(s, "coupler", b, c, 2.0);
-  const int rocker = test::add_rod(s, "rocker", d, c, 1.5);
-  const Mat3 y = test::axes_z(Vec3::UnitY());
-  s.add_joint("A", JointType::revolute, g, crank, a, y);
-  s.add_joint("B", JointType::spherical, crank, coupler, b);
-  s.add_joint("C", JointType::spherical, coupler, rocker, c);
-  s.add_joint("D", JointType::revolute, g, rocker, d, y);
-  s.bodies[std::size_t(crank)].omega = Vec3(0, 10.0, 0);  // about the hinge (the rod's y is the world's)
+  const int crank = test::four_bar(s);
   MbIntegrator in(s, {1e-9, 1e-10});
   const double e0 = s.mechanical_energy();
   double violation = 0, turns = 0, last = 0;

@@ -37,18 +37,19 @@ std::vector<double> sign_changes(MbIntegrator& in, const MbSystem& s, int body, 
 }
 }  // namespace
 
-TEST_CASE("multibody: a pendulum released at 150 degrees swings with the elliptic integral's period",
-          "[multibody]") {
+TEST_CASE("multibody: a pendulum released at 150 degrees swings with the elliptic integral's period", "[multibody]") {
   const double l = 1.0, theta0 = 150.0 * M_PI / 180;
   MbSystem s = pendulum(l, theta0);
   const RigidBody& rod = s.bodies[1];
   const double d = 0.5 * l, ip = rod.inertia(1, 1) + rod.mass * d * d;  // about the hinge
-  const double period = 4 * std::sqrt(ip / (rod.mass * 9.81 * d)) * gsl_sf_ellint_Kcomp(std::sin(theta0 / 2), GSL_PREC_DOUBLE);
+  const double period =
+      4 * std::sqrt(ip / (rod.mass * 9.81 * d)) * gsl_sf_ellint_Kcomp(std::sin(theta0 / 2), GSL_PREC_DOUBLE);
   MbIntegrator in(s, {1e-11, 1e-12});
   const std::vector<double> cross = sign_changes(in, s, 1, 4.2 * period, 1e-3);
   REQUIRE(cross.size() >= 7);  // two crossings of the vertical per period
   const double measured = (cross[6] - cross[0]) / 3;
-  INFO("period " << measured << " s, elliptic integral " << period << " s, relative error " << std::abs(measured - period) / period);
+  INFO("period " << measured << " s, elliptic integral " << period << " s, relative error "
+                 << std::abs(measured - period) / period);
   CHECK(std::abs(measured - period) / period < 1e-6);
   CHECK(in.constraint_violation() < 1e-8);
 }
