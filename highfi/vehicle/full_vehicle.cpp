@@ -1,0 +1,129 @@
+#include "highfi/vehicle/full_vehicle.hpp"
+
+#include <fstream>
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+#include "core/vehicle/tmeasy_params.hpp"
+
+namespace terracal::vehicle {
+namespace {
+Vec3 point(JsonObject& o, const std::string& key) {
+  const nlohmann::json& j = o.raw(key);
+  if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() || !j[2].is_number())
+    o.fail(key, fmt::format("value {} is not a point; expected [x, y, z] in m", j.dump()));
+  return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
+}
+
+Vec3 moments(JsonObject& o, const std::string& key) {
+  const Vec3 v = point(o, key);
+  if (!(v.minCoeff() > 0))
+    o.fail(key, fmt::format("value [{}, {}, {}] has a moment <= 0; expected > 0 (kg m^2)", v.x(), v.y(), v.z()));
+  return v;
+}
+}  // namespace
+
+double FullVehicleSpec::total_mass() const {
+  double m = chassis.mass;
+  for (const AxleSpec& a : axles) {
+    const DoubleWishboneSpec& s = a.suspension;
+    m += 2 * (s.spindle.mass + s.upright.mass + s.upper_arm.body.mass + s.lower_arm.body.mass + wheel_mass);
+  }
+  return m;
+}
+
+FullVehicleSpec read_full_vehicle(const nlohmann::json& j, const std::string& source) {
+  if (!j.is_object()) throw InputError(fmt::format("{}: expected a JSON object (a full vehicle)", source));
+  JsonObject o(j, source, "");
+  FullVehicleSpec v;
+  o.string_or("type", "full vehicle", {"full vehicle"});
+  if (o.has("name")) {
+    const nlohmann::json& n = o.raw("name");
+    if (!n.is_string()) o.fail("name", fmt::format("value {} is not a string", n.dump()));
+    v.name = n.get<std::string>();
+  }
+  if (o.has("source")) o.raw("source");  // for people
+  {
+    JsonObject c = o.object("chassis");
+    v.chassis.mass = c.number("mass", 0, 1e6, true);
+    v.chassis.com = point(c, "com");
+    v.chassis.moments = moments(c, "inertia");
+    if (c.has("products")) v.chassis.products = point(c, "products");
+    c.finish();
+  }
+  const nlohmann::json& axles = o.raw("axles");
+  if (!axles.is_array() || axles.empty())
+    o.fail("axles", "expected a list of axles, each {\"location\": [x, y, z], \"suspension\": {...}}");
+  for (std::size_t k = 0; k < axles.size(); ++k) {
+    JsonObject a(axles[k], source, fmt::format("axles[{}]", k));
+    AxleSpec axle;
+    axle.location = point(a, "location");
+    axle.suspension = read_double_wishbone(a.object("suspension"));
+    a.finish();
+    v.axles.push_back(axle);
+  }
+  {
+    JsonObject w = o.object("wheel");
+    v.wheel_mass = w.number("mass", 0, 1e4);
+    v.wheel_inertia = moments(w, "inertia");
+    w.finish();
+  }
+  v.tire = read_tmeasy(o.raw("tire"), source + ": tire");
+  v.tire_vertical_damping = o.number_or("tire_vertical_damping", 0, 0, 1e7);
+  o.finish();
+  return v;
+}
+
+FullVehicleSpec load_full_vehicle(const std::string& name_or_path) {
+  const std::string preset = full_vehicle_preset_json(name_or_path);
+  if (!preset.empty()) return read_full_vehicle(nlohmann::json::parse(preset), name_or_path + " (built in)");
+  std::ifstream in(name_or_path);
+  if (!in) throw InputError(fmt::format("{}: cannot open the vehicle file (or name a preset: hmmwv)", name_or_path));
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(in, nullptr, true, true);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError(fmt::format("{}: not valid JSON: {}", name_or_path, e.what()));
+  }
+  return read_full_vehicle(j, name_or_path);
+}
+
+FullVehicle::FullVehicle(const FullVehicleSpec& spec, const Vec3& origin, double ground_friction)
+    : spec_(spec), system_(std::make_unique<mb::MbSystem>()) {
+  mb::MbSystem& s = *system_;
+  mb::RigidBody chassis;
+  chassis.name = "chassis";
+  chassis.mass = spec.chassis.mass;
+  chassis.inertia = spec.chassis.inertia();
+  chassis.position = origin + spec.chassis.com;
+  chassis_ = s.add_body(chassis);
+  const Mat3 wheel = spec.wheel_inertia.asDiagonal();
+  for (const AxleSpec& a : spec.axles)
+    for (double side : {1.0, -1.0}) {
+      const WishboneSide w = build_double_wishbone(s, a.suspension, chassis_, chassis_, origin, a.location, side);
+      // The wheel and tire turn with the spindle: their mass and inertia are the spindle's.
+      mb::RigidBody& sp = s.bodies[std::size_t(w.spindle)];
+      sp.mass += spec.wheel_mass;
+      sp.inertia += wheel;
+      corners_.push_back(w);
+    }
+  s.index();
+  tire_.params = spec.tire;
+  tire_.vertical_damping = spec.tire_vertical_damping;
+  tire_.friction = ground_friction;
+  s.external.push_back([this](double, const std::vector<mb::RigidBody>& b, std::vector<mb::Wrench>& f) {
+    for (const WishboneSide& w : corners_) tire_.apply(b[std::size_t(w.spindle)], f[std::size_t(w.spindle)]);
+  });
+}
+
+std::vector<TireContact> FullVehicle::contacts() const {
+  std::vector<TireContact> out;
+  for (const WishboneSide& w : corners_) {
+    mb::Wrench scratch;
+    out.push_back(tire_.apply(system_->bodies[std::size_t(w.spindle)], scratch));
+  }
+  return out;
+}
+
+}  // namespace terracal::vehicle

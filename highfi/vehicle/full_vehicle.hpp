@@ -1,0 +1,58 @@
+#pragma once
+// The full vehicle: a rigid chassis, an axle of double-wishbone suspensions per axle entry, a wheel (and
+// tire mass) on each spindle, and TMeasy tires on rigid flat ground, as one multibody system. Read
+// from JSON (docs/formats.md, "Full vehicle") or the built-in HMMWV preset. The chassis frame is x
+// forward, y left, z up; its origin is the reference point the suspension locations are given from.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "highfi/vehicle/double_wishbone.hpp"
+#include "highfi/vehicle/rigid_ground_tire.hpp"
+
+namespace terracal::vehicle {
+
+struct AxleSpec {
+  Vec3 location = Vec3::Zero();  // the suspension's origin in the chassis frame, m
+  DoubleWishboneSpec suspension;
+};
+
+struct FullVehicleSpec {
+  std::string name = "vehicle";
+  BodySpec chassis;  // com in the chassis frame
+  std::vector<AxleSpec> axles;
+  double wheel_mass = 0;              // wheel and tire, kg
+  Vec3 wheel_inertia = Vec3::Zero();  // about the wheel's centre, spin about y, kg m^2
+  TmeasyParams tire;
+  double tire_vertical_damping = 0;  // N s/m
+  double total_mass() const;
+};
+
+FullVehicleSpec read_full_vehicle(const nlohmann::json& j, const std::string& source);
+// `hmmwv`, or a JSON file's path.
+FullVehicleSpec load_full_vehicle(const std::string& name_or_path);
+std::string full_vehicle_preset_json(const std::string& name);  // "" when no such preset
+
+class FullVehicle {
+ public:
+  // Builds the vehicle with its chassis frame's origin at `origin` (world, the chassis level).
+  FullVehicle(const FullVehicleSpec& spec, const Vec3& origin, double ground_friction = 1.0);
+  FullVehicle(const FullVehicle&) = delete;
+  FullVehicle& operator=(const FullVehicle&) = delete;
+
+  mb::MbSystem& system() { return *system_; }
+  const mb::MbSystem& system() const { return *system_; }
+  int chassis() const { return chassis_; }
+  const std::vector<WishboneSide>& corners() const { return corners_; }  // front left, front right, ...
+  // Each tire's contact in the system's present state.
+  std::vector<TireContact> contacts() const;
+
+ private:
+  FullVehicleSpec spec_;
+  std::unique_ptr<mb::MbSystem> system_;
+  RigidGroundTire tire_;
+  int chassis_ = -1;
+  std::vector<WishboneSide> corners_;
+};
+
+}  // namespace terracal::vehicle
