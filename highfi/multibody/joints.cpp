@@ -48,18 +48,22 @@ const char* joint_type_name(JointType type) {
 
 Joint Joint::place(std::string name, JointType type, const std::vector<RigidBody>& bodies, int i, int j,
                    const Vec3& where, const Mat3& axes, const Vec3& other) {
+  return place_pair(std::move(name), type, bodies, i, where, j, type == JointType::distance ? other : where, axes);
+}
+
+Joint Joint::place_pair(std::string name, JointType type, const std::vector<RigidBody>& bodies, int i,
+                        const Vec3& point_i, int j, const Vec3& point_j, const Mat3& axes) {
   Joint jt;
   jt.name = std::move(name);
   jt.type = type;
   jt.i = i;
   jt.j = j;
   const RigidBody &bi = bodies.at(std::size_t(i)), &bj = bodies.at(std::size_t(j));
-  jt.si = bi.rotation().transpose() * (where - bi.position);
+  jt.si = bi.rotation().transpose() * (point_i - bi.position);
   jt.frame_i = bi.rotation().transpose() * axes;
-  const Vec3 at_j = type == JointType::distance ? other : where;
-  jt.sj = bj.rotation().transpose() * (at_j - bj.position);
+  jt.sj = bj.rotation().transpose() * (point_j - bj.position);
   jt.frame_j = bj.rotation().transpose() * axes;
-  jt.length = (other - where).norm();
+  jt.length = (point_j - point_i).norm();
   return jt;
 }
 

@@ -31,6 +31,12 @@ struct Joint {
   static Joint place(std::string name, JointType type, const std::vector<RigidBody>& bodies, int i, int j,
                      const Vec3& where, const Mat3& axes = Mat3::Identity(), const Vec3& other = Vec3::Zero());
 
+  // The same with a point of its own on each body (world, as the bodies are now): a distance joint's
+  // two ends, or the point that a point-on-line or point-on-plane joint holds (on body j) apart from
+  // the line's or plane's point (on body i).
+  static Joint place_pair(std::string name, JointType type, const std::vector<RigidBody>& bodies, int i,
+                          const Vec3& point_i, int j, const Vec3& point_j, const Mat3& axes = Mat3::Identity());
+
   void rows(const std::vector<RigidBody>& bodies, std::vector<ConstraintRow>& out) const;
 };
 
