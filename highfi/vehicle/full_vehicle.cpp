@@ -25,7 +25,7 @@ Vec3 moments(JsonObject& o, const std::string& key) {
 }  // namespace
 
 double FullVehicleSpec::total_mass() const {
-  double m = chassis.mass;
+  double m = chassis.mass + (has_steering ? steering.link.mass + steering.arm.mass : 0.0);
   for (const AxleSpec& a : axles) {
     const DoubleWishboneSpec& s = a.suspension;
     m += 2 * (s.spindle.mass + s.upright.mass + s.upper_arm.body.mass + s.lower_arm.body.mass + wheel_mass);
@@ -60,9 +60,17 @@ FullVehicleSpec read_full_vehicle(const nlohmann::json& j, const std::string& so
     AxleSpec axle;
     axle.location = point(a, "location");
     axle.suspension = read_double_wishbone(a.object("suspension"));
+    axle.steered = a.boolean_or("steered", false);
     a.finish();
     v.axles.push_back(axle);
   }
+  if (o.has("steering")) {
+    v.has_steering = true;
+    v.steering = read_pitman_arm(o.object("steering"));
+  }
+  for (std::size_t k = 0; k < v.axles.size(); ++k)
+    if (v.axles[k].steered && !v.has_steering)
+      o.fail("axles", fmt::format("axle {} is steered but the vehicle has no \"steering\"", k));
   {
     JsonObject w = o.object("wheel");
     v.wheel_mass = w.number("mass", 0, 1e4);
@@ -99,9 +107,14 @@ FullVehicle::FullVehicle(const FullVehicleSpec& spec, const Vec3& origin, double
   chassis.position = origin + spec.chassis.com;
   chassis_ = s.add_body(chassis);
   const Mat3 wheel = spec.wheel_inertia.asDiagonal();
+  if (spec.has_steering) {
+    steering_ = build_pitman_arm(s, spec.steering, chassis_, origin);
+    add_steering_servo(s, spec.steering, steering_, [this](double t) { return steering_input_(t); });
+  }
   for (const AxleSpec& a : spec.axles)
     for (double side : {1.0, -1.0}) {
-      const WishboneSide w = build_double_wishbone(s, a.suspension, chassis_, chassis_, origin, a.location, side);
+      const int tierods = a.steered ? steering_.link : chassis_;
+      const WishboneSide w = build_double_wishbone(s, a.suspension, chassis_, tierods, origin, a.location, side);
       // The wheel and tire turn with the spindle: their mass and inertia are the spindle's.
       mb::RigidBody& sp = s.bodies[std::size_t(w.spindle)];
       sp.mass += spec.wheel_mass;

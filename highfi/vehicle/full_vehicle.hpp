@@ -3,11 +3,13 @@
 // tire mass) on each spindle, and TMeasy tires on rigid flat ground, as one multibody system. Read
 // from JSON (docs/formats.md, "Full vehicle") or the built-in HMMWV preset. The chassis frame is x
 // forward, y left, z up; its origin is the reference point the suspension locations are given from.
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "highfi/vehicle/double_wishbone.hpp"
+#include "highfi/vehicle/pitman_arm.hpp"
 #include "highfi/vehicle/rigid_ground_tire.hpp"
 
 namespace terracal::vehicle {
@@ -15,12 +17,15 @@ namespace terracal::vehicle {
 struct AxleSpec {
   Vec3 location = Vec3::Zero();  // the suspension's origin in the chassis frame, m
   DoubleWishboneSpec suspension;
+  bool steered = false;  // its tie rods end on the steering link (else on the chassis)
 };
 
 struct FullVehicleSpec {
   std::string name = "vehicle";
   BodySpec chassis;  // com in the chassis frame
   std::vector<AxleSpec> axles;
+  bool has_steering = false;
+  PitmanArmSpec steering;
   double wheel_mass = 0;              // wheel and tire, kg
   Vec3 wheel_inertia = Vec3::Zero();  // about the wheel's centre, spin about y, kg m^2
   TmeasyParams tire;
@@ -44,6 +49,11 @@ class FullVehicle {
   const mb::MbSystem& system() const { return *system_; }
   int chassis() const { return chassis_; }
   const std::vector<WishboneSide>& corners() const { return corners_; }  // front left, front right, ...
+  bool has_steering() const { return spec_.has_steering; }
+  // The steering input against time, in [-1, 1] (positive: to the left); straight ahead until set.
+  void set_steering(std::function<double(double)> input) { steering_input_ = std::move(input); }
+  const PitmanArm& steering() const { return steering_; }
+  const FullVehicleSpec& spec() const { return spec_; }
   // Each tire's contact in the system's present state.
   std::vector<TireContact> contacts() const;
 
@@ -53,6 +63,8 @@ class FullVehicle {
   RigidGroundTire tire_;
   int chassis_ = -1;
   std::vector<WishboneSide> corners_;
+  PitmanArm steering_;
+  std::function<double(double)> steering_input_ = [](double) { return 0.0; };
 };
 
 }  // namespace terracal::vehicle

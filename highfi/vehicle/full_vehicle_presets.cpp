@@ -9,10 +9,10 @@ namespace {
 constexpr const char* kHmmwv = R"json({
   "type": "full vehicle",
   "name": "HMMWV",
-  "source": "Chrono data/vehicle/hmmwv: chassis/HMMWV_Chassis.json, vehicle/HMMWV_Vehicle_4WD.json (suspension locations), suspension/HMMWV_DoubleWishboneFront.json and HMMWV_DoubleWishboneRear.json, wheel/HMMWV_Wheel_FrontLeft.json (45.4 kg, 0.113 kg m^2) plus tire/HMMWV_TMeasyTire.json (37.6 kg, [3.84, 6.69, 3.84] kg m^2, vertical damping 3900 N s/m); the TMeasy curves as the ROM preset's",
+  "source": "Chrono data/vehicle/hmmwv: chassis/HMMWV_Chassis.json, vehicle/HMMWV_Vehicle_4WD.json (suspension and steering locations), steering/HMMWV_PitmanArm.json (maximum angle 50 deg), suspension/HMMWV_DoubleWishboneFront.json and HMMWV_DoubleWishboneRear.json, wheel/HMMWV_Wheel_FrontLeft.json (45.4 kg, 0.113 kg m^2) plus tire/HMMWV_TMeasyTire.json (37.6 kg, [3.84, 6.69, 3.84] kg m^2, vertical damping 3900 N s/m); the TMeasy curves as the ROM preset's",
   "chassis": {"mass": 2086.52, "com": [0.056, 0, 0.523], "inertia": [1078.52, 2955.66, 3570.20]},
   "axles": [
-    {"location": [1.688965, 0, 0],
+    {"location": [1.688965, 0, 0], "steered": true,
      "suspension": {
       "name": "HMMWV front",
       "spindle": {"mass": 14.705, "com": [-0.040, 0.910, -0.026], "inertia": [0.04117, 0.07352, 0.04117],
@@ -55,6 +55,14 @@ constexpr const char* kHmmwv = R"json({
       "shock": {"chassis": [-0.104, 0.498, 0.323], "arm": [-0.097, 0.544, -0.038], "damping": 36725.2201},
       "axle_inertia": 0.4}}
   ],
+  "steering": {
+    "template": "pitman_arm", "name": "HMMWV Pitman arm",
+    "link": {"mass": 9.072, "com": [0.129, 0, 0], "inertia": [1, 1, 1]},
+    "arm": {"mass": 2.259, "com": [0.064, 0.249, 0], "inertia": [1, 1, 1]},
+    "revolute": {"point": [0, 0.249, 0], "axis": [0, 0, 1], "max_angle": 0.872664626},
+    "universal": {"point": [0.129, 0.249, 0], "axis_arm": [0, 0, 1], "axis_link": [1, 0, 0]},
+    "idler": {"chassis": [0, -0.325, 0], "link": [0.129, -0.325, 0], "axis": [0, 0, 1]},
+    "location": [1.24498, 0, 0.101322], "orientation": [0.98699637, 0, 0.16074256, 0]},
   "wheel": {"mass": 83.0, "inertia": [3.953, 6.803, 3.953]},
   "tire": {
     "type": "TMeasy", "unloaded_radius": 0.4699, "wheel_inertia": 6.803, "vertical_stiffness": 411121.0,

@@ -48,7 +48,7 @@ TEST_CASE("full vehicle: the HMMWV at rest on rigid ground carries its weight an
                       << worst_violation << "; " << in.stats().steps << " steps");
   CHECK(worst_sum < 1e-3);
   CHECK(worst_moment < 1e-3);
-  CHECK(worst_side < 1e-6);
+  CHECK(worst_side < 2e-3);  // the steering's Pitman arm (2.3 kg) sits on the left
   CHECK((chassis.position - start).head<2>().norm() < 1e-3);
   CHECK(chassis.velocity.norm() < 1e-4);
   CHECK(chassis.omega.norm() < 1e-4);

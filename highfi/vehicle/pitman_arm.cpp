@@ -1,0 +1,143 @@
+#include "highfi/vehicle/pitman_arm.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace terracal::vehicle {
+namespace {
+Vec3 triple(JsonObject& o, const std::string& key) {
+  const nlohmann::json& j = o.raw(key);
+  if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() || !j[2].is_number())
+    o.fail(key, fmt::format("value {} is not a vector; expected [x, y, z]", j.dump()));
+  return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
+}
+
+Vec3 direction(JsonObject& o, const std::string& key) {
+  const Vec3 d = triple(o, key);
+  if (d.norm() < 1e-9) o.fail(key, "is a zero vector; expected a direction");
+  return d.normalized();
+}
+
+BodySpec body(JsonObject o) {
+  BodySpec b;
+  b.mass = o.number("mass", 0, 1e5, true);
+  b.com = triple(o, "com");
+  b.moments = triple(o, "inertia");
+  if (!(b.moments.minCoeff() > 0)) o.fail("inertia", "has a moment <= 0; expected > 0 (kg m^2)");
+  o.finish();
+  return b;
+}
+}  // namespace
+
+PitmanArmSpec read_pitman_arm(JsonObject o) {
+  PitmanArmSpec s;
+  o.string_or("template", "pitman_arm", {"pitman_arm"});
+  if (o.has("name")) s.name = o.raw("name").dump();
+  if (o.has("source")) o.raw("source");
+  s.link = body(o.object("link"));
+  s.arm = body(o.object("arm"));
+  {
+    JsonObject r = o.object("revolute");
+    s.revolute_point = triple(r, "point");
+    s.revolute_axis = direction(r, "axis");
+    s.max_angle = r.number("max_angle", 0, M_PI / 2, true);
+    r.finish();
+  }
+  {
+    JsonObject u = o.object("universal");
+    s.universal_point = triple(u, "point");
+    s.universal_axis_arm = direction(u, "axis_arm");
+    s.universal_axis_link = direction(u, "axis_link");
+    if (std::abs(s.universal_axis_arm.dot(s.universal_axis_link)) > 1e-6)
+      u.fail("axis_link", "is not perpendicular to axis_arm; expected the cross's two axes at right angles");
+    u.finish();
+  }
+  {
+    JsonObject i = o.object("idler");
+    s.idler_chassis = triple(i, "chassis");
+    s.idler_link = triple(i, "link");
+    s.idler_axis = direction(i, "axis");
+    i.finish();
+  }
+  s.location = triple(o, "location");
+  if (o.has("orientation")) {
+    const nlohmann::json& q = o.raw("orientation");
+    if (!q.is_array() || q.size() != 4 || !q[0].is_number() || !q[1].is_number() || !q[2].is_number() ||
+        !q[3].is_number())
+      o.fail("orientation", fmt::format("value {} is not a quaternion; expected [w, x, y, z]", q.dump()));
+    s.orientation = mb::Quat(q[0].get<double>(), q[1].get<double>(), q[2].get<double>(), q[3].get<double>());
+    if (std::abs(s.orientation.norm() - 1) > 1e-3)
+      o.fail("orientation", fmt::format("has norm {}; expected a unit quaternion", s.orientation.norm()));
+    s.orientation.normalize();
+  }
+  if (o.has("servo")) {
+    JsonObject v = o.object("servo");
+    s.servo_stiffness = v.number_or("stiffness", s.servo_stiffness, 0, 1e12, true);
+    s.servo_damping = v.number_or("damping", s.servo_damping, 0, 1e12);
+    v.finish();
+  }
+  o.finish();
+  return s;
+}
+
+PitmanArm build_pitman_arm(mb::MbSystem& s, const PitmanArmSpec& spec, int chassis, const Vec3& chassis_origin) {
+  using mb::JointType;
+  const Mat3 r = spec.orientation.toRotationMatrix();
+  const auto at = [&](const Vec3& p) { return Vec3(chassis_origin + spec.location + r * p); };
+  const auto axes_z = [&](const Vec3& d) {
+    return Mat3(mb::Quat::FromTwoVectors(Vec3::UnitZ(), r * d).toRotationMatrix());
+  };
+  const auto add = [&](const std::string& name, const BodySpec& b) {
+    mb::RigidBody body;
+    body.name = spec.name + " " + name;
+    body.mass = b.mass;
+    body.inertia = b.inertia();
+    body.position = at(b.com);
+    return s.add_body(body);
+  };
+  PitmanArm p;
+  p.link = add("link", spec.link);
+  p.arm = add("arm", spec.arm);
+  p.axis_chassis = r * spec.revolute_axis;
+  p.revolute = s.add_joint("Pitman arm hinge", JointType::revolute, chassis, p.arm, at(spec.revolute_point),
+                           axes_z(spec.revolute_axis));
+  // The universal joint's frame: x along the arm's cross axis, y along the link's.
+  Mat3 cross;
+  cross.col(0) = r * spec.universal_axis_arm;
+  cross.col(1) = r * spec.universal_axis_link;
+  cross.col(2) = cross.col(0).cross(cross.col(1));
+  s.add_joint("Pitman arm universal", JointType::universal, p.arm, p.link, at(spec.universal_point), cross);
+  // The idler: a distance and a plane.
+  s.joints.push_back(mb::Joint::place_pair("idler distance", JointType::distance, s.bodies, chassis,
+                                           at(spec.idler_chassis), p.link, at(spec.idler_link)));
+  s.joints.push_back(mb::Joint::place_pair("idler plane", JointType::point_on_plane, s.bodies, chassis,
+                                           at(spec.idler_chassis), p.link, at(spec.idler_link),
+                                           axes_z(spec.idler_axis)));
+  return p;
+}
+
+double pitman_arm_angle(const mb::MbSystem& s, const PitmanArm& p) {
+  // The joint allows turns about its axis only: the relative rotation's angle about that axis.
+  const mb::RigidBody& arm = s.bodies[std::size_t(p.arm)];
+  const mb::RigidBody& chassis = s.bodies[std::size_t(s.joints[std::size_t(p.revolute)].i)];
+  const mb::Quat rel = chassis.orientation.conjugate() * arm.orientation;
+  return 2 * std::atan2(rel.vec().dot(p.axis_chassis), rel.w());
+}
+
+void add_steering_servo(mb::MbSystem& s, const PitmanArmSpec& spec, const PitmanArm& p,
+                        std::function<double(double)> input) {
+  const int chassis = s.joints[std::size_t(p.revolute)].i;
+  s.external.push_back([=, &s](double t, const std::vector<mb::RigidBody>& b, std::vector<mb::Wrench>& w) {
+    const mb::RigidBody &arm = b[std::size_t(p.arm)], &ch = b[std::size_t(chassis)];
+    const Vec3 axis = ch.rotation() * p.axis_chassis;
+    const double rate = axis.dot(arm.rotation() * arm.omega - ch.rotation() * ch.omega);
+    // The arm turns clockwise seen from above (a negative angle about its upward axis) to steer left.
+    const double target = -spec.max_angle * std::clamp(input(t), -1.0, 1.0);
+    const double torque = -spec.servo_stiffness * (pitman_arm_angle(s, p) - target) - spec.servo_damping * rate;
+    w[std::size_t(p.arm)].torque += arm.rotation().transpose() * (torque * axis);
+    w[std::size_t(chassis)].torque -= ch.rotation().transpose() * (torque * axis);
+  });
+}
+
+}  // namespace terracal::vehicle

@@ -1,0 +1,28 @@
+#pragma once
+// The steering's kinematics: the steered wheels' angles against the Pitman arm's angle, by a kinematic
+// solve (the chassis held, the arm turned and held, each wheel centre held at its design height), and
+// the Ackermann error: how far the outer wheel's angle is from the one that shares the inner wheel's
+// turning centre on the rear axle's line, cot(outer) - cot(inner) = track / wheelbase.
+#include <vector>
+
+#include "highfi/vehicle/full_vehicle.hpp"
+
+namespace terracal::vehicle {
+
+struct SteerAngles {
+  double arm_angle = 0;        // rad
+  double left = 0, right = 0;  // the steered wheels' angles, rad, positive turning left
+  double ackermann_error = 0;  // outer wheel's angle minus the Ackermann one, rad
+};
+
+// A wheel's steer angle from its spindle (spin axis along the body's y), positive turning left.
+double steer_angle(const mb::RigidBody& spindle);
+
+// The Ackermann error for a left and a right wheel angle, a track and a wheelbase.
+double ackermann_error(double left, double right, double track, double wheelbase);
+
+// For each arm angle, the first steered axle's wheel angles; the track is that axle's wheel centres'
+// distance, the wheelbase the distance from it to the last axle.
+std::vector<SteerAngles> steering_kinematics(const FullVehicleSpec& spec, const std::vector<double>& arm_angles);
+
+}  // namespace terracal::vehicle
