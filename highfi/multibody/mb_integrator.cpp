@@ -158,6 +158,12 @@ void MbIntegrator::advance(double t_out) {
   s.sys.set_velocities(N_VGetArrayPointer(s.yy) + s.nq);
 }
 
+void MbIntegrator::reinitialize() {
+  Impl& s = *impl_;
+  s.initial_values(s.t, N_VGetArrayPointer(s.yy), N_VGetArrayPointer(s.yp));
+  s.check(IDAReInit(s.mem, s.t, s.yy, s.yp), "IDAReInit");
+}
+
 double MbIntegrator::time() const { return impl_->t; }
 
 double MbIntegrator::constraint_violation() const {

@@ -35,6 +35,10 @@ class MbIntegrator {
 
   // Integrates to t and leaves the system's bodies in the state at t.
   void advance(double t);
+  // Starts again from the system's present state (after a discrete change: a gear shift changes a
+  // coupling's ratio): velocities projected onto the constraints, accelerations and multipliers
+  // recomputed.
+  void reinitialize();
   double time() const;
   // The largest constraint error now (joints' rows, m or rad-like; quaternion norms).
   double constraint_violation() const;

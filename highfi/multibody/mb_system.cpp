@@ -129,6 +129,11 @@ Eigen::VectorXd MbSystem::applied(double t) const {
     const Shaft& sh = shafts[std::size_t(st.shaft)];
     f[shaft0 + st.shaft] += st.torque(t, sh.angle, sh.speed);
   }
+  for (const ShaftPairTorque& e : shaft_pair_torques) {
+    const auto [ta, tb] = e.torques(t, shafts[std::size_t(e.a)].speed, shafts[std::size_t(e.b)].speed);
+    f[shaft0 + e.a] += ta;
+    f[shaft0 + e.b] += tb;
+  }
   for (const Clutch& c : clutches) {
     const double tq = c.torque(shafts[std::size_t(c.a)].speed, shafts[std::size_t(c.b)].speed);
     f[shaft0 + c.b] += tq;

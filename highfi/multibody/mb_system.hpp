@@ -32,6 +32,7 @@ class MbSystem {
   std::vector<ShaftToBody> shaft_bodies;
   std::vector<ShaftTorque> shaft_torques;
   std::vector<Clutch> clutches;
+  std::vector<ShaftPairTorque> shaft_pair_torques;
 
   int add_body(RigidBody b);
   // A joint placed as bodies are now (Joint::place).

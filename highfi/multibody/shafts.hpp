@@ -6,6 +6,7 @@
 // not angles, so shaft angles never wrap into the constraint equations.
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "highfi/multibody/constraint_rows.hpp"
@@ -43,6 +44,14 @@ struct ShaftTorque {
   std::string name;
   int shaft = -1;
   std::function<double(double t, double angle, double speed)> torque;
+};
+
+// Torques between two shafts that depend on both speeds (a torque converter): returns the torques on a
+// and on b.
+struct ShaftPairTorque {
+  std::string name;
+  int a = -1, b = -1;
+  std::function<std::pair<double, double>(double t, double wa, double wb)> torques;
 };
 
 // A friction clutch (or a brake between two shafts): the torque that drags shaft b towards shaft a's

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "core/vehicle/powertrain_json.hpp"
 #include "core/vehicle/tmeasy_params.hpp"
 
 namespace terracal::vehicle {
@@ -24,7 +25,7 @@ Vec3 moments(JsonObject& o, const std::string& key) {
 }
 }  // namespace
 
-double FullVehicleSpec::total_mass() const {
+double FullVehicleSpec::total_mass() const {  // the bodies' masses (shafts have inertia only)
   double m = chassis.mass + (has_steering ? steering.link.mass + steering.arm.mass : 0.0);
   for (const AxleSpec& a : axles) {
     const DoubleWishboneSpec& s = a.suspension;
@@ -77,6 +78,19 @@ FullVehicleSpec read_full_vehicle(const nlohmann::json& j, const std::string& so
     v.wheel_inertia = moments(w, "inertia");
     w.finish();
   }
+  if (o.has("powertrain")) {
+    v.has_powertrain = true;
+    v.powertrain = read_powertrain(o.object("powertrain"));
+    validate_powertrain(v.powertrain, source);
+  }
+  if (o.has("driveline")) {
+    JsonObject d = o.object("driveline");
+    v.driveline.turbine_inertia = d.number_or("turbine_inertia", v.driveline.turbine_inertia, 0, 1e3, true);
+    v.driveline.driveshaft_inertia = d.number_or("driveshaft_inertia", v.driveline.driveshaft_inertia, 0, 1e3, true);
+    v.driveline.axle_driveshaft_inertia =
+        d.number_or("axle_driveshaft_inertia", v.driveline.axle_driveshaft_inertia, 0, 1e3, true);
+    d.finish();
+  }
   v.tire = read_tmeasy(o.raw("tire"), source + ": tire");
   v.tire_vertical_damping = o.number_or("tire_vertical_damping", 0, 0, 1e7);
   o.finish();
@@ -109,7 +123,7 @@ FullVehicle::FullVehicle(const FullVehicleSpec& spec, const Vec3& origin, double
   const Mat3 wheel = spec.wheel_inertia.asDiagonal();
   if (spec.has_steering) {
     steering_ = build_pitman_arm(s, spec.steering, chassis_, origin);
-    add_steering_servo(s, spec.steering, steering_, [this](double t) { return steering_input_(t); });
+    add_steering_servo(s, spec.steering, steering_, [this](double t) { return driver_(t).steering; });
   }
   for (const AxleSpec& a : spec.axles)
     for (double side : {1.0, -1.0}) {
@@ -121,6 +135,11 @@ FullVehicle::FullVehicle(const FullVehicleSpec& spec, const Vec3& origin, double
       sp.inertia += wheel;
       corners_.push_back(w);
     }
+  if (spec.has_powertrain) {
+    std::vector<double> axle_inertias;
+    for (const AxleSpec& a : spec.axles) axle_inertias.push_back(a.suspension.axle_inertia);
+    driveline_ = build_driveline(s, spec.powertrain, spec.driveline, corners_, axle_inertias, &driver_);
+  }
   s.index();
   tire_.params = spec.tire;
   tire_.vertical_damping = spec.tire_vertical_damping;
@@ -128,6 +147,10 @@ FullVehicle::FullVehicle(const FullVehicleSpec& spec, const Vec3& origin, double
   s.external.push_back([this](double, const std::vector<mb::RigidBody>& b, std::vector<mb::Wrench>& f) {
     for (const WishboneSide& w : corners_) tire_.apply(b[std::size_t(w.spindle)], f[std::size_t(w.spindle)]);
   });
+}
+
+bool FullVehicle::update_gear() {
+  return spec_.has_powertrain && vehicle::update_gear(*system_, spec_.powertrain, driveline_);
 }
 
 std::vector<TireContact> FullVehicle::contacts() const {

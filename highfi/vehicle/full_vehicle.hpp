@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "highfi/vehicle/double_wishbone.hpp"
+#include "highfi/vehicle/driveline.hpp"
 #include "highfi/vehicle/pitman_arm.hpp"
 #include "highfi/vehicle/rigid_ground_tire.hpp"
 
@@ -26,6 +27,9 @@ struct FullVehicleSpec {
   std::vector<AxleSpec> axles;
   bool has_steering = false;
   PitmanArmSpec steering;
+  bool has_powertrain = false;
+  PowertrainParams powertrain;
+  DrivelineSpec driveline;
   double wheel_mass = 0;              // wheel and tire, kg
   Vec3 wheel_inertia = Vec3::Zero();  // about the wheel's centre, spin about y, kg m^2
   TmeasyParams tire;
@@ -50,8 +54,13 @@ class FullVehicle {
   int chassis() const { return chassis_; }
   const std::vector<WishboneSide>& corners() const { return corners_; }  // front left, front right, ...
   bool has_steering() const { return spec_.has_steering; }
-  // The steering input against time, in [-1, 1] (positive: to the left); straight ahead until set.
-  void set_steering(std::function<double(double)> input) { steering_input_ = std::move(input); }
+  // The driver's inputs against time (steering in [-1, 1], positive to the left; throttle and braking
+  // in [0, 1]); none until set.
+  void set_driver(DriverFunction driver) { driver_ = std::move(driver); }
+  bool has_powertrain() const { return spec_.has_powertrain; }
+  const Driveline& driveline() const { return driveline_; }
+  // Shifts gear by the gearbox input's speed; true when it changed (restart the integrator then).
+  bool update_gear();
   const PitmanArm& steering() const { return steering_; }
   const FullVehicleSpec& spec() const { return spec_; }
   // Each tire's contact in the system's present state.
@@ -64,7 +73,8 @@ class FullVehicle {
   int chassis_ = -1;
   std::vector<WishboneSide> corners_;
   PitmanArm steering_;
-  std::function<double(double)> steering_input_ = [](double) { return 0.0; };
+  DriverFunction driver_ = [](double) { return DriverInput{}; };
+  Driveline driveline_;
 };
 
 }  // namespace terracal::vehicle

@@ -9,7 +9,7 @@ namespace {
 constexpr const char* kHmmwv = R"json({
   "type": "full vehicle",
   "name": "HMMWV",
-  "source": "Chrono data/vehicle/hmmwv: chassis/HMMWV_Chassis.json, vehicle/HMMWV_Vehicle_4WD.json (suspension and steering locations), steering/HMMWV_PitmanArm.json (maximum angle 50 deg), suspension/HMMWV_DoubleWishboneFront.json and HMMWV_DoubleWishboneRear.json, wheel/HMMWV_Wheel_FrontLeft.json (45.4 kg, 0.113 kg m^2) plus tire/HMMWV_TMeasyTire.json (37.6 kg, [3.84, 6.69, 3.84] kg m^2, vertical damping 3900 N s/m); the TMeasy curves as the ROM preset's",
+  "source": "Chrono data/vehicle/hmmwv: chassis/HMMWV_Chassis.json, vehicle/HMMWV_Vehicle_4WD.json (suspension and steering locations), steering/HMMWV_PitmanArm.json (maximum angle 50 deg), suspension/HMMWV_DoubleWishboneFront.json and HMMWV_DoubleWishboneRear.json, wheel/HMMWV_Wheel_FrontLeft.json (45.4 kg, 0.113 kg m^2) plus tire/HMMWV_TMeasyTire.json (37.6 kg, [3.84, 6.69, 3.84] kg m^2, vertical damping 3900 N s/m); the TMeasy curves and the powertrain as the ROM preset's (Chrono's HMMWV engine, converter and gearbox, final drive in the gear ratios); driveline/HMMWV_Driveline4WD.json (driveshaft 0.5 kg m^2, axle driveshafts 0.5 plus their differential boxes 0.6); the gearbox input's 0.3 kg m^2 is ours",
   "chassis": {"mass": 2086.52, "com": [0.056, 0, 0.523], "inertia": [1078.52, 2955.66, 3570.20]},
   "axles": [
     {"location": [1.688965, 0, 0], "steered": true,
@@ -63,6 +63,18 @@ constexpr const char* kHmmwv = R"json({
     "universal": {"point": [0.129, 0.249, 0], "axis_arm": [0, 0, 1], "axis_link": [1, 0, 0]},
     "idler": {"chassis": [0, -0.325, 0], "link": [0.129, -0.325, 0], "axis": [0, 0, 1]},
     "location": [1.24498, 0, 0.101322], "orientation": [0.98699637, 0, 0.16074256, 0]},
+  "powertrain": {
+    "drive": "all", "crank_inertia": 1.093,
+    "max_torque_rpm": [[-100, 258.0], [800, 328.52], [900, 421.4], [1000, 497.94], [1100, 559.0], [1200, 607.16],
+                       [1300, 641.56], [1400, 665.64], [1500, 678.54], [1600, 681.98], [1700, 677.68], [1800, 665.64],
+                       [1900, 648.44], [2000, 626.08], [2100, 599.42], [2200, 571.04], [2300, 540.08], [2400, 509.98],
+                       [2500, 479.88], [2700, -344.0]],
+    "losses_rpm": [[-50, 30], [0, 0], [50, -30], [1000, -50], [2000, -70], [3000, -90]],
+    "capacity_factor": [[0.0, 15.0], [0.25, 15.0], [0.5, 15.0], [0.75, 16.0], [0.9, 18.0], [1.0, 35.0]],
+    "torque_ratio": [[0.0, 2.0], [0.25, 1.8], [0.5, 1.5], [0.75, 1.15], [1.0, 1.0]],
+    "gear_ratios": [0.04, 0.08, 0.16], "upshift_rpm": 2500, "downshift_rpm": 1200,
+    "max_brake_torque": 4000},
+  "driveline": {"turbine_inertia": 0.3, "driveshaft_inertia": 0.5, "axle_driveshaft_inertia": 1.1},
   "wheel": {"mass": 83.0, "inertia": [3.953, 6.803, 3.953]},
   "tire": {
     "type": "TMeasy", "unloaded_radius": 0.4699, "wheel_inertia": 6.803, "vertical_stiffness": 411121.0,

@@ -20,7 +20,14 @@ double ackermann_error(double left, double right, double track, double wheelbase
   return outer - ideal;
 }
 
-std::vector<SteerAngles> steering_kinematics(const FullVehicleSpec& spec, const std::vector<double>& arm_angles) {
+double predicted_turn_radius(double left, double right, double track, double wheelbase) {
+  const double sign = left + right > 0 ? 1 : -1;  // a left turn: the left wheel is inside
+  const double inner = std::abs(sign > 0 ? left : right), outer = std::abs(sign > 0 ? right : left);
+  return 0.5 * ((wheelbase / std::tan(inner) + 0.5 * track) + (wheelbase / std::tan(outer) - 0.5 * track));
+}
+
+std::vector<SteerAngles> steering_kinematics(const FullVehicleSpec& spec, const std::vector<double>& arm_angles,
+                                             double travel) {
   if (!spec.has_steering) throw InputError("steering kinematics: the vehicle has no steering");
   std::size_t steered = spec.axles.size();
   for (std::size_t k = 0; k < spec.axles.size(); ++k)
@@ -43,7 +50,8 @@ std::vector<SteerAngles> steering_kinematics(const FullVehicleSpec& spec, const 
     plane.type = mb::JointType::point_on_plane;
     plane.i = v.chassis();
     plane.j = w.spindle;
-    plane.si = s.bodies[std::size_t(w.spindle)].position - s.bodies[std::size_t(v.chassis())].position;
+    plane.si =
+        s.bodies[std::size_t(w.spindle)].position - s.bodies[std::size_t(v.chassis())].position + Vec3(0, 0, travel);
     s.joints.push_back(plane);
   }
   s.index();

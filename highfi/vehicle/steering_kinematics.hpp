@@ -21,8 +21,15 @@ double steer_angle(const mb::RigidBody& spindle);
 // The Ackermann error for a left and a right wheel angle, a track and a wheelbase.
 double ackermann_error(double left, double right, double track, double wheelbase);
 
-// For each arm angle, the first steered axle's wheel angles; the track is that axle's wheel centres'
-// distance, the wheelbase the distance from it to the last axle.
-std::vector<SteerAngles> steering_kinematics(const FullVehicleSpec& spec, const std::vector<double>& arm_angles);
+// For each arm angle, the first steered axle's wheel angles with every wheel centre `travel` above its
+// design height (the ride height; bump steer turns the wheels with it); the track is that axle's
+// wheel centres' distance, the wheelbase the distance from it to the last axle.
+std::vector<SteerAngles> steering_kinematics(const FullVehicleSpec& spec, const std::vector<double>& arm_angles,
+                                             double travel = 0);
+
+// The radius of the path of the last axle's centre that the steered wheels' angles predict when no
+// tire slips: each front wheel's axis meets the rear axle's line at its own centre, and the path's
+// radius is the mean of the two.
+double predicted_turn_radius(double left, double right, double track, double wheelbase);
 
 }  // namespace terracal::vehicle

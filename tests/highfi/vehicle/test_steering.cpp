@@ -44,7 +44,7 @@ TEST_CASE("steering: the HMMWV's wheel angles and Ackermann error, kinematic aga
       f[std::size_t(corners[k].spindle)].force.z() += 2e7 * (design[k] - sp.position.z()) - 2e4 * sp.velocity.z();
     }
   });
-  v.set_steering([](double t) { return std::min(1.0, t) * 0.5; });
+  v.set_driver([](double t) { return DriverInput{std::min(1.0, t) * 0.5, 0, 0}; });
   mb::MbIntegrator in(s, {1e-8, 1e-10});
   in.advance(3.0);
   const double arm = pitman_arm_angle(s, v.steering());
