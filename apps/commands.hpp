@@ -17,5 +17,6 @@ Command add_bevameter(CLI::App& app);
 Command add_wheel(CLI::App& app);
 Command add_pipeline(CLI::App& app);
 Command add_rom(CLI::App& app);
+Command add_vehicle(CLI::App& app);
 
 }  // namespace terracal::app

@@ -120,6 +120,7 @@ int main(int argc, char** argv) {
   add(terracal::app::add_wheel, "wheel");
   add(terracal::app::add_pipeline, "pipeline");
   add(terracal::app::add_rom, "rom");
+  add(terracal::app::add_vehicle, "vehicle");
   // Progress and messages go to stderr; stdout carries the summary table only.
   spdlog::set_default_logger(spdlog::stderr_color_mt("terracal"));
   spdlog::set_pattern("[%H:%M:%S] %^%l%$ %v");

@@ -21,7 +21,9 @@ JsonObject::JsonObject(const nlohmann::json& j, std::string where, std::string p
 }
 
 void JsonObject::fail(const std::string& key, const std::string& what) const {
-  throw InputError(fmt::format("{}: key '{}': {}", where_, shorten(key_path(key)), what));
+  // Paths of nested keys run long (axles[0].suspension.upper_arm.chassis_back): shortened only past
+  // what any of ours needs, as a user's misspelt key may be a string of any length.
+  throw InputError(fmt::format("{}: key '{}': {}", where_, shorten(key_path(key), 120), what));
 }
 
 const nlohmann::json& JsonObject::raw(const std::string& key) {

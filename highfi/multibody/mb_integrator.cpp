@@ -37,6 +37,7 @@ struct MbIntegrator::Impl {
   void* mem = nullptr;
   double t = 0;
   Eigen::MatrixXd mass;
+  MbIntegratorStats before;  // counts of the runs before the last restart (IDAReInit zeroes IDAS's)
 
   explicit Impl(MbSystem& s) : sys(s) {}
 
@@ -160,11 +161,17 @@ void MbIntegrator::advance(double t_out) {
 
 void MbIntegrator::reinitialize() {
   Impl& s = *impl_;
+  s.before = stats();
   s.initial_values(s.t, N_VGetArrayPointer(s.yy), N_VGetArrayPointer(s.yp));
   s.check(IDAReInit(s.mem, s.t, s.yy, s.yp), "IDAReInit");
 }
 
 double MbIntegrator::time() const { return impl_->t; }
+
+Eigen::VectorXd MbIntegrator::accelerations() const {
+  const Impl& s = *impl_;
+  return Eigen::Map<const VectorXd>(N_VGetArrayPointer(s.yp) + s.nq, s.nu);
+}
 
 double MbIntegrator::constraint_violation() const {
   const Impl& s = *impl_;
@@ -204,6 +211,11 @@ MbIntegratorStats MbIntegrator::stats() const {
   IDAGetNumJacEvals(s.mem, &st.jacobians);
   IDAGetNumErrTestFails(s.mem, &st.error_test_failures);
   IDAGetNumNonlinSolvConvFails(s.mem, &st.newton_failures);
+  st.steps += s.before.steps;
+  st.residuals += s.before.residuals;
+  st.jacobians += s.before.jacobians;
+  st.error_test_failures += s.before.error_test_failures;
+  st.newton_failures += s.before.newton_failures;
   return st;
 }
 

@@ -40,6 +40,9 @@ class MbIntegrator {
   // recomputed.
   void reinitialize();
   double time() const;
+  // The velocities' rates at the present time (the integrator's own, consistent with the state): per
+  // moving body the linear acceleration (world) and the angular one (body frame), then the shafts'.
+  Eigen::VectorXd accelerations() const;
   // The largest constraint error now (joints' rows, m or rad-like; quaternion norms).
   double constraint_violation() const;
   // The reaction of joint k on one of its two bodies, a moving one (world force, torque in that body's

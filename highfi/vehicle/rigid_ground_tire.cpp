@@ -23,8 +23,13 @@ TireContact RigidGroundTire::apply(const mb::RigidBody& spindle, mb::Wrench& w) 
   c.point = spindle.position + reach * down;
   const Vec3 v = spindle.velocity;
   const double omega = (spindle.rotation() * spindle.omega).dot(axis);
-  const double rate = v.dot(down);  // the deflection grows as the centre moves along `down`
-  c.fz = std::max(0.0, params.vertical_stiffness * c.deflection + vertical_damping * rate);
+  // The deflection's rate: the centre's sinking (not its sliding: `down` leans sideways when the
+  // wheel is cambered), seen along `down` as the reach is.
+  const double rate = v.z() / down.z();
+  // The damping fades in over the first millimetres of deflection, so that the force is continuous
+  // when a wheel touches down or lifts off (a step there stalls the integrator), and never pulls.
+  const double fade = std::min(1.0, c.deflection / kDampingFadeDeflection);
+  c.fz = std::max(0.0, params.vertical_stiffness * c.deflection + fade * vertical_damping * rate);
   const TmeasyLoadState st = tmeasy_at_load(params, c.fz, friction);
   const double vx = v.dot(heading), vy = v.dot(lateral);
   const TmeasySlips s = tmeasy_slips(vx, vy, omega, st.rdyn);

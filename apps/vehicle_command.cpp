@@ -1,0 +1,135 @@
+// `terracal vehicle`: the full multibody vehicle on rigid ground, driven by a driver file or a built-in
+// manoeuvre; writes trajectory.csv (as `terracal rom`), wheels.csv, run.json and trajectory.png.
+#include <cmath>
+#include <filesystem>
+#include <memory>
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+#include <nlohmann/json.hpp>
+
+#include "apps/cli_checks.hpp"
+#include "apps/commands.hpp"
+#include "apps/out_dir.hpp"
+#include "apps/report_plots.hpp"
+#include "core/atomic_file.hpp"
+#include "core/errors.hpp"
+#include "highfi/vehicle/steering_kinematics.hpp"
+#include "highfi/vehicle/vehicle_run.hpp"
+#include "rom/trajectory_csv.hpp"
+
+namespace terracal::app {
+namespace {
+struct VehicleArgs {
+  vehicle::VehicleRunOptions run;
+  std::string vehicle, terrain = "rigid", scm, maneuver, inputs, out;
+  bool plots = true;
+};
+
+void write_outputs(const VehicleArgs& a, const vehicle::VehicleRunResult& r) {
+  std::vector<rom::RomSample> rows;
+  for (const auto& s : r.samples)
+    rows.push_back({s.time, s.x, s.y, s.z, s.yaw, s.roll, s.pitch, s.vx, s.vy, s.yaw_rate, s.roll_rate, s.ax, s.ay,
+                    s.engine_speed_rpm, s.gear});
+  rom::write_trajectory_csv(a.out + "/trajectory.csv", rows);
+  std::string w = "time,wheel,fz_N,fx_N,fy_N,slip_x,slip_y,deflection_m,sinkage_m\n";
+  for (const auto& s : r.wheels)
+    w += fmt::format("{:.6g},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},0\n", s.time, s.wheel, s.contact.fz,
+                     s.contact.fx, s.contact.fy, s.contact.sx, s.contact.sy, s.contact.deflection);
+  write_text_atomically(a.out + "/wheels.csv", w);
+  const nlohmann::json j = {{"model", "full multibody vehicle"},
+                            {"integrator", "IDAS (GGL index 2)"},
+                            {"vehicle", a.vehicle},
+                            {"terrain", a.terrain},
+                            {"end_time", a.run.end_time},
+                            {"rtol", a.run.rtol},
+                            {"steps", r.steps},
+                            {"residuals", r.residuals},
+                            {"max_constraint_violation", r.max_constraint_violation},
+                            {"wall_seconds", r.wall_seconds},
+                            {"real_time_factor", a.run.end_time / std::max(r.wall_seconds, 1e-12)}};
+  write_text_atomically(a.out + "/run.json", j.dump(2) + "\n");
+}
+
+// What the manoeuvres need of the vehicle: the wheelbase, the road-wheel angle at full steering (the
+// mean of the two steered wheels' at full lock to the left, kinematic) and the track.
+ManeuverVehicle maneuver_vehicle(const vehicle::FullVehicleSpec& spec) {
+  if (!spec.has_steering) throw InputError("--maneuver: the vehicle has no steering; drive it with --inputs");
+  const vehicle::SteerAngles lock = vehicle::steering_kinematics(spec, {-spec.steering.max_angle})[0];
+  const double track = 2 * std::abs(spec.axles.front().suspension.spindle.com.y());
+  return {spec.axles.front().location.x() - spec.axles.back().location.x(), 0.5 * (lock.left + lock.right), track};
+}
+
+void add_options(CLI::App* sub, VehicleArgs& a) {
+  sub->add_option("--vehicle", a.vehicle, "full vehicle file (JSON) or preset: hmmwv")->required();
+  sub->add_option("--terrain", a.terrain, "rigid (flat ground) or scm")
+      ->check(CLI::IsMember({"rigid", "scm"}))
+      ->capture_default_str();
+  sub->add_option("--scm", a.scm, "SCM parameter set (JSON) for --terrain scm");
+  sub->add_option("--mu", a.run.friction, "ground friction relative to the tire data's")
+      ->check(in_range(Range{0.01, 2, false, false}))
+      ->capture_default_str();
+  auto* inputs = sub->add_option("--inputs", a.inputs, "driver file: rows 'time steering throttle braking'");
+  auto* maneuver = sub->add_option("--maneuver", a.maneuver, "built-in manoeuvre (JSON, docs/formats.md)");
+  inputs->excludes(maneuver);
+  sub->add_option("--end-time", a.run.end_time,
+                  "simulated seconds (default: the driver file's last time or the manoeuvre's end_time)")
+      ->check(in_range(Range{0, 1e5, true, false}));
+  sub->add_option("--initial-speed", a.run.initial_speed, "initial forward speed [m/s]")
+      ->check(in_range(Range{-50, 50, false, false}));
+  sub->add_option("--step", a.run.max_step, "the integrator's largest step [s] (0: IDAS chooses)")
+      ->check(in_range(Range{0, 0.1, false, false}))
+      ->capture_default_str();
+  sub->add_option("--rtol", a.run.rtol, "IDAS relative tolerance (absolute: rtol / 100)")
+      ->check(in_range(Range{1e-12, 1e-2, false, false}))
+      ->capture_default_str();
+  sub->add_option("--output-rate", a.run.output_rate, "rows per second in trajectory.csv and wheels.csv [Hz]")
+      ->check(in_range(Range{0.1, 1e4, false, false}))
+      ->capture_default_str();
+  sub->add_flag("!--no-plots", a.plots, "skip trajectory.png");
+  sub->add_option("--out", a.out, "output folder")->required();
+}
+}  // namespace
+
+Command add_vehicle(CLI::App& app) {
+  auto* sub = app.add_subcommand(
+      "vehicle", "The full multibody vehicle (HMMWV template) on rigid ground; writes trajectory.csv and wheels.csv");
+  auto a = std::make_shared<VehicleArgs>();
+  add_options(sub, *a);
+  return [a, sub] {
+    const OutDir out = prepare_out_dir("--out", a->out);
+    if (a->terrain == "scm")
+      throw InputError("--terrain scm: the full vehicle runs on rigid ground only so far (use --terrain rigid)");
+    if (!a->scm.empty()) throw InputError("--scm: only with --terrain scm");
+    if (a->inputs.empty() == a->maneuver.empty())
+      throw InputError("terracal vehicle: give the driver as --inputs DRIVER.txt or --maneuver M.json (one of them)");
+    const vehicle::FullVehicleSpec spec = vehicle::load_full_vehicle(a->vehicle);
+    if (!spec.has_powertrain)
+      spdlog::warn("{}: no powertrain: the wheels turn freely (no throttle, no brakes)", a->vehicle);
+    const bool end_given = sub->count("--end-time") > 0;
+    std::unique_ptr<DriverSeries> series;
+    std::unique_ptr<Maneuver> maneuver;
+    if (!a->inputs.empty()) {
+      series = std::make_unique<DriverSeries>(DriverSeries::read(a->inputs));
+      if (!end_given) a->run.end_time = series->end_time();
+    } else {
+      maneuver = std::make_unique<Maneuver>(Maneuver::read(a->maneuver, maneuver_vehicle(spec)));
+      if (!end_given) a->run.end_time = maneuver->end_time();
+      if (sub->count("--initial-speed") == 0) a->run.initial_speed = maneuver->initial_speed();
+    }
+    if (!(a->run.end_time > 0)) throw InputError(fmt::format("--end-time {}: must be positive", a->run.end_time));
+    std::filesystem::create_directories(a->out);
+    spdlog::info("vehicle: {} on rigid ground, {:.3g} s after {:.3g} s settling", a->vehicle, a->run.end_time,
+                 a->run.settle_time);
+    const vehicle::VehicleRunResult r = vehicle::run_full_vehicle(spec, series.get(), maneuver.get(), a->run);
+    write_outputs(*a, r);
+    if (a->plots) plot_trajectory(a->out, fmt::format("{} full vehicle (IDAS)", a->vehicle));
+    fmt::print(
+        "vehicle (full, IDAS): {:.3g} s simulated in {:.3g} s wall ({:.2g}x real time, settling included); "
+        "written to {}/trajectory.csv\n",
+        a->run.end_time, r.wall_seconds, a->run.end_time / std::max(r.wall_seconds, 1e-12), a->out);
+    return 0;
+  };
+}
+
+}  // namespace terracal::app

@@ -1,0 +1,114 @@
+#include "highfi/vehicle/vehicle_run.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include <spdlog/spdlog.h>
+
+#include "core/errors.hpp"
+#include "highfi/multibody/mb_integrator.hpp"
+
+namespace terracal::vehicle {
+namespace {
+// Yaw, pitch, roll (z-y-x) of a rotation.
+Vec3 yaw_pitch_roll(const Mat3& r) {
+  return Vec3(std::atan2(r(1, 0), r(0, 0)), std::asin(std::clamp(-r(2, 0), -1.0, 1.0)), std::atan2(r(2, 1), r(2, 2)));
+}
+
+// Every body moving forward at `speed`, wheels rolling, shafts turning with them.
+void set_speed(FullVehicle& v, double speed) {
+  mb::MbSystem& s = v.system();
+  for (mb::RigidBody& b : s.bodies)
+    if (!b.fixed) b.velocity = Vec3(speed, 0, 0);
+  const double spin = speed / v.spec().tire.unloaded_radius;
+  for (const WishboneSide& w : v.corners()) s.bodies[std::size_t(w.spindle)].omega = Vec3(0, spin, 0);
+  if (v.has_powertrain()) {
+    const Driveline& d = v.driveline();
+    for (mb::Shaft& sh : s.shafts) sh.speed = spin;
+    const double ratio = v.spec().powertrain.gear_ratio[d.gear];
+    s.shafts[std::size_t(d.turbine)].speed = spin / ratio;
+    s.shafts[std::size_t(d.crank)].speed = spin / ratio;
+  }
+}
+
+VehicleSample sample(const FullVehicle& v, const mb::MbIntegrator& in, double t) {
+  const mb::MbSystem& s = v.system();
+  const mb::RigidBody& c = s.bodies[std::size_t(v.chassis())];
+  const Mat3 r = c.rotation();
+  const Vec3 ypr = yaw_pitch_roll(r);
+  const Vec3 vel = r.transpose() * c.velocity;
+  const Vec3 acc = r.transpose() * Vec3(in.accelerations().head<3>());  // the chassis is the first body
+  const Vec3 w = r * c.omega;                                           // world
+  VehicleSample out;
+  out.time = t;
+  out.x = c.position.x(), out.y = c.position.y(), out.z = c.position.z();
+  out.yaw = ypr.x(), out.pitch = ypr.y(), out.roll = ypr.z();
+  out.vx = vel.x(), out.vy = vel.y();
+  out.yaw_rate = w.z(), out.roll_rate = c.omega.x();
+  out.ax = acc.x(), out.ay = acc.y();
+  if (v.has_powertrain()) {
+    out.engine_speed_rpm = s.shafts[std::size_t(v.driveline().crank)].speed * 30 / M_PI;
+    out.gear = v.driveline().gear + 1;
+  }
+  return out;
+}
+}  // namespace
+
+VehicleRunResult run_full_vehicle(const FullVehicleSpec& spec, const DriverSeries* series, Maneuver* maneuver,
+                                  const VehicleRunOptions& o) {
+  if ((series == nullptr) == (maneuver == nullptr)) throw InputError("vehicle: give a driver file or a manoeuvre");
+  const auto start = std::chrono::steady_clock::now();
+  double lowest = 0;
+  for (const AxleSpec& a : spec.axles) lowest = std::min(lowest, a.location.z() + a.suspension.spindle.com.z());
+  FullVehicle v(spec, Vec3(0, 0, spec.tire.unloaded_radius - lowest), o.friction);
+  const double t0 = o.settle_time;
+  DriverInput held;  // a manoeuvre's inputs, held over a control period
+  v.set_driver([&](double t) {
+    if (t < t0) return DriverInput{};
+    return series ? series->at(t - t0) : held;
+  });
+  mb::MbIntegrator in(v.system(), {o.rtol, o.rtol * 1e-2, o.max_step});
+  VehicleRunResult r;
+  // Settle at rest, then start at the initial speed from the ride height.
+  in.advance(t0);
+  set_speed(v, o.initial_speed);
+  in.reinitialize();
+  const double dt = 1.0 / o.output_rate;
+  const double chunk = maneuver ? std::min(dt, o.control_period) : dt;
+  const auto record = [&](double t) {
+    r.samples.push_back(sample(v, in, t));
+    const auto contacts = v.contacts();
+    for (std::size_t k = 0; k < contacts.size(); ++k) r.wheels.push_back({t, int(k), contacts[k]});
+  };
+  record(0);
+  double next_row = dt;
+  auto last_report = std::chrono::steady_clock::now();
+  for (long k = 1;; ++k) {
+    const double t = std::min(k * chunk, o.end_time);
+    if (maneuver) {
+      const VehicleSample now = sample(v, in, in.time() - t0);
+      held = maneuver->at(VehiclePose{now.time, now.x, now.y, now.yaw, now.vx});
+    }
+    in.advance(t0 + t);
+    if (v.update_gear()) in.reinitialize();
+    r.max_constraint_violation = std::max(r.max_constraint_violation, in.constraint_violation());
+    if (t >= next_row - 1e-9 || t >= o.end_time) {
+      record(t);
+      next_row += dt;
+    }
+    if (t >= o.end_time) break;
+    if (std::chrono::steady_clock::now() - last_report > std::chrono::seconds(5)) {
+      last_report = std::chrono::steady_clock::now();
+      const VehicleSample& now = r.samples.back();
+      spdlog::info("vehicle: t = {:.3g} of {:.3g} s, speed {:.3g} m/s, gear {}, {} steps", now.time, o.end_time, now.vx,
+                   now.gear, in.stats().steps);
+    }
+  }
+  const mb::MbIntegratorStats st = in.stats();
+  r.steps = st.steps;
+  r.residuals = st.residuals;
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+}  // namespace terracal::vehicle

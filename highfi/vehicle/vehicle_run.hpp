@@ -1,0 +1,50 @@
+#pragma once
+// One run of the full vehicle on rigid ground, driven by a driver file or a manoeuvre: the vehicle
+// settles at rest first (not recorded: its springs lift it from the design position to its ride
+// height), then starts at the initial speed; rows of trajectory.csv (as the reduced-order vehicles
+// write them) and of wheels.csv at the output rate.
+#include <vector>
+
+#include "core/vehicle/driver_inputs.hpp"
+#include "core/vehicle/maneuver.hpp"
+#include "highfi/vehicle/full_vehicle.hpp"
+
+namespace terracal::vehicle {
+
+struct VehicleRunOptions {
+  double end_time = 10;          // s
+  double initial_speed = 0;      // m/s, forward
+  double output_rate = 100;      // rows per second
+  double rtol = 1e-5;            // IDAS relative tolerance (absolute: rtol / 100)
+  double max_step = 0;           // s, IDAS's largest step; 0: free
+  double control_period = 0.01;  // s, a manoeuvre's controller period (inputs held between)
+  double settle_time = 3;        // s at rest before the run
+  double friction = 1;           // the ground's friction over the tire data's
+};
+
+// One row of trajectory.csv: the chassis (sprung mass) in the ground frame; vx, vy, ax, ay in the
+// chassis frame.
+struct VehicleSample {
+  double time = 0, x = 0, y = 0, z = 0, yaw = 0, roll = 0, pitch = 0;
+  double vx = 0, vy = 0, yaw_rate = 0, roll_rate = 0, ax = 0, ay = 0, engine_speed_rpm = 0;
+  int gear = 0;  // 1-based
+};
+
+struct WheelSample {
+  double time = 0;
+  int wheel = 0;  // front left, front right, rear left, rear right (per axle, left first)
+  TireContact contact;
+};
+
+struct VehicleRunResult {
+  std::vector<VehicleSample> samples;
+  std::vector<WheelSample> wheels;
+  long steps = 0, residuals = 0;
+  double wall_seconds = 0, max_constraint_violation = 0;
+};
+
+// Exactly one of series and maneuver is non-null.
+VehicleRunResult run_full_vehicle(const FullVehicleSpec& spec, const DriverSeries* series, Maneuver* maneuver,
+                                  const VehicleRunOptions& o);
+
+}  // namespace terracal::vehicle
