@@ -1,33 +1,21 @@
 #include "highfi/vehicle/double_wishbone.hpp"
 
+#include "highfi/vehicle/vehicle_json.hpp"
+
 #include <fmt/format.h>
 
 namespace terracal::vehicle {
 namespace {
-Vec3 vec(JsonObject& o, const std::string& key) {
-  const nlohmann::json& j = o.raw(key);
-  if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() || !j[2].is_number())
-    o.fail(key, fmt::format("value {} is not a point; expected [x, y, z] in m", j.dump()));
-  return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
-}
-
-Vec3 positive_vec(JsonObject& o, const std::string& key) {
-  const Vec3 v = vec(o, key);
-  if (!(v.minCoeff() > 0))
-    o.fail(key, fmt::format("value [{}, {}, {}] has a moment <= 0; expected > 0", v.x(), v.y(), v.z()));
-  return v;
-}
-
 BodySpec read_body(JsonObject o, bool arm, ArmSpec* arm_out) {
   BodySpec b;
   b.mass = o.number("mass", 0, 1e5, true);
-  b.com = vec(o, "com");
-  b.moments = positive_vec(o, "inertia");
-  if (o.has("products")) b.products = vec(o, "products");
+  b.com = read_point(o, "com");
+  b.moments = read_moments(o, "inertia");
+  if (o.has("products")) b.products = read_point(o, "products");
   if (arm) {
-    arm_out->chassis_front = vec(o, "chassis_front");
-    arm_out->chassis_back = vec(o, "chassis_back");
-    arm_out->upright = vec(o, "upright");
+    arm_out->chassis_front = read_point(o, "chassis_front");
+    arm_out->chassis_back = read_point(o, "chassis_back");
+    arm_out->upright = read_point(o, "upright");
     if ((arm_out->chassis_front - arm_out->chassis_back).norm() < 1e-6)
       o.fail("chassis_back", "is at chassis_front; expected two points apart (the arm's hinge axis)");
   }
@@ -36,8 +24,8 @@ BodySpec read_body(JsonObject o, bool arm, ArmSpec* arm_out) {
 }
 
 void read_spring(JsonObject o, DoubleWishboneSpec& s) {
-  s.spring_chassis = vec(o, "chassis");
-  s.spring_arm = vec(o, "arm");
+  s.spring_chassis = read_point(o, "chassis");
+  s.spring_arm = read_point(o, "arm");
   s.spring_free_length = o.number("free_length", 0, 10, true);
   if (o.has("stiffness")) {
     const double k = o.number("stiffness", 0, 1e9, true);
@@ -70,17 +58,13 @@ Mat3 BodySpec::inertia() const {
 DoubleWishboneSpec read_double_wishbone(JsonObject o) {
   DoubleWishboneSpec s;
   o.string_or("template", "double_wishbone", {"double_wishbone"});
-  if (o.has("name")) {
-    const nlohmann::json& n = o.raw("name");
-    if (!n.is_string()) o.fail("name", fmt::format("value {} is not a string", n.dump()));
-    s.name = n.get<std::string>();
-  }
+  s.name = read_name(o, s.name);
   if (o.has("source")) o.raw("source");  // where the numbers come from: for people, not read
   {
     JsonObject sp = o.object("spindle");
     s.spindle.mass = sp.number("mass", 0, 1e5, true);
-    s.spindle.com = vec(sp, "com");
-    s.spindle.moments = positive_vec(sp, "inertia");
+    s.spindle.com = read_point(sp, "com");
+    s.spindle.moments = read_moments(sp, "inertia");
     s.spindle_radius = sp.number_or("radius", s.spindle_radius, 0, 10, true);
     s.spindle_width = sp.number_or("width", s.spindle_width, 0, 10, true);
     sp.finish();
@@ -90,15 +74,15 @@ DoubleWishboneSpec read_double_wishbone(JsonObject o) {
   s.lower_arm.body = read_body(o.object("lower_arm"), true, &s.lower_arm);
   {
     JsonObject t = o.object("tierod");
-    s.tierod_chassis = vec(t, "chassis");
-    s.tierod_upright = vec(t, "upright");
+    s.tierod_chassis = read_point(t, "chassis");
+    s.tierod_upright = read_point(t, "upright");
     t.finish();
   }
   read_spring(o.object("spring"), s);
   {
     JsonObject sh = o.object("shock");
-    s.shock_chassis = vec(sh, "chassis");
-    s.shock_arm = vec(sh, "arm");
+    s.shock_chassis = read_point(sh, "chassis");
+    s.shock_arm = read_point(sh, "arm");
     s.shock_damping = sh.number("damping", 0, 1e8);
     sh.finish();
   }

@@ -7,24 +7,9 @@
 #include "core/errors.hpp"
 #include "core/vehicle/powertrain_json.hpp"
 #include "core/vehicle/tmeasy_params.hpp"
+#include "highfi/vehicle/vehicle_json.hpp"
 
 namespace terracal::vehicle {
-namespace {
-Vec3 point(JsonObject& o, const std::string& key) {
-  const nlohmann::json& j = o.raw(key);
-  if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() || !j[2].is_number())
-    o.fail(key, fmt::format("value {} is not a point; expected [x, y, z] in m", j.dump()));
-  return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
-}
-
-Vec3 moments(JsonObject& o, const std::string& key) {
-  const Vec3 v = point(o, key);
-  if (!(v.minCoeff() > 0))
-    o.fail(key, fmt::format("value [{}, {}, {}] has a moment <= 0; expected > 0 (kg m^2)", v.x(), v.y(), v.z()));
-  return v;
-}
-}  // namespace
-
 double FullVehicleSpec::total_mass() const {  // the bodies' masses (shafts have inertia only)
   double m = chassis.mass + (has_steering ? steering.link.mass + steering.arm.mass : 0.0);
   for (const AxleSpec& a : axles) {
@@ -39,18 +24,14 @@ FullVehicleSpec read_full_vehicle(const nlohmann::json& j, const std::string& so
   JsonObject o(j, source, "");
   FullVehicleSpec v;
   o.string_or("type", "full vehicle", {"full vehicle"});
-  if (o.has("name")) {
-    const nlohmann::json& n = o.raw("name");
-    if (!n.is_string()) o.fail("name", fmt::format("value {} is not a string", n.dump()));
-    v.name = n.get<std::string>();
-  }
+  v.name = read_name(o, v.name);
   if (o.has("source")) o.raw("source");  // for people
   {
     JsonObject c = o.object("chassis");
     v.chassis.mass = c.number("mass", 0, 1e6, true);
-    v.chassis.com = point(c, "com");
-    v.chassis.moments = moments(c, "inertia");
-    if (c.has("products")) v.chassis.products = point(c, "products");
+    v.chassis.com = read_point(c, "com");
+    v.chassis.moments = read_moments(c, "inertia");
+    if (c.has("products")) v.chassis.products = read_point(c, "products");
     c.finish();
   }
   const nlohmann::json& axles = o.raw("axles");
@@ -59,7 +40,7 @@ FullVehicleSpec read_full_vehicle(const nlohmann::json& j, const std::string& so
   for (std::size_t k = 0; k < axles.size(); ++k) {
     JsonObject a(axles[k], source, fmt::format("axles[{}]", k));
     AxleSpec axle;
-    axle.location = point(a, "location");
+    axle.location = read_point(a, "location");
     axle.suspension = read_double_wishbone(a.object("suspension"));
     axle.steered = a.boolean_or("steered", false);
     a.finish();
@@ -75,7 +56,7 @@ FullVehicleSpec read_full_vehicle(const nlohmann::json& j, const std::string& so
   {
     JsonObject w = o.object("wheel");
     v.wheel_mass = w.number("mass", 0, 1e4);
-    v.wheel_inertia = moments(w, "inertia");
+    v.wheel_inertia = read_moments(w, "inertia");
     w.finish();
   }
   if (o.has("powertrain")) {

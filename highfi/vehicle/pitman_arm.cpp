@@ -1,30 +1,18 @@
 #include "highfi/vehicle/pitman_arm.hpp"
 
+#include "highfi/vehicle/vehicle_json.hpp"
+
 #include <cmath>
 
 #include <fmt/format.h>
 
 namespace terracal::vehicle {
 namespace {
-Vec3 triple(JsonObject& o, const std::string& key) {
-  const nlohmann::json& j = o.raw(key);
-  if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() || !j[2].is_number())
-    o.fail(key, fmt::format("value {} is not a vector; expected [x, y, z]", j.dump()));
-  return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
-}
-
-Vec3 direction(JsonObject& o, const std::string& key) {
-  const Vec3 d = triple(o, key);
-  if (d.norm() < 1e-9) o.fail(key, "is a zero vector; expected a direction");
-  return d.normalized();
-}
-
 BodySpec body(JsonObject o) {
   BodySpec b;
   b.mass = o.number("mass", 0, 1e5, true);
-  b.com = triple(o, "com");
-  b.moments = triple(o, "inertia");
-  if (!(b.moments.minCoeff() > 0)) o.fail("inertia", "has a moment <= 0; expected > 0 (kg m^2)");
+  b.com = read_point(o, "com");
+  b.moments = read_moments(o, "inertia");
   o.finish();
   return b;
 }
@@ -33,34 +21,34 @@ BodySpec body(JsonObject o) {
 PitmanArmSpec read_pitman_arm(JsonObject o) {
   PitmanArmSpec s;
   o.string_or("template", "pitman_arm", {"pitman_arm"});
-  if (o.has("name")) s.name = o.raw("name").dump();
+  s.name = read_name(o, s.name);
   if (o.has("source")) o.raw("source");
   s.link = body(o.object("link"));
   s.arm = body(o.object("arm"));
   {
     JsonObject r = o.object("revolute");
-    s.revolute_point = triple(r, "point");
-    s.revolute_axis = direction(r, "axis");
+    s.revolute_point = read_point(r, "point");
+    s.revolute_axis = read_direction(r, "axis");
     s.max_angle = r.number("max_angle", 0, M_PI / 2, true);
     r.finish();
   }
   {
     JsonObject u = o.object("universal");
-    s.universal_point = triple(u, "point");
-    s.universal_axis_arm = direction(u, "axis_arm");
-    s.universal_axis_link = direction(u, "axis_link");
+    s.universal_point = read_point(u, "point");
+    s.universal_axis_arm = read_direction(u, "axis_arm");
+    s.universal_axis_link = read_direction(u, "axis_link");
     if (std::abs(s.universal_axis_arm.dot(s.universal_axis_link)) > 1e-6)
       u.fail("axis_link", "is not perpendicular to axis_arm; expected the cross's two axes at right angles");
     u.finish();
   }
   {
     JsonObject i = o.object("idler");
-    s.idler_chassis = triple(i, "chassis");
-    s.idler_link = triple(i, "link");
-    s.idler_axis = direction(i, "axis");
+    s.idler_chassis = read_point(i, "chassis");
+    s.idler_link = read_point(i, "link");
+    s.idler_axis = read_direction(i, "axis");
     i.finish();
   }
-  s.location = triple(o, "location");
+  s.location = read_point(o, "location");
   if (o.has("orientation")) {
     const nlohmann::json& q = o.raw("orientation");
     if (!q.is_array() || q.size() != 4 || !q[0].is_number() || !q[1].is_number() || !q[2].is_number() ||
