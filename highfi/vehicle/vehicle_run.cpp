@@ -15,22 +15,6 @@ Vec3 yaw_pitch_roll(const Mat3& r) {
   return Vec3(std::atan2(r(1, 0), r(0, 0)), std::asin(std::clamp(-r(2, 0), -1.0, 1.0)), std::atan2(r(2, 1), r(2, 2)));
 }
 
-// Every body moving forward at `speed`, wheels rolling, shafts turning with them.
-void set_speed(FullVehicle& v, double speed) {
-  mb::MbSystem& s = v.system();
-  for (mb::RigidBody& b : s.bodies)
-    if (!b.fixed) b.velocity = Vec3(speed, 0, 0);
-  const double spin = speed / v.spec().tire.unloaded_radius;
-  for (const WishboneSide& w : v.corners()) s.bodies[std::size_t(w.spindle)].omega = Vec3(0, spin, 0);
-  if (v.has_powertrain()) {
-    const Driveline& d = v.driveline();
-    for (mb::Shaft& sh : s.shafts) sh.speed = spin;
-    const double ratio = v.spec().powertrain.gear_ratio[d.gear];
-    s.shafts[std::size_t(d.turbine)].speed = spin / ratio;
-    s.shafts[std::size_t(d.crank)].speed = spin / ratio;
-  }
-}
-
 VehicleSample sample(const FullVehicle& v, const mb::MbIntegrator& in, double t) {
   const mb::MbSystem& s = v.system();
   const mb::RigidBody& c = s.bodies[std::size_t(v.chassis())];
@@ -54,6 +38,21 @@ VehicleSample sample(const FullVehicle& v, const mb::MbIntegrator& in, double t)
 }
 }  // namespace
 
+void set_forward_speed(FullVehicle& v, double speed) {
+  mb::MbSystem& s = v.system();
+  for (mb::RigidBody& b : s.bodies)
+    if (!b.fixed) b.velocity = Vec3(speed, 0, 0);
+  const double spin = speed / v.spec().tire.unloaded_radius;
+  for (const WishboneSide& w : v.corners()) s.bodies[std::size_t(w.spindle)].omega = Vec3(0, spin, 0);
+  if (v.has_powertrain()) {
+    const Driveline& d = v.driveline();
+    for (mb::Shaft& sh : s.shafts) sh.speed = spin;
+    const double ratio = v.spec().powertrain.gear_ratio[d.gear];
+    s.shafts[std::size_t(d.turbine)].speed = spin / ratio;
+    s.shafts[std::size_t(d.crank)].speed = spin / ratio;
+  }
+}
+
 VehicleRunResult run_full_vehicle(const FullVehicleSpec& spec, const DriverSeries* series, Maneuver* maneuver,
                                   const VehicleRunOptions& o) {
   if ((series == nullptr) == (maneuver == nullptr)) throw InputError("vehicle: give a driver file or a manoeuvre");
@@ -71,7 +70,7 @@ VehicleRunResult run_full_vehicle(const FullVehicleSpec& spec, const DriverSerie
   VehicleRunResult r;
   // Settle at rest, then start at the initial speed from the ride height.
   in.advance(t0);
-  set_speed(v, o.initial_speed);
+  set_forward_speed(v, o.initial_speed);
   in.reinitialize();
   const double dt = 1.0 / o.output_rate;
   const double chunk = maneuver ? std::min(dt, o.control_period) : dt;

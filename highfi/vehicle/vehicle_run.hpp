@@ -43,6 +43,10 @@ struct VehicleRunResult {
   double wall_seconds = 0, max_constraint_violation = 0;
 };
 
+// Every body moving forward (+x) at `speed`, wheels rolling at speed / unloaded radius, the driveline's
+// shafts turning with them (then restart the integrator from this state).
+void set_forward_speed(FullVehicle& v, double speed);
+
 // Exactly one of series and maneuver is non-null.
 VehicleRunResult run_full_vehicle(const FullVehicleSpec& spec, const DriverSeries* series, Maneuver* maneuver,
                                   const VehicleRunOptions& o);
