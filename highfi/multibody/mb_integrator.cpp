@@ -3,11 +3,15 @@
 #include <idas/idas.h>
 #include <nvector/nvector_serial.h>
 #include <sunlinsol/sunlinsol_dense.h>
+#include <sunlinsol/sunlinsol_klu.h>
 #include <sunmatrix/sunmatrix_dense.h>
+#include <sunmatrix/sunmatrix_sparse.h>
 
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "highfi/multibody/ggl_jacobian.hpp"
+#include "highfi/multibody/ggl_residual.hpp"
 
 namespace terracal::mb {
 namespace {
@@ -37,6 +41,8 @@ struct MbIntegrator::Impl {
   void* mem = nullptr;
   double t = 0;
   Eigen::MatrixXd mass;
+  std::unique_ptr<GglJacobian> jacobian;
+  double pivot_cj = 0;       // cj when KLU last chose its pivots  // null: IDAS's dense difference quotients
   MbIntegratorStats before;  // counts of the runs before the last restart (IDAReInit zeroes IDAS's)
 
   explicit Impl(MbSystem& s) : sys(s) {}
@@ -45,30 +51,28 @@ struct MbIntegrator::Impl {
     if (flag < 0) throw RunError(fmt::format("multibody: IDAS {} failed at t = {:.6g} s (flag {})", call, t, flag));
   }
 
-  // The GGL residual (see the header).
-  int residual(double time, const double* y, const double* ydot, double* r) {
-    const Eigen::Map<const VectorXd> q(y, nq), u(y + nq, nu), lambda(y + nq + nu, m), mu(y + nq + nu + m, mh + nb);
-    sys.set_positions(q.data());
-    sys.set_velocities(u.data());
-    VectorXd phi;
-    Eigen::MatrixXd jac;
-    sys.constraints(phi, jac);
-    const VectorXd f = sys.applied(time);
-    const VectorXd corrected = u + jac.topRows(mh).transpose() * mu.head(mh);
-    VectorXd qdot(nq);
-    sys.coordinate_rates(q.data(), corrected.data(), qdot.data());
-    for (int k = 0; k < nb; ++k) qdot.segment<4>(7 * k + 3) += q.segment<4>(7 * k + 3) * mu[mh + k];
-    Eigen::Map<VectorXd> rq(r, nq), ru(r + nq, nu), rphi(r + nq + nu, mh + nb), rvel(r + nq + nu + mh + nb, m);
-    rq = Eigen::Map<const VectorXd>(ydot, nq) - qdot;
-    ru = mass * Eigen::Map<const VectorXd>(ydot + nq, nu) - f + jac.transpose() * lambda;
-    rphi.head(mh) = phi;
-    for (int k = 0; k < nb; ++k) rphi[mh + k] = 0.5 * (q.segment<4>(7 * k + 3).squaredNorm() - 1);
-    rvel = jac * u;
-    return phi.allFinite() && f.allFinite() ? 0 : 1;  // a recoverable failure: IDAS retries smaller
-  }
   static int res(sunrealtype time, N_Vector y, N_Vector yd, N_Vector r, void* user) {
-    return static_cast<Impl*>(user)->residual(time, N_VGetArrayPointer(y), N_VGetArrayPointer(yd),
-                                              N_VGetArrayPointer(r));
+    Impl& s = *static_cast<Impl*>(user);
+    // A non-finite force or constraint is a recoverable failure: IDAS retries with a smaller step.
+    return ggl_residual(s.sys, s.mass, time, N_VGetArrayPointer(y), N_VGetArrayPointer(yd), N_VGetArrayPointer(r)) ? 0
+                                                                                                                   : 1;
+  }
+
+  // The sparse Newton matrix, copied into IDAS's compressed-column matrix (same pattern every time).
+  static int jac(sunrealtype time, sunrealtype cj, N_Vector y, N_Vector, N_Vector, SUNMatrix out, void* user, N_Vector,
+                 N_Vector, N_Vector) {
+    Impl& s = *static_cast<Impl*>(user);
+    const Eigen::SparseMatrix<double>& j = s.jacobian->evaluate(time, N_VGetArrayPointer(y), cj);
+    if (j.nonZeros() != SM_NNZ_S(out)) return -1;  // the pattern is fixed
+    if (!Eigen::Map<const VectorXd>(j.valuePtr(), j.nonZeros()).allFinite()) return 1;
+    std::copy(j.outerIndexPtr(), j.outerIndexPtr() + j.outerSize() + 1, SM_INDEXPTRS_S(out));
+    std::copy(j.innerIndexPtr(), j.innerIndexPtr() + j.nonZeros(), SM_INDEXVALS_S(out));
+    std::copy(j.valuePtr(), j.valuePtr() + j.nonZeros(), SM_DATA_S(out));
+    // New pivots for every new matrix: KLU would otherwise factor it with the first matrix's pivot
+    // order, which fails when cj changes by orders of magnitude (the step shrinking at an impact); a
+    // fresh order costs no more than the extra Newton iterations of a stale one (measured on the HMMWV).
+    SUNLinSol_KLUReInit(s.solver, out, SM_NNZ_S(out), SUNKLU_REINIT_PARTIAL);
+    return 0;
   }
 
   // Consistent initial values: assembled positions and velocities, then accelerations and lambda from
@@ -133,9 +137,19 @@ MbIntegrator::MbIntegrator(MbSystem& system, MbIntegratorOptions o, double t0) :
   s.check(IDASetUserData(s.mem, &s), "IDASetUserData");
   s.check(IDASetId(s.mem, s.ids), "IDASetId");
   s.check(IDASetSuppressAlg(s.mem, SUNTRUE), "IDASetSuppressAlg");
-  s.matrix = SUNDenseMatrix(s.size, s.size, s.context);
-  s.solver = SUNLinSol_Dense(s.yy, s.matrix, s.context);
-  s.check(IDASetLinearSolver(s.mem, s.solver, s.matrix), "IDASetLinearSolver");
+  if (o.jacobian == MbIntegratorOptions::Jacobian::sparse) {
+    s.jacobian = std::make_unique<GglJacobian>(system);
+    const Eigen::Index nnz = s.jacobian->evaluate(t0, N_VGetArrayPointer(s.yy), 1.0).nonZeros();
+    s.matrix = SUNSparseMatrix(s.size, s.size, nnz, CSC_MAT, s.context);
+    s.solver = SUNLinSol_KLU(s.yy, s.matrix, s.context);
+    s.check(SUNLinSol_KLUSetOrdering(s.solver, 0), "SUNLinSol_KLUSetOrdering");  // AMD: the fastest here
+    s.check(IDASetLinearSolver(s.mem, s.solver, s.matrix), "IDASetLinearSolver");
+    s.check(IDASetJacFn(s.mem, Impl::jac), "IDASetJacFn");
+  } else {
+    s.matrix = SUNDenseMatrix(s.size, s.size, s.context);
+    s.solver = SUNLinSol_Dense(s.yy, s.matrix, s.context);
+    s.check(IDASetLinearSolver(s.mem, s.solver, s.matrix), "IDASetLinearSolver");
+  }
   s.check(IDASetMaxNumSteps(s.mem, 10000000), "IDASetMaxNumSteps");
   if (o.max_step > 0) s.check(IDASetMaxStep(s.mem, o.max_step), "IDASetMaxStep");
 }

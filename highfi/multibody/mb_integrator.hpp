@@ -20,6 +20,11 @@ struct MbIntegratorOptions {
   double rtol = 1e-8;
   double atol = 1e-10;  // on positions (m, quaternion) and velocities (m/s, rad/s)
   double max_step = 0;  // s; 0: IDAS chooses
+  // The Newton matrix: sparse (ggl_jacobian.hpp, factored by KLU), or IDAS's own difference quotients
+  // of the whole residual, factored dense (one residual per unknown and a dense LU per Jacobian: for
+  // comparison, and for systems of a few bodies).
+  enum class Jacobian { sparse, dense_difference };
+  Jacobian jacobian = Jacobian::sparse;
 };
 
 struct MbIntegratorStats {

@@ -116,7 +116,7 @@ Eigen::VectorXd MbSystem::applied(double t) const {
   for (const auto& e : springs) e.apply(bodies, w);
   for (const auto& e : rotational_springs) e.apply(bodies, w);
   for (const auto& e : bushings) e.apply(bodies, w);
-  for (const auto& f : external) f(t, bodies, w);
+  for (const auto& f : external) f.apply(t, bodies, w);
   Eigen::VectorXd f(velocities());
   for (int k = 0; k < moving(); ++k) {
     const RigidBody& b = bodies[std::size_t(moving_[std::size_t(k)])];

@@ -6,6 +6,7 @@
 // body); fixed bodies (the ground) have none; a shaft has its angle and its speed, after the bodies'.
 // Joints are position constraints; the shafts' couplings are velocity constraints only.
 #include <functional>
+#include <type_traits>
 #include <vector>
 
 #include "highfi/multibody/force_elements.hpp"
@@ -18,7 +19,19 @@ class MbSystem {
  public:
   // Forces that are neither gravity nor an element (tires, soil, a driver's push): added to the
   // wrenches at each evaluation, at time t.
-  using ExternalForces = std::function<void(double t, const std::vector<RigidBody>&, std::vector<Wrench>&)>;
+  struct ExternalForces {
+    using Function = std::function<void(double t, const std::vector<RigidBody>&, std::vector<Wrench>&)>;
+    Function apply;
+    // The bodies whose state `apply` reads and whose wrenches it writes: the integrator's Jacobian
+    // couples only these. Empty: any body (correct, but every body then couples with every other).
+    std::vector<int> bodies;
+    template <class F>
+    requires std::is_invocable_v < F&, double, const std::vector<RigidBody>
+    &,
+        std::vector<Wrench>& > ExternalForces(F f, std::vector<int> touched = {})
+        : apply(std::move(f)),
+    bodies(std::move(touched)) {}
+  };
 
   Vec3 gravity{0, 0, -9.81};
   std::vector<RigidBody> bodies;
@@ -42,6 +55,10 @@ class MbSystem {
   // Call after the last body is added (and again if bodies change from fixed to moving).
   void index();
   int moving() const { return int(moving_.size()); }
+  // The moving slot of body b (its block in the velocities), -1 for a fixed body.
+  int slot(int b) const { return slot_[std::size_t(b)]; }
+  // The body in moving slot k.
+  int body_in_slot(int k) const { return moving_[std::size_t(k)]; }
   int velocities() const { return 6 * moving() + int(shafts.size()); }
   int coordinates() const { return 7 * moving() + int(shafts.size()); }
   // Rows of position constraints (the joints') and of all constraints (joints', then the couplings').

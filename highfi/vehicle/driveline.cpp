@@ -52,19 +52,19 @@ Driveline build_driveline(mb::MbSystem& s, const PowertrainParams& p, const Driv
                                     return std::pair<double, double>(-c.pump, c.turbine);
                                   }});
   // Brakes: dry friction between each spindle and its upright about the spin axis.
-  s.external.push_back(
-      [params, driver, corners](double t, const std::vector<mb::RigidBody>& b, std::vector<mb::Wrench>& w) {
-        const double braking = (*driver)(t).braking;
-        if (braking <= 0) return;
-        for (const WishboneSide& c : corners) {
-          const mb::RigidBody &sp = b[std::size_t(c.spindle)], &up = b[std::size_t(c.upright)];
-          const Vec3 axis = up.rotation() * Vec3::UnitY();
-          const double spin = axis.dot(sp.rotation() * sp.omega - up.rotation() * up.omega);
-          const Vec3 torque = dry_friction_torque(braking * params.max_brake_torque, spin) * axis;
-          w[std::size_t(c.spindle)].torque += sp.rotation().transpose() * torque;
-          w[std::size_t(c.upright)].torque -= up.rotation().transpose() * torque;
-        }
-      });
+  for (const WishboneSide& c : corners)
+    s.external.push_back(
+        {[params, driver, c](double t, const std::vector<mb::RigidBody>& b, std::vector<mb::Wrench>& w) {
+           const double braking = (*driver)(t).braking;
+           if (braking <= 0) return;
+           const mb::RigidBody &sp = b[std::size_t(c.spindle)], &up = b[std::size_t(c.upright)];
+           const Vec3 axis = up.rotation() * Vec3::UnitY();
+           const double spin = axis.dot(sp.rotation() * sp.omega - up.rotation() * up.omega);
+           const Vec3 torque = dry_friction_torque(braking * params.max_brake_torque, spin) * axis;
+           w[std::size_t(c.spindle)].torque += sp.rotation().transpose() * torque;
+           w[std::size_t(c.upright)].torque -= up.rotation().transpose() * torque;
+         },
+         {c.spindle, c.upright}});
   return d;
 }
 

@@ -125,9 +125,13 @@ FullVehicle::FullVehicle(const FullVehicleSpec& spec, const Vec3& origin, double
   tire_.params = spec.tire;
   tire_.vertical_damping = spec.tire_vertical_damping;
   tire_.friction = ground_friction;
-  s.external.push_back([this](double, const std::vector<mb::RigidBody>& b, std::vector<mb::Wrench>& f) {
-    for (const WishboneSide& w : corners_) tire_.apply(b[std::size_t(w.spindle)], f[std::size_t(w.spindle)]);
-  });
+  for (const WishboneSide& w : corners_) {
+    const int spindle = w.spindle;
+    s.external.push_back({[this, spindle](double, const std::vector<mb::RigidBody>& b, std::vector<mb::Wrench>& f) {
+                            tire_.apply(b[std::size_t(spindle)], f[std::size_t(spindle)]);
+                          },
+                          {spindle}});
+  }
 }
 
 bool FullVehicle::update_gear() {

@@ -116,16 +116,19 @@ double pitman_arm_angle(const mb::MbSystem& s, const PitmanArm& p) {
 void add_steering_servo(mb::MbSystem& s, const PitmanArmSpec& spec, const PitmanArm& p,
                         std::function<double(double)> input) {
   const int chassis = s.joints[std::size_t(p.revolute)].i;
-  s.external.push_back([=, &s](double t, const std::vector<mb::RigidBody>& b, std::vector<mb::Wrench>& w) {
-    const mb::RigidBody &arm = b[std::size_t(p.arm)], &ch = b[std::size_t(chassis)];
-    const Vec3 axis = ch.rotation() * p.axis_chassis;
-    const double rate = axis.dot(arm.rotation() * arm.omega - ch.rotation() * ch.omega);
-    // The arm turns clockwise seen from above (a negative angle about its upward axis) to steer left.
-    const double target = -spec.max_angle * std::clamp(input(t), -1.0, 1.0);
-    const double torque = -spec.servo_stiffness * (pitman_arm_angle(s, p) - target) - spec.servo_damping * rate;
-    w[std::size_t(p.arm)].torque += arm.rotation().transpose() * (torque * axis);
-    w[std::size_t(chassis)].torque -= ch.rotation().transpose() * (torque * axis);
-  });
+  s.external.push_back({[=, &s](double t, const std::vector<mb::RigidBody>& b, std::vector<mb::Wrench>& w) {
+                          const mb::RigidBody &arm = b[std::size_t(p.arm)], &ch = b[std::size_t(chassis)];
+                          const Vec3 axis = ch.rotation() * p.axis_chassis;
+                          const double rate = axis.dot(arm.rotation() * arm.omega - ch.rotation() * ch.omega);
+                          // The arm turns clockwise seen from above (a negative angle about its upward axis) to steer
+                          // left.
+                          const double target = -spec.max_angle * std::clamp(input(t), -1.0, 1.0);
+                          const double torque =
+                              -spec.servo_stiffness * (pitman_arm_angle(s, p) - target) - spec.servo_damping * rate;
+                          w[std::size_t(p.arm)].torque += arm.rotation().transpose() * (torque * axis);
+                          w[std::size_t(chassis)].torque -= ch.rotation().transpose() * (torque * axis);
+                        },
+                        {p.arm, chassis}});
 }
 
 }  // namespace terracal::vehicle

@@ -99,7 +99,7 @@ TEST_CASE("full vehicle, hard cases: full braking from 10 m/s stops it straight"
 TEST_CASE("full vehicle, hard cases: full lock at 4 m/s", "[vehicle]") {
   const FullVehicleSpec spec = hmmwv();
   FullVehicle v(spec, mb::Vec3(0, 0, design_height(spec)));
-  mb::MbIntegrator in(v.system(), {1e-5, 1e-7});
+  mb::MbIntegrator in(v.system(), {1e-6, 1e-8});
   in.advance(3.0);
   set_forward_speed(v, 4.0);
   v.set_driver([](double t) { return DriverInput{std::min(1.0, std::max(0.0, t - 3.0)), 0.1, 0}; });
