@@ -1,5 +1,6 @@
 // `terracal vehicle`: the full multibody vehicle on rigid ground, driven by a driver file or a built-in
-// manoeuvre; writes trajectory.csv (as `terracal rom`), wheels.csv, run.json and trajectory.png.
+// manoeuvre; writes trajectory.csv (as `terracal rom`), wheels.csv, run.json and trajectory.png; with
+// --vtu, ParaView snapshots of the bodies in vtu/ (vehicle_NNNNN.vtu and vehicle.pvd).
 #include <cmath>
 #include <filesystem>
 #include <memory>
@@ -16,6 +17,7 @@
 #include "core/errors.hpp"
 #include "highfi/vehicle/steering_kinematics.hpp"
 #include "highfi/vehicle/vehicle_run.hpp"
+#include "highfi/vehicle/vehicle_vtu.hpp"
 #include "rom/trajectory_csv.hpp"
 
 namespace terracal::app {
@@ -23,7 +25,7 @@ namespace {
 struct VehicleArgs {
   vehicle::VehicleRunOptions run;
   std::string vehicle, terrain = "rigid", scm, maneuver, inputs, out;
-  bool plots = true;
+  bool plots = true, vtu = false;
 };
 
 void write_outputs(const VehicleArgs& a, const vehicle::VehicleRunResult& r) {
@@ -37,17 +39,23 @@ void write_outputs(const VehicleArgs& a, const vehicle::VehicleRunResult& r) {
     w += fmt::format("{:.6g},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},0\n", s.time, s.wheel, s.contact.fz,
                      s.contact.fx, s.contact.fy, s.contact.sx, s.contact.sy, s.contact.deflection);
   write_text_atomically(a.out + "/wheels.csv", w);
-  const nlohmann::json j = {{"model", "full multibody vehicle"},
-                            {"integrator", "IDAS (GGL index 2)"},
-                            {"vehicle", a.vehicle},
-                            {"terrain", a.terrain},
-                            {"end_time", a.run.end_time},
-                            {"rtol", a.run.rtol},
-                            {"steps", r.steps},
-                            {"residuals", r.residuals},
-                            {"max_constraint_violation", r.max_constraint_violation},
-                            {"wall_seconds", r.wall_seconds},
-                            {"real_time_factor", a.run.end_time / std::max(r.wall_seconds, 1e-12)}};
+  nlohmann::json j = {{"model", "full multibody vehicle"},
+                      {"integrator", "IDAS (GGL index 2)"},
+                      {"vehicle", a.vehicle},
+                      {"terrain", a.terrain},
+                      {"end_time", a.run.end_time},
+                      {"rtol", a.run.rtol},
+                      {"steps", r.steps},
+                      {"residuals", r.residuals},
+                      {"max_constraint_violation", r.max_constraint_violation},
+                      {"wall_seconds", r.wall_seconds},
+                      {"real_time_factor", a.run.end_time / std::max(r.wall_seconds, 1e-12)}};
+  if (a.vtu)
+    j["vtu"] = {{"collection", "vtu/vehicle.pvd"},
+                {"rate_hz", a.run.vtu_rate},
+                {"snapshots", r.vtu_snapshots},
+                {"bodies", r.vtu_bodies},
+                {"names", vehicle::kVehicleVtuNames}};
   write_text_atomically(a.out + "/run.json", j.dump(2) + "\n");
 }
 
@@ -87,6 +95,10 @@ void add_options(CLI::App* sub, VehicleArgs& a) {
       ->check(in_range(Range{0.1, 1e4, false, false}))
       ->capture_default_str();
   sub->add_flag("!--no-plots", a.plots, "skip trajectory.png");
+  sub->add_flag("--vtu", a.vtu, "ParaView snapshots of the bodies: vtu/vehicle_NNNNN.vtu and vtu/vehicle.pvd");
+  sub->add_option("--vtu-rate", a.run.vtu_rate, "snapshots per second with --vtu [Hz]")
+      ->check(in_range(vehicle::kVehicleVtuRate))
+      ->capture_default_str();
   sub->add_option("--out", a.out, "output folder")->required();
 }
 }  // namespace
@@ -101,6 +113,7 @@ Command add_vehicle(CLI::App& app) {
     if (a->terrain == "scm")
       throw InputError("--terrain scm: the full vehicle runs on rigid ground only so far (use --terrain rigid)");
     if (!a->scm.empty()) throw InputError("--scm: only with --terrain scm");
+    if (sub->count("--vtu-rate") > 0 && !a->vtu) throw InputError("--vtu-rate: only with --vtu");
     if (a->inputs.empty() == a->maneuver.empty())
       throw InputError("terracal vehicle: give the driver as --inputs DRIVER.txt or --maneuver M.json (one of them)");
     const vehicle::FullVehicleSpec spec = vehicle::load_full_vehicle(a->vehicle);
@@ -119,6 +132,7 @@ Command add_vehicle(CLI::App& app) {
     }
     if (!(a->run.end_time > 0)) throw InputError(fmt::format("--end-time {}: must be positive", a->run.end_time));
     std::filesystem::create_directories(a->out);
+    if (a->vtu) a->run.vtu_dir = a->out + "/vtu";
     spdlog::info("vehicle: {} on rigid ground, {:.3g} s after {:.3g} s settling", a->vehicle, a->run.end_time,
                  a->run.settle_time);
     const vehicle::VehicleRunResult r = vehicle::run_full_vehicle(spec, series.get(), maneuver.get(), a->run);
@@ -128,6 +142,7 @@ Command add_vehicle(CLI::App& app) {
         "vehicle (full, IDAS): {:.3g} s simulated in {:.3g} s wall ({:.2g}x real time, settling included); "
         "written to {}/trajectory.csv\n",
         a->run.end_time, r.wall_seconds, a->run.end_time / std::max(r.wall_seconds, 1e-12), a->out);
+    if (a->vtu) fmt::print("vehicle: {} snapshots in {}/vtu/vehicle.pvd\n", r.vtu_snapshots, a->out);
     return 0;
   };
 }

@@ -128,40 +128,108 @@ void data_array(std::ostream& out, const char* type, const std::string& name, in
 // Chunk size for arrays generated on the fly (points as Float32, connectivity, offsets, types).
 constexpr std::size_t kChunk = 4096;
 
-void validate(const fs::path& file, const std::vector<double>& xyz, const std::vector<VtuPointData>& fields,
-              double time) {
-  const std::string where = "VTU file '" + file.string() + "'";
+std::string where_of(const fs::path& file) { return "VTU file '" + file.string() + "'"; }
+
+// The points and the time; returns the bytes of the points' array (Float32, 12 per point).
+std::uint64_t validate_points(const fs::path& file, const std::vector<double>& xyz, double time) {
+  const std::string where = where_of(file);
   if (xyz.size() % 3 != 0)
     throw InputError(where + ": " + std::to_string(xyz.size()) + " coordinates is not a multiple of 3 (x,y,z)");
   if (!std::isfinite(time)) throw InputError(where + ": the time " + number_text(time) + " is not finite");
-  const std::uint64_t n = xyz.size() / 3;
-  // Bytes of the largest array: Float32 points take 12 per point (more than Int64 connectivity's 8).
-  std::uint64_t widest = n * 12;
+  return xyz.size() / 3 * 12;
+}
+
+// The fields of `n` points (or cells, `what`); returns the bytes of the widest one.
+std::uint64_t validate_fields(const fs::path& file, const std::vector<VtuPointData>& fields, std::uint64_t n,
+                              const std::string& what) {
+  const std::string where = where_of(file);
+  std::uint64_t widest = 0;
   std::set<std::string> names;
   for (const auto& f : fields) {
-    const std::string field = where + ": point field '" + f.name + "'";
-    if (f.name.empty()) throw InputError(where + ": a point field has an empty name");
+    const std::string field = where + ": " + what + " field '" + f.name + "'";
+    if (f.name.empty()) throw InputError(where + ": a " + what + " field has an empty name");
     if (!names.insert(f.name).second) throw InputError(field + " appears more than once");
     if (f.components != 1 && f.components != 3 && f.components != 6)
       throw InputError(field + " has " + std::to_string(f.components) +
                        " components; expected 1 (scalar), 3 (vector) or 6 (symmetric tensor)");
     if (f.values.size() != n * static_cast<std::uint64_t>(f.components))
       throw InputError(field + " has " + std::to_string(f.values.size()) + " values; expected " + std::to_string(n) +
-                       " points x " + std::to_string(f.components) +
+                       " " + what + "s x " + std::to_string(f.components) +
                        " components = " + std::to_string(n * f.components));
     widest = std::max<std::uint64_t>(widest, n * 4 * f.components);
   }
-  if (widest > std::numeric_limits<std::uint32_t>::max())
-    throw InputError(where + ": " + std::to_string(n) +
-                     " points give an array over 4 GiB, more than a UInt32 header can describe; split the cloud");
+  return widest;
 }
 
-}  // namespace
+void check_array_size(const fs::path& file, std::uint64_t widest, std::uint64_t n, const std::string& what) {
+  if (widest > std::numeric_limits<std::uint32_t>::max())
+    throw InputError(where_of(file) + ": " + std::to_string(n) + " " + what +
+                     "s give an array over 4 GiB, more than a UInt32 header can describe; split the cloud");
+}
 
-void write_vtu_points(const fs::path& file, const std::vector<double>& xyz, const std::vector<VtuPointData>& fields,
-                      double time) {
-  validate(file, xyz, fields, time);  // before any file exists
-  const std::size_t n = xyz.size() / 3;
+// The number of points a cell of this type takes: exactly `n`, or at least `n` when `at_least`.
+std::pair<std::size_t, bool> points_of(VtuCellType type) {
+  switch (type) {
+    case VtuCellType::vertex:
+      return {1, false};
+    case VtuCellType::line:
+      return {2, false};
+    case VtuCellType::triangle:
+      return {3, false};
+    case VtuCellType::polygon:
+      return {3, true};
+    case VtuCellType::quad:
+      return {4, false};
+    case VtuCellType::hexahedron:
+      return {8, false};
+  }
+  return {0, false};
+}
+
+// Returns the bytes of the widest of the cells' arrays (Int64 connectivity and offsets).
+std::uint64_t validate_cells(const fs::path& file, const VtuCells& c, std::uint64_t n_points) {
+  const std::string where = where_of(file) + ": ";
+  if (c.offsets.size() != c.types.size())
+    throw InputError(where + std::to_string(c.offsets.size()) + " cell offsets for " + std::to_string(c.types.size()) +
+                     " cell types; expected one of each per cell");
+  std::int64_t begin = 0;
+  for (std::size_t k = 0; k < c.types.size(); ++k) {
+    const std::string cell = where + "cell " + std::to_string(k);
+    const std::int64_t end = c.offsets[k];
+    if (end <= begin || end > static_cast<std::int64_t>(c.connectivity.size()))
+      throw InputError(cell + ": offset " + std::to_string(end) + " is not in (" + std::to_string(begin) + ", " +
+                       std::to_string(c.connectivity.size()) + "]");
+    const auto [want, at_least] = points_of(c.types[k]);
+    const auto have = static_cast<std::size_t>(end - begin);
+    if (want == 0) throw InputError(cell + ": unknown cell type " + std::to_string(int(c.types[k])));
+    if (at_least ? have < want : have != want)
+      throw InputError(cell + " (VTK type " + std::to_string(int(c.types[k])) + ") has " + std::to_string(have) +
+                       " points; expected " + (at_least ? "at least " : "") + std::to_string(want));
+    for (std::int64_t i = begin; i < end; ++i)
+      if (c.connectivity[std::size_t(i)] < 0 || static_cast<std::uint64_t>(c.connectivity[std::size_t(i)]) >= n_points)
+        throw InputError(cell + " names point " + std::to_string(c.connectivity[std::size_t(i)]) + " of " +
+                         std::to_string(n_points));
+    begin = end;
+  }
+  if (static_cast<std::size_t>(begin) != c.connectivity.size())
+    throw InputError(where + std::to_string(c.connectivity.size() - std::size_t(begin)) +
+                     " connectivity entries after the last cell's end");
+  return 8 * std::max<std::uint64_t>(c.connectivity.size(), c.offsets.size());
+}
+
+void validate(const fs::path& file, const std::vector<double>& xyz, const std::vector<VtuPointData>& fields,
+              double time) {
+  const std::uint64_t n = xyz.size() / 3;
+  const std::uint64_t points = validate_points(file, xyz, time);
+  // Float32 points take 12 bytes per point, more than Int64 connectivity's 8.
+  check_array_size(file, std::max(points, validate_fields(file, fields, n, "point")), n, "point");
+}
+
+// Writes the grid to a temporary name and renames it: `cells(out)` writes the <Cells> arrays.
+template <class WriteCells>
+void write_grid(const fs::path& file, const std::vector<double>& xyz, std::size_t n_cells,
+                const std::vector<VtuPointData>& point_fields, const std::vector<VtuPointData>& cell_fields,
+                double time, WriteCells&& cells) {
   const std::string final_path = file.string();
   const std::string tmp = temporary_path_for(final_path);
 
@@ -181,7 +249,6 @@ void write_vtu_points(const fs::path& file, const std::vector<double>& xyz, cons
     throw RunError("cannot write '" + final_path + "': cannot create '" + tmp + "': " + std::strerror(err));
   }
   out.imbue(std::locale::classic());  // no thousands separators in the counts, whatever the global locale
-  const std::string ns = std::to_string(n);
   out << "<?xml version=\"1.0\"?>\n"
          "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt32\">\n"
          "  <UnstructuredGrid>\n"
@@ -193,14 +260,21 @@ void write_vtu_points(const fs::path& file, const std::vector<double>& xyz, cons
          "      </DataArray>\n"
          "    </FieldData>\n"
          "    <Piece NumberOfPoints=\""
-      << ns << "\" NumberOfCells=\"" << ns
+      << xyz.size() / 3 << "\" NumberOfCells=\"" << n_cells
       << "\">\n"
          "      <PointData>\n";
-  for (const auto& f : fields)
+  for (const auto& f : point_fields)
     data_array(out, "Float32", f.name, f.components, f.values.size() * sizeof(float),
                [&](Base64Writer& b) { b.put(f.values.data(), f.values.size() * sizeof(float)); });
-  out << "      </PointData>\n"
-         "      <Points>\n";
+  out << "      </PointData>\n";
+  if (!cell_fields.empty()) {
+    out << "      <CellData>\n";
+    for (const auto& f : cell_fields)
+      data_array(out, "Float32", f.name, f.components, f.values.size() * sizeof(float),
+                 [&](Base64Writer& b) { b.put(f.values.data(), f.values.size() * sizeof(float)); });
+    out << "      </CellData>\n";
+  }
+  out << "      <Points>\n";
   data_array(out, "Float32", "Points", 3, xyz.size() * sizeof(float), [&](Base64Writer& b) {
     std::array<float, 3 * kChunk> chunk;
     for (std::size_t i = 0; i < xyz.size(); i += chunk.size()) {
@@ -212,24 +286,7 @@ void write_vtu_points(const fs::path& file, const std::vector<double>& xyz, cons
   });
   out << "      </Points>\n"
          "      <Cells>\n";
-  // Vertex i is point i; offsets are the running end of each one-point cell.
-  auto counting = [n](std::int64_t first) {
-    return [n, first](Base64Writer& b) {
-      std::array<std::int64_t, kChunk> chunk;
-      for (std::size_t i = 0; i < n; i += kChunk) {
-        const std::size_t m = std::min(kChunk, n - i);
-        for (std::size_t k = 0; k < m; ++k) chunk[k] = first + static_cast<std::int64_t>(i + k);
-        b.put(chunk.data(), m * sizeof(std::int64_t));
-      }
-    };
-  };
-  data_array(out, "Int64", "connectivity", 1, n * sizeof(std::int64_t), counting(0));
-  data_array(out, "Int64", "offsets", 1, n * sizeof(std::int64_t), counting(1));
-  data_array(out, "UInt8", "types", 1, n, [n](Base64Writer& b) {
-    std::array<std::uint8_t, kChunk> vertex;
-    vertex.fill(1);  // VTK_VERTEX
-    for (std::size_t i = 0; i < n; i += kChunk) b.put(vertex.data(), std::min(kChunk, n - i));
-  });
+  cells(out);
   out << "      </Cells>\n"
          "    </Piece>\n"
          "  </UnstructuredGrid>\n"
@@ -238,6 +295,56 @@ void write_vtu_points(const fs::path& file, const std::vector<double>& xyz, cons
   if (!out) throw RunError("cannot write '" + final_path + "': writing '" + tmp + "' failed");
   guard.armed = false;
   commit_file(tmp, final_path);
+}
+
+}  // namespace
+
+void write_vtu_points(const fs::path& file, const std::vector<double>& xyz, const std::vector<VtuPointData>& fields,
+                      double time) {
+  validate(file, xyz, fields, time);  // before any file exists
+  const std::size_t n = xyz.size() / 3;
+  write_grid(file, xyz, n, fields, {}, time, [n](std::ostream& out) {
+    // Vertex i is point i; offsets are the running end of each one-point cell.
+    auto counting = [n](std::int64_t first) {
+      return [n, first](Base64Writer& b) {
+        std::array<std::int64_t, kChunk> chunk;
+        for (std::size_t i = 0; i < n; i += kChunk) {
+          const std::size_t m = std::min(kChunk, n - i);
+          for (std::size_t k = 0; k < m; ++k) chunk[k] = first + static_cast<std::int64_t>(i + k);
+          b.put(chunk.data(), m * sizeof(std::int64_t));
+        }
+      };
+    };
+    data_array(out, "Int64", "connectivity", 1, n * sizeof(std::int64_t), counting(0));
+    data_array(out, "Int64", "offsets", 1, n * sizeof(std::int64_t), counting(1));
+    data_array(out, "UInt8", "types", 1, n, [n](Base64Writer& b) {
+      std::array<std::uint8_t, kChunk> vertex;
+      vertex.fill(1);  // VTK_VERTEX
+      for (std::size_t i = 0; i < n; i += kChunk) b.put(vertex.data(), std::min(kChunk, n - i));
+    });
+  });
+}
+
+void write_vtu_cells(const fs::path& file, const std::vector<double>& xyz, const VtuCells& cells,
+                     const std::vector<VtuPointData>& point_fields, const std::vector<VtuPointData>& cell_fields,
+                     double time) {
+  // Everything checked before any file exists.
+  const std::uint64_t n = xyz.size() / 3;
+  const std::uint64_t points = validate_points(file, xyz, time);
+  check_array_size(file, std::max(points, validate_fields(file, point_fields, n, "point")), n, "point");
+  check_array_size(file,
+                   std::max(validate_cells(file, cells, n), validate_fields(file, cell_fields, cells.size(), "cell")),
+                   cells.size(), "cell");
+  write_grid(file, xyz, cells.size(), point_fields, cell_fields, time, [&cells](std::ostream& out) {
+    data_array(out, "Int64", "connectivity", 1, cells.connectivity.size() * sizeof(std::int64_t), [&](Base64Writer& b) {
+      b.put(cells.connectivity.data(), cells.connectivity.size() * sizeof(std::int64_t));
+    });
+    data_array(out, "Int64", "offsets", 1, cells.offsets.size() * sizeof(std::int64_t),
+               [&](Base64Writer& b) { b.put(cells.offsets.data(), cells.offsets.size() * sizeof(std::int64_t)); });
+    static_assert(sizeof(VtuCellType) == 1);
+    data_array(out, "UInt8", "types", 1, cells.types.size(),
+               [&](Base64Writer& b) { b.put(cells.types.data(), cells.types.size()); });
+  });
 }
 
 void write_pvd(const fs::path& file, const std::vector<std::pair<double, std::string>>& entries) {

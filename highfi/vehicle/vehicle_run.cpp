@@ -2,11 +2,17 @@
 
 #include <chrono>
 #include <cmath>
+#include <filesystem>
+#include <limits>
+#include <utility>
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "core/errors.hpp"
+#include "core/vtu_writer.hpp"
 #include "highfi/multibody/mb_integrator.hpp"
+#include "highfi/vehicle/vehicle_vtu.hpp"
 
 namespace terracal::vehicle {
 namespace {
@@ -36,6 +42,53 @@ VehicleSample sample(const FullVehicle& v, const mb::MbIntegrator& in, double t)
   }
   return out;
 }
+
+// The snapshots of a run: DIR/vehicle_NNNNN.vtu at times k / rate and DIR/vehicle.pvd listing them.
+// The collection is rewritten at most every 2 s of wall time while the run goes on (ParaView can open
+// a run in progress), at the end, and when the run fails.
+class Snapshots {
+ public:
+  explicit Snapshots(const VehicleRunOptions& o) : dir_(o.vtu_dir), rate_(o.vtu_rate) {
+    if (dir_.empty()) return;
+    if (!kVehicleVtuRate.contains(rate_))
+      throw InputError(fmt::format("vehicle: the snapshot rate {} Hz is outside {}", rate_, kVehicleVtuRate.text()));
+    std::filesystem::create_directories(dir_);
+  }
+  ~Snapshots() {
+    try {
+      write_collection();
+    } catch (const std::exception& e) {
+      spdlog::warn("vehicle: {}", e.what());
+    }
+  }
+  Snapshots(const Snapshots&) = delete;
+  Snapshots& operator=(const Snapshots&) = delete;
+
+  // The time of the next snapshot (infinity when there are none).
+  double next() const {
+    return dir_.empty() ? std::numeric_limits<double>::infinity() : double(entries_.size()) / rate_;
+  }
+  void take(const FullVehicle& v, double t) {
+    const std::string name = fmt::format("vehicle_{:05d}.vtu", entries_.size());
+    write_vehicle_vtu(dir_ / name, v, t);
+    entries_.emplace_back(t, name);
+    if (std::chrono::steady_clock::now() - written_at_ > std::chrono::seconds(2)) write_collection();
+  }
+  void write_collection() {
+    if (dir_.empty() || written_ == entries_.size()) return;
+    write_pvd(dir_ / "vehicle.pvd", entries_);
+    written_ = entries_.size();
+    written_at_ = std::chrono::steady_clock::now();
+  }
+  long count() const { return long(entries_.size()); }
+
+ private:
+  std::filesystem::path dir_;
+  double rate_ = 20;
+  std::vector<std::pair<double, std::string>> entries_;
+  std::size_t written_ = 0;
+  std::chrono::steady_clock::time_point written_at_{};
+};
 }  // namespace
 
 void set_forward_speed(FullVehicle& v, double speed) {
@@ -66,6 +119,7 @@ VehicleRunResult run_full_vehicle(const FullVehicleSpec& spec, const DriverSerie
     if (t < t0) return DriverInput{};
     return series ? series->at(t - t0) : held;
   });
+  Snapshots snapshots(o);
   mb::MbIntegrator in(v.system(), {o.rtol, o.rtol * 1e-2, o.max_step});
   VehicleRunResult r;
   // Settle at rest, then start at the initial speed from the ride height.
@@ -80,6 +134,7 @@ VehicleRunResult run_full_vehicle(const FullVehicleSpec& spec, const DriverSerie
     for (std::size_t k = 0; k < contacts.size(); ++k) r.wheels.push_back({t, int(k), contacts[k]});
   };
   record(0);
+  if (snapshots.next() == 0) snapshots.take(v, 0);
   double next_row = dt;
   auto last_report = std::chrono::steady_clock::now();
   for (long k = 1;; ++k) {
@@ -88,6 +143,11 @@ VehicleRunResult run_full_vehicle(const FullVehicleSpec& spec, const DriverSerie
       const VehicleSample now = sample(v, in, in.time() - t0);
       held = maneuver->at(VehiclePose{now.time, now.x, now.y, now.yaw, now.vx});
     }
+    // Snapshots due before t: the integrator's state interpolated at their times (no step changes).
+    for (double ts = snapshots.next(); ts < t - 1e-9; ts = snapshots.next()) {
+      in.advance(t0 + ts);
+      snapshots.take(v, ts);
+    }
     in.advance(t0 + t);
     if (v.update_gear()) in.reinitialize();
     r.max_constraint_violation = std::max(r.max_constraint_violation, in.constraint_violation());
@@ -95,6 +155,7 @@ VehicleRunResult run_full_vehicle(const FullVehicleSpec& spec, const DriverSerie
       record(t);
       next_row += dt;
     }
+    if (const double ts = snapshots.next(); ts <= t + 1e-9) snapshots.take(v, ts);  // due now
     if (t >= o.end_time) break;
     if (std::chrono::steady_clock::now() - last_report > std::chrono::seconds(5)) {
       last_report = std::chrono::steady_clock::now();
@@ -106,6 +167,9 @@ VehicleRunResult run_full_vehicle(const FullVehicleSpec& spec, const DriverSerie
   const mb::MbIntegratorStats st = in.stats();
   r.steps = st.steps;
   r.residuals = st.residuals;
+  snapshots.write_collection();
+  r.vtu_snapshots = snapshots.count();
+  if (!o.vtu_dir.empty()) r.vtu_bodies = vehicle_body_names(v);
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }

@@ -2,7 +2,9 @@
 // One run of the full vehicle on rigid ground, driven by a driver file or a manoeuvre: the vehicle
 // settles at rest first (not recorded: its springs lift it from the design position to its ride
 // height), then starts at the initial speed; rows of trajectory.csv (as the reduced-order vehicles
-// write them) and of wheels.csv at the output rate.
+// write them) and of wheels.csv at the output rate; with a snapshot folder, ParaView snapshots of the
+// bodies (vehicle_vtu.hpp) at the snapshot rate and the collection listing them.
+#include <string>
 #include <vector>
 
 #include "core/vehicle/driver_inputs.hpp"
@@ -20,6 +22,12 @@ struct VehicleRunOptions {
   double control_period = 0.01;  // s, a manoeuvre's controller period (inputs held between)
   double settle_time = 3;        // s at rest before the run
   double friction = 1;           // the ground's friction over the tire data's
+  // Snapshots: DIR/vehicle_NNNNN.vtu at times k / vtu_rate from 0 to end_time and DIR/vehicle.pvd;
+  // "": none. One between two output rows is the integrator's interpolated state: its steps are the
+  // same as without snapshots, except when it is the first output after a restart (the start, a gear
+  // shift), where IDAS sizes its first step by the time asked for.
+  std::string vtu_dir;
+  double vtu_rate = 20;  // snapshots per second, in kVehicleVtuRate
 };
 
 // One row of trajectory.csv: the chassis (sprung mass) in the ground frame; vx, vy, ax, ay in the
@@ -41,6 +49,8 @@ struct VehicleRunResult {
   std::vector<WheelSample> wheels;
   long steps = 0, residuals = 0;
   double wall_seconds = 0, max_constraint_violation = 0;
+  long vtu_snapshots = 0;
+  std::vector<std::string> vtu_bodies;  // with snapshots: the names that their cell array `body` indexes
 };
 
 // Every body moving forward (+x) at `speed`, wheels rolling at speed / unloaded radius, the driveline's

@@ -1,16 +1,24 @@
 // terracal vehicle: a short run of the full HMMWV writes trajectory.csv with the reduced-order
-// vehicles' columns, wheels.csv whose loads carry the vehicle, and run.json.
+// vehicles' columns, wheels.csv whose loads carry the vehicle, and run.json; with --vtu, ParaView
+// snapshots of its bodies at the snapshot rate, listed in vtu/vehicle.pvd, without changing the run.
 #include <catch2/catch.hpp>
 
+#include <filesystem>
+#include <set>
 #include <sstream>
+
+#include <fmt/format.h>
 
 #include <nlohmann/json.hpp>
 
 #include "core/csv.hpp"
+#include "core/vtu_writer.hpp"
 #include "highfi/vehicle/full_vehicle.hpp"
+#include "highfi/vehicle/vehicle_vtu.hpp"
 #include "rom/trajectory_csv.hpp"
 #include "tests/apps/cli_runner.hpp"
 #include "tests/scratch_dir.hpp"
+#include "tests/vtu_payload.hpp"
 
 using namespace terracal;
 using namespace terracal::test;
@@ -42,4 +50,101 @@ TEST_CASE("terracal vehicle: a short run writes the trajectory and the wheel loa
   const auto run = nlohmann::json::parse(test::read_file(root + "/o/run.json"));
   CHECK(run["max_constraint_violation"].get<double>() < 1e-6);
   CHECK(run["steps"].get<long>() > 0);
+  CHECK_FALSE(run.contains("vtu"));
+  CHECK_FALSE(std::filesystem::exists(root + "/o/vtu"));  // no snapshots without --vtu
+}
+
+namespace {
+// The chassis's x (trajectory.csv's second column) in each row.
+std::vector<double> chassis_x(const std::string& trajectory_csv) {
+  std::istringstream in(test::read_file(trajectory_csv));
+  std::string line;
+  std::getline(in, line);
+  std::vector<double> x;
+  while (std::getline(in, line)) x.push_back(std::stod(line.substr(line.find(',') + 1)));
+  return x;
+}
+}  // namespace
+
+TEST_CASE("terracal vehicle --vtu: snapshots of the bodies at the snapshot rate, listed in vehicle.pvd",
+          "[apps][vehicle][vtu]") {
+  ScratchDir dir("cli_vehicle_vtu");
+  const std::string root = dir.path.string();
+  test::write(root + "/drive.txt", "0 0 0 0\n0.5 0 0.3 0\n");
+  const std::string run = "vehicle --vehicle hmmwv --inputs " + root + "/drive.txt --end-time 0.1 --initial-speed 2 " +
+                          "--no-plots --out " + root;
+  const CliResult plain = run_cli(run + "/plain", root);
+  REQUIRE(plain.exit_code == 0);
+  // The default 20 Hz over 0.1 s: snapshots at 0, 0.05 and 0.1 s.
+  const CliResult r = run_cli(run + "/o --vtu", root);
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const auto entries = read_pvd(root + "/o/vtu/vehicle.pvd");
+  REQUIRE(entries.size() == 3);
+  int files = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(root + "/o/vtu")) ++files;
+  CHECK(files == 4);          // the snapshots and the collection, no temporary left
+  std::vector<double> box_x;  // the chassis box's centre along x, per snapshot
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    INFO("snapshot " << k);
+    CHECK(entries[k].first == Approx(0.05 * double(k)).margin(1e-12));
+    CHECK(entries[k].second == fmt::format("vehicle_{:05d}.vtu", k));
+    const std::string xml = test::slurp(root + "/o/vtu/" + entries[k].second);
+    CHECK(xml.find(fmt::format("        {}\n", entries[k].first)) != std::string::npos);  // TimeValue
+    const auto points = test::array_payload<float>(xml, "Points");
+    const auto velocity = test::array_payload<float>(xml, "velocity");
+    const auto name_id = test::array_payload<float>(xml, "name_id");
+    const auto body = test::array_payload<float>(xml, "body");
+    const auto types = test::array_payload<std::uint8_t>(xml, "types");
+    const auto connectivity = test::array_payload<std::int64_t>(xml, "connectivity");
+    const auto offsets = test::array_payload<std::int64_t>(xml, "offsets");
+    REQUIRE(points.size() == velocity.size());
+    REQUIRE(name_id.size() == types.size());
+    REQUIRE(offsets.size() == types.size());
+    // One wheel (32 quads and 2 caps) per corner, one chassis box.
+    std::set<float> wheels;
+    int wheel_cells = 0, boxes = 0;
+    for (std::size_t c = 0; c < types.size(); ++c) {
+      if (name_id[c] == float(vehicle::VtuPart::wheel)) wheels.insert(body[c]), ++wheel_cells;
+      if (name_id[c] != float(vehicle::VtuPart::chassis)) continue;
+      ++boxes;
+      REQUIRE(types[c] == 12);  // VTK_HEXAHEDRON
+      double sum = 0;
+      for (std::int64_t i = offsets[c] - 8; i < offsets[c]; ++i) {
+        const std::size_t p = std::size_t(connectivity[std::size_t(i)]);
+        sum += points[3 * p];
+        // Settled at rest, then started at 2 m/s: the chassis moves at 2 m/s forward at first.
+        if (k == 0) CHECK(std::abs(velocity[3 * p] - 2) < 1e-3);
+      }
+      box_x.push_back(sum / 8);
+    }
+    CHECK(wheels.size() == 4);
+    CHECK(wheel_cells == 4 * 34);
+    CHECK(boxes == 1);
+  }
+  // The box moves with the chassis of trajectory.csv (rows at 100 Hz).
+  const std::vector<double> x = chassis_x(root + "/o/trajectory.csv");
+  REQUIRE(x.size() == 11);
+  REQUIRE(box_x.size() == 3);
+  CHECK(box_x[1] - box_x[0] == Approx(x[5] - x[0]).margin(2e-3));
+  CHECK(box_x[2] - box_x[0] == Approx(x[10] - x[0]).margin(2e-3));
+  CHECK(box_x[2] - box_x[0] > 0.15);
+  // The run is the same with snapshots as without, and run.json names what the ids index.
+  CHECK(test::read_file(root + "/o/trajectory.csv") == test::read_file(root + "/plain/trajectory.csv"));
+  CHECK(test::read_file(root + "/o/wheels.csv") == test::read_file(root + "/plain/wheels.csv"));
+  const auto j = nlohmann::json::parse(test::read_file(root + "/o/run.json"));
+  CHECK(j["vtu"]["snapshots"].get<long>() == 3);
+  CHECK(j["vtu"]["rate_hz"].get<double>() == 20);
+  CHECK(j["vtu"]["bodies"][0].get<std::string>() == "chassis");
+  CHECK(j["vtu"]["names"][1].get<std::string>() == "wheel");
+  CHECK_FALSE(std::filesystem::exists(root + "/plain/vtu"));
+
+  // 30 Hz falls between the 100 Hz rows: snapshots at k / 30 s still (the integrator's state
+  // interpolated there), and the run unchanged.
+  const CliResult r30 = run_cli(run + "/o30 --vtu --vtu-rate 30", root);
+  REQUIRE(r30.exit_code == 0);
+  const auto e30 = read_pvd(root + "/o30/vtu/vehicle.pvd");
+  REQUIRE(e30.size() == 4);
+  for (std::size_t k = 0; k < e30.size(); ++k) CHECK(e30[k].first == Approx(double(k) / 30).margin(1e-12));
+  CHECK(test::read_file(root + "/o30/trajectory.csv") == test::read_file(root + "/plain/trajectory.csv"));
 }

@@ -49,6 +49,9 @@ TEST_CASE("bad input, vehicle: the vehicle file, the driver and the options", "[
       {"unknown terrain", {}, kRun + "--terrain mud", {"--terrain", "mud"}},
       {"friction out of range", {}, kRun + "--mu 5", {"--mu", "5"}},
       {"tolerance out of range", {}, kRun + "--rtol 0.5", {"--rtol", "0.5"}},
+      {"snapshot rate zero", {}, kRun + "--vtu --vtu-rate 0", {"--vtu-rate", "value 0", "(0, 1000] Hz"}},
+      {"snapshot rate too high", {}, kRun + "--vtu --vtu-rate 5000", {"--vtu-rate", "5000", "(0, 1000] Hz"}},
+      {"snapshot rate without snapshots", {}, kRun + "--vtu-rate 10", {"--vtu-rate", "only with --vtu"}},
   };
   terracal::test::check_bad_inputs("bad_vehicle", cases, common_files());
 }

@@ -12,61 +12,14 @@
 #include "core/errors.hpp"
 #include "core/vtu_writer.hpp"
 #include "tests/scratch_dir.hpp"
+#include "tests/vtu_payload.hpp"
 
 namespace fs = std::filesystem;
 using terracal::VtuPointData;
+using terracal::test::array_payload;
+using terracal::test::slurp;
 
 namespace {
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-// Independent of the writer's encoder on purpose, so a shared bug cannot cancel out.
-std::vector<unsigned char> base64_decode(const std::string& s) {
-  auto value = [](char c) -> int {
-    if (c >= 'A' && c <= 'Z') return c - 'A';
-    if (c >= 'a' && c <= 'z') return c - 'a' + 26;
-    if (c >= '0' && c <= '9') return c - '0' + 52;
-    if (c == '+') return 62;
-    if (c == '/') return 63;
-    return -1;
-  };
-  std::vector<unsigned char> out;
-  std::uint32_t acc = 0;
-  int bits = 0;
-  for (const char c : s) {
-    const int v = value(c);
-    if (v < 0) continue;  // whitespace and '=' padding
-    acc = (acc << 6) | static_cast<std::uint32_t>(v);
-    bits += 6;
-    if (bits >= 8) {
-      bits -= 8;
-      out.push_back(static_cast<unsigned char>((acc >> bits) & 0xFF));
-    }
-  }
-  return out;
-}
-
-// The payload of the DataArray called `name`: checks the UInt32 byte-count header against the
-// decoded length and returns the data as T.
-template <class T>
-std::vector<T> array_payload(const std::string& xml, const std::string& name) {
-  const auto at = xml.find("Name=\"" + name + "\"");
-  REQUIRE(at != std::string::npos);
-  const auto begin = xml.find('>', at) + 1;
-  const auto end = xml.find('<', begin);
-  const std::vector<unsigned char> bytes = base64_decode(xml.substr(begin, end - begin));
-  REQUIRE(bytes.size() >= 4);
-  std::uint32_t header = 0;
-  std::memcpy(&header, bytes.data(), 4);
-  REQUIRE(header == bytes.size() - 4);
-  REQUIRE(header % sizeof(T) == 0);
-  std::vector<T> values(header / sizeof(T));
-  if (header > 0) std::memcpy(values.data(), bytes.data() + 4, header);
-  return values;
-}
 
 std::size_t entries_in(const fs::path& dir) {
   std::size_t n = 0;
@@ -184,4 +137,74 @@ TEST_CASE("vtu_writer: the PVD collection lists the entries in order", "[core][v
   CHECK(b < c);
   CHECK(entries_in(dir.path) == 1);
   CHECK_THROWS_AS(terracal::write_pvd(file, {{0.0, ""}}), terracal::InputError);
+}
+
+TEST_CASE("vtu_writer: a mesh of cells round-trips with its point and cell data", "[core][vtu]") {
+  terracal::test::ScratchDir dir("vtu_cells");
+  const fs::path file = dir.path / "mesh.vtu";
+  // A unit square (quad), a line off its corner and a triangle: 6 points, 3 cells.
+  const std::vector<double> xyz = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 2, 2, 2, 3, 0, 0};
+  terracal::VtuCells cells;
+  cells.add(terracal::VtuCellType::quad, {0, 1, 2, 3});
+  cells.add(terracal::VtuCellType::line, {2, 4});
+  cells.add(terracal::VtuCellType::triangle, {1, 5, 2});
+  const std::vector<VtuPointData> point_fields = {{"speed", 1, {0, 1, 2, 3, 4, 5}}};
+  const std::vector<VtuPointData> cell_fields = {{"body", 1, {7, -1, 3}}, {"dir", 3, {1, 0, 0, 0, 1, 0, 0, 0, 1}}};
+  terracal::write_vtu_cells(file, xyz, cells, point_fields, cell_fields, 2.5);
+  const std::string xml = slurp(file);
+  CHECK(xml.find("NumberOfPoints=\"6\" NumberOfCells=\"3\"") != std::string::npos);
+  // VTK's order inside a Piece: PointData, CellData, Points, Cells.
+  const auto pd = xml.find("<PointData>"), cd = xml.find("<CellData>"), pts = xml.find("<Points>"),
+             cl = xml.find("<Cells>");
+  REQUIRE(cd != std::string::npos);
+  CHECK(pd < cd);
+  CHECK(cd < pts);
+  CHECK(pts < cl);
+  CHECK(xml.find("        2.5\n") != std::string::npos);
+  CHECK(array_payload<float>(xml, "Points") == std::vector<float>(xyz.begin(), xyz.end()));
+  CHECK(array_payload<float>(xml, "speed") == point_fields[0].values);
+  CHECK(array_payload<float>(xml, "body") == cell_fields[0].values);
+  CHECK(array_payload<float>(xml, "dir") == cell_fields[1].values);
+  CHECK(array_payload<std::int64_t>(xml, "connectivity") == std::vector<std::int64_t>{0, 1, 2, 3, 2, 4, 1, 5, 2});
+  CHECK(array_payload<std::int64_t>(xml, "offsets") == std::vector<std::int64_t>{4, 6, 9});
+  CHECK(array_payload<std::uint8_t>(xml, "types") == std::vector<std::uint8_t>{9, 3, 5});
+  CHECK(entries_in(dir.path) == 1);
+  // A point cloud keeps its files as before: no CellData section.
+  terracal::write_vtu_points(dir.path / "cloud.vtu", xyz, {});
+  CHECK(slurp(dir.path / "cloud.vtu").find("CellData") == std::string::npos);
+}
+
+TEST_CASE("vtu_writer: bad cells throw InputError naming the cell and write nothing", "[core][vtu]") {
+  terracal::test::ScratchDir dir("vtu_bad_cells");
+  const fs::path file = dir.path / "bad.vtu";
+  const std::vector<double> xyz = {0, 0, 0, 1, 0, 0, 1, 1, 0};
+  auto message_of = [&](const terracal::VtuCells& cells, const std::vector<VtuPointData>& cell_fields) {
+    try {
+      terracal::write_vtu_cells(file, xyz, cells, {}, cell_fields);
+    } catch (const terracal::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no InputError)");
+  };
+  using terracal::VtuCellType;
+  terracal::VtuCells line;
+  line.add(VtuCellType::line, {0, 1});
+  terracal::VtuCells far = line;
+  far.add(VtuCellType::line, {1, 3});
+  CHECK_THAT(message_of(far, {}), Catch::Contains("cell 1") && Catch::Contains("point 3 of 3"));
+  terracal::VtuCells short_quad;
+  short_quad.add(VtuCellType::quad, {0, 1, 2});
+  CHECK_THAT(message_of(short_quad, {}), Catch::Contains("cell 0") && Catch::Contains("has 3 points; expected 4"));
+  terracal::VtuCells two_gon;
+  two_gon.add(VtuCellType::polygon, {0, 1});
+  CHECK_THAT(message_of(two_gon, {}), Catch::Contains("expected at least 3"));
+  terracal::VtuCells no_type = line;
+  no_type.types.clear();
+  CHECK_THAT(message_of(no_type, {}), Catch::Contains("1 cell offsets for 0 cell types"));
+  terracal::VtuCells trailing = line;
+  trailing.connectivity.push_back(2);
+  CHECK_THAT(message_of(trailing, {}), Catch::Contains("after the last cell"));
+  CHECK_THAT(message_of(line, {{"body", 1, {1, 2}}}),
+             Catch::Contains("cell field 'body'") && Catch::Contains("expected 1 cells"));
+  CHECK(entries_in(dir.path) == 0);
 }
