@@ -67,6 +67,7 @@ ScmTerrain::ScmTerrain(const ScmSoil& soil, const ScmSettings& settings, std::ve
   }
   wrenches_.assign(bodies_.size(), {});
   update_contact();
+  check_step();
 }
 
 std::string ScmTerrain::description() const {
@@ -99,14 +100,24 @@ double ScmTerrain::free_surface(int i, int j) const { return nodes_.free_surface
 void ScmTerrain::cast_rays(std::vector<Hit>& hits) {
   hits.clear();
   const double top = settings_.surface_height + nodes_.max_level_offset();
+  std::vector<RayGrid>& windows = scratch_.windows;
+  windows.clear();
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
     RayGrid r;
     if (!ray_grid(b, top, r)) continue;
     select_rays(b, r, top);
     cast_selected(b, r);
     add_hits(b, r, top, hits);
+    windows.push_back(r);
   }
-  if (bodies_.size() > 1) {
+  // Bodies whose node windows are apart (a vehicle's wheels) cannot cover one node twice.
+  bool overlap = false;
+  for (std::size_t a = 0; a < windows.size() && !overlap; ++a)
+    for (std::size_t c = a + 1; c < windows.size() && !overlap; ++c) {
+      const RayGrid &p = windows[a], &q = windows[c];
+      overlap = p.i0 < q.i0 + q.nx && q.i0 < p.i0 + p.nx && p.j0 < q.j0 + q.ny && q.j0 < p.j0 + p.ny;
+    }
+  if (overlap) {
     // Where two bodies cover a node, the lower one touches the soil.
     std::sort(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) {
       return a.i != b.i ? a.i < b.i : a.j != b.j ? a.j < b.j : a.level < b.level;
@@ -229,6 +240,7 @@ void ScmTerrain::contact(const std::vector<Hit>& candidates) {
   for (auto& w : wrenches_) w = {};
   stats_ = {};
   stats_.body_contact_area.assign(bodies_.size(), 0.0);
+  stats_.body_max_sinkage.assign(bodies_.size(), 0.0);
   select_pressed(candidates);
   const std::vector<Hit>& hits = scratch_.pressed;
   stats_.rays = int(hits.size());
@@ -338,6 +350,7 @@ void ScmTerrain::press(const Hit& hit, ScmNode& n, double b, double& displaced) 
   stats_.contact_area += area;
   stats_.body_contact_area[hit.body] += area;
   stats_.max_sinkage = std::max(stats_.max_sinkage, z);
+  stats_.body_max_sinkage[hit.body] = std::max(stats_.body_max_sinkage[hit.body], z);
 }
 
 // Nodes the bodies left this step: the shear spring is released; without elastic unloading the
@@ -394,12 +407,51 @@ void ScmTerrain::step() {
   time_ += dt;
   ++steps_;
   update_contact();
+  check_step();
+}
+
+void ScmTerrain::step_at(const std::vector<BodyState>& states) {
+  if (states.size() != bodies_.size())
+    throw RunError(
+        fmt::format("SCM at t = {:.4g} s: {} body states given for {} bodies", time_, states.size(), bodies_.size()));
+  // The ray windows index grid nodes by int: a body must stay well inside that range.
+  const double reach = settings_.grid * double(1 << 30);
+  for (std::size_t b = 0; b < states.size(); ++b) {
+    const BodyState& s = states[b];
+    auto fail = [&](const std::string& why) {
+      throw RunError(fmt::format("SCM: body '{}' at t = {:.4g} s: {}", bodies_[b].name, time_, why));
+    };
+    auto finite = [](const Vec3<double>& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+    const Quat& q = s.orientation;
+    const double qn = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
+    if (!finite(s.position))
+      fail(fmt::format("position ({}, {}, {}) is not finite", s.position.x, s.position.y, s.position.z));
+    if (!(std::isfinite(qn) && qn > 1e-12))
+      fail(fmt::format("orientation ({}, {}, {}, {}) is not a rotation (non-finite or zero quaternion)", q.w, q.x, q.y,
+                       q.z));
+    if (!finite(s.velocity))
+      fail(fmt::format("velocity ({}, {}, {}) is not finite", s.velocity.x, s.velocity.y, s.velocity.z));
+    if (!finite(s.omega))
+      fail(fmt::format("angular velocity ({}, {}, {}) is not finite", s.omega.x, s.omega.y, s.omega.z));
+    const double r = bodies_[b].bounding_radius();
+    if (!(std::abs(s.position.x) + r < reach && std::abs(s.position.y) + r < reach))
+      fail(fmt::format("position ({}, {}) m is beyond the grid's range (|x|, |y| < {:.3g} m at grid {} m)",
+                       s.position.x, s.position.y, reach, settings_.grid));
+  }
+  for (std::size_t b = 0; b < states.size(); ++b) {
+    states_[b] = states[b];
+    const Quat& q = states[b].orientation;
+    // A unit quaternion is kept as it is, bit for bit (the same rays as the terrain's own step()).
+    if (std::abs(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z - 1) > 1e-14) states_[b].orientation = q.normalized();
+  }
+  time_ += settings_.time_step;
+  ++steps_;
+  update_contact();
 }
 
 void ScmTerrain::update_contact() {
   cast_rays(scratch_.hits);
   contact(scratch_.hits);
-  check_step();
 }
 
 }  // namespace terracal::lowfi

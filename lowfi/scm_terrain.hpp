@@ -50,6 +50,7 @@ struct ScmStepStats {
   double contact_area = 0, max_sinkage = 0;
   std::vector<double> patch_bekker_width;
   std::vector<double> body_contact_area;  // per body [m^2]
+  std::vector<double> body_max_sinkage;   // per body: its deepest node below the undisturbed level [m]
 };
 
 class ScmTerrain final : public Terrain {
@@ -64,6 +65,14 @@ class ScmTerrain final : public Terrain {
 
   std::string description() const override;
   void step() override;
+  // Co-simulation (lowfi/scm_wheels.hpp): the bodies are where another integrator put them. Sets
+  // every body's state (one per body, in order; the orientation is normalised), then advances the
+  // soil one step at those poses and velocities (sinkage, shear displacement over time_step) and
+  // evaluates the wrenches there. Nothing is integrated: the bodies' motion programs, masses and
+  // loads are not used, nor is the stability check of step(). Throws RunError naming the body for a
+  // state count other than the bodies', a non-finite or zero-length value, or a body beyond the
+  // grid's integer range; the terrain is then unchanged.
+  void step_at(const std::vector<BodyState>& states);
   double time() const override { return time_; }
   double time_step() const override { return settings_.time_step; }
   const std::vector<BodyState>& bodies() const override { return states_; }
@@ -114,7 +123,7 @@ class ScmTerrain final : public Terrain {
   void press(const Hit& hit, ScmNode& n, double bekker_width, double& displaced);
   void release_left_nodes();
   void check_step() const;
-  void update_contact();  // rays, contact and wrenches at the current poses
+  void update_contact();  // rays, contact and wrenches at the current poses (step() then checks them)
 
   ScmSoil soil_;
   ScmSettings settings_;
@@ -132,6 +141,7 @@ class ScmTerrain final : public Terrain {
     std::vector<double> level;            // cast_rays: per node of a body's window, the underside's height (+inf: none)
     std::vector<char> near, wanted;       // cast_rays: coarse nodes near the soil; the nodes to cast (empty: all)
     std::vector<Hit> hits;                // cast_rays: the candidates
+    std::vector<RayGrid> windows;         // cast_rays: the node windows of the bodies near the soil
     std::vector<Hit> pressed;             // contact: the hits below their node's free surface ...
     std::vector<ScmNode*> pressed_nodes;  // ... and their nodes
     std::vector<GridIndex> pressed_at;
