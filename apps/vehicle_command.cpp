@@ -6,6 +6,7 @@
 #include <memory>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 #include <nlohmann/json.hpp>
 
@@ -13,11 +14,14 @@
 #include "apps/commands.hpp"
 #include "apps/out_dir.hpp"
 #include "apps/report_plots.hpp"
+#include "apps/terrain_options.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 #include "highfi/vehicle/steering_kinematics.hpp"
 #include "highfi/vehicle/vehicle_run.hpp"
 #include "highfi/vehicle/vehicle_vtu.hpp"
+#include "lowfi/scm_soil.hpp"
+#include "lowfi/scm_terrain.hpp"
 #include "rom/trajectory_csv.hpp"
 
 namespace terracal::app {
@@ -26,6 +30,7 @@ struct VehicleArgs {
   vehicle::VehicleRunOptions run;
   std::string vehicle, terrain = "rigid", scm, maneuver, inputs, out;
   bool plots = true, vtu = false;
+  std::vector<std::string> scm_effects = {lowfi::ScmDamping::kName};
 };
 
 void write_outputs(const VehicleArgs& a, const vehicle::VehicleRunResult& r) {
@@ -36,8 +41,8 @@ void write_outputs(const VehicleArgs& a, const vehicle::VehicleRunResult& r) {
   rom::write_trajectory_csv(a.out + "/trajectory.csv", rows);
   std::string w = "time,wheel,fz_N,fx_N,fy_N,slip_x,slip_y,deflection_m,sinkage_m\n";
   for (const auto& s : r.wheels)
-    w += fmt::format("{:.6g},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},0\n", s.time, s.wheel, s.contact.fz,
-                     s.contact.fx, s.contact.fy, s.contact.sx, s.contact.sy, s.contact.deflection);
+    w += fmt::format("{:.6g},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", s.time, s.wheel, s.contact.fz,
+                     s.contact.fx, s.contact.fy, s.contact.sx, s.contact.sy, s.contact.deflection, s.contact.sinkage);
   write_text_atomically(a.out + "/wheels.csv", w);
   nlohmann::json j = {{"model", "full multibody vehicle"},
                       {"integrator", "IDAS (GGL index 2)"},
@@ -50,6 +55,12 @@ void write_outputs(const VehicleArgs& a, const vehicle::VehicleRunResult& r) {
                       {"max_constraint_violation", r.max_constraint_violation},
                       {"wall_seconds", r.wall_seconds},
                       {"real_time_factor", a.run.end_time / std::max(r.wall_seconds, 1e-12)}};
+  if (a.run.soil) {
+    std::vector<std::string> effects;
+    for (const auto& e : a.scm_effects)
+      if (!e.empty() && e != "none") effects.push_back(e);
+    j["scm"] = {{"soil", a.scm}, {"grid", a.run.scm.grid}, {"time_step", a.run.scm.time_step}, {"effects", effects}};
+  }
   if (a.vtu)
     j["vtu"] = {{"collection", "vtu/vehicle.pvd"},
                 {"rate_hz", a.run.vtu_rate},
@@ -73,7 +84,18 @@ void add_options(CLI::App* sub, VehicleArgs& a) {
   sub->add_option("--terrain", a.terrain, "rigid (flat ground) or scm")
       ->check(CLI::IsMember({"rigid", "scm"}))
       ->capture_default_str();
-  sub->add_option("--scm", a.scm, "SCM parameter set (JSON) for --terrain scm");
+  sub->add_option("--scm", a.scm,
+                  "SCM parameter set (Chrono SCM JSON or terracal's scm_params.json) for --terrain scm");
+  a.run.scm.grid = 0.02;  // a vehicle's wheels: half a metre of radius, a quarter of width
+  sub->add_option("--scm-grid", a.run.scm.grid, "SCM grid spacing [m]")
+      ->check(in_range(RigRanges::kScmGrid))
+      ->capture_default_str();
+  sub->add_option("--scm-step", a.run.scm.time_step, "SCM step: the soil's wrenches are held this long [s]")
+      ->check(in_range(Range{1e-5, 0.01, false, false}))
+      ->capture_default_str();
+  sub->add_option("--scm-effects", a.scm_effects,
+                  fmt::format("SCM effects: {}, or none", fmt::join(EffectSet<lowfi::ScmEffects>::kNames, ", ")))
+      ->capture_default_str();
   sub->add_option("--mu", a.run.friction, "ground friction relative to the tire data's")
       ->check(in_range(Range{0.01, 2, false, false}))
       ->capture_default_str();
@@ -88,7 +110,7 @@ void add_options(CLI::App* sub, VehicleArgs& a) {
   sub->add_option("--step", a.run.max_step, "the integrator's largest step [s] (0: IDAS chooses)")
       ->check(in_range(Range{0, 0.1, false, false}))
       ->capture_default_str();
-  sub->add_option("--rtol", a.run.rtol, "IDAS relative tolerance (absolute: rtol / 100)")
+  sub->add_option("--rtol", a.run.rtol, "IDAS relative tolerance (absolute: rtol / 100; on SCM default 1e-3)")
       ->check(in_range(Range{1e-12, 1e-2, false, false}))
       ->capture_default_str();
   sub->add_option("--output-rate", a.run.output_rate, "rows per second in trajectory.csv and wheels.csv [Hz]")
@@ -105,18 +127,34 @@ void add_options(CLI::App* sub, VehicleArgs& a) {
 
 Command add_vehicle(CLI::App& app) {
   auto* sub = app.add_subcommand(
-      "vehicle", "The full multibody vehicle (HMMWV template) on rigid ground; writes trajectory.csv and wheels.csv");
+      "vehicle",
+      "The full multibody vehicle (HMMWV template) on rigid ground or SCM soil; writes trajectory.csv and wheels.csv");
   auto a = std::make_shared<VehicleArgs>();
   add_options(sub, *a);
   return [a, sub] {
     const OutDir out = prepare_out_dir("--out", a->out);
-    if (a->terrain == "scm")
-      throw InputError("--terrain scm: the full vehicle runs on rigid ground only so far (use --terrain rigid)");
-    if (!a->scm.empty()) throw InputError("--scm: only with --terrain scm");
+    for (const char* key : {"--scm", "--scm-grid", "--scm-step", "--scm-effects"})
+      if (a->terrain != "scm" && sub->count(key) > 0) throw InputError(fmt::format("{}: only with --terrain scm", key));
+    if (a->terrain == "scm") {
+      if (a->scm.empty()) throw InputError("--terrain scm: give the soil's parameter set with --scm FILE");
+      if (sub->count("--mu") > 0) throw InputError("--mu: only with --terrain rigid (the soil sets the friction)");
+      a->run.soil = lowfi::read_scm_json(a->scm);
+      std::vector<std::string> effects;
+      for (const auto& e : a->scm_effects)
+        if (!e.empty() && e != "none") effects.push_back(e);
+      a->run.scm.effects = lowfi::parse_scm_effects(effects, "--scm-effects");
+      lowfi::validate(a->run.scm, *a->run.soil);
+      // The held soil wrench's error is of the soil step's order: a tighter integrator buys nothing
+      // and costs 3-4x (docs/decisions.md).
+      if (sub->count("--rtol") == 0) a->run.rtol = 1e-3;
+    }
     if (sub->count("--vtu-rate") > 0 && !a->vtu) throw InputError("--vtu-rate: only with --vtu");
     if (a->inputs.empty() == a->maneuver.empty())
       throw InputError("terracal vehicle: give the driver as --inputs DRIVER.txt or --maneuver M.json (one of them)");
     const vehicle::FullVehicleSpec spec = vehicle::load_full_vehicle(a->vehicle);
+    if (a->run.soil && !(spec.scm_wheel.width > 0))
+      throw InputError(
+          fmt::format("{}: wheel.width is not given: the wheels need it on SCM soil (--terrain scm)", a->vehicle));
     if (!spec.has_powertrain)
       spdlog::warn("{}: no powertrain: the wheels turn freely (no throttle, no brakes)", a->vehicle);
     const bool end_given = sub->count("--end-time") > 0;
@@ -133,8 +171,9 @@ Command add_vehicle(CLI::App& app) {
     if (!(a->run.end_time > 0)) throw InputError(fmt::format("--end-time {}: must be positive", a->run.end_time));
     std::filesystem::create_directories(a->out);
     if (a->vtu) a->run.vtu_dir = a->out + "/vtu";
-    spdlog::info("vehicle: {} on rigid ground, {:.3g} s after {:.3g} s settling", a->vehicle, a->run.end_time,
-                 a->run.settle_time);
+    spdlog::info("vehicle: {} on {}, {:.3g} s after {:.3g} s settling", a->vehicle,
+                 a->run.soil ? fmt::format("SCM soil {} (grid {} m)", a->scm, a->run.scm.grid) : "rigid ground",
+                 a->run.end_time, a->run.settle_time);
     const vehicle::VehicleRunResult r = vehicle::run_full_vehicle(spec, series.get(), maneuver.get(), a->run);
     write_outputs(*a, r);
     if (a->plots) plot_trajectory(a->out, fmt::format("{} full vehicle (IDAS)", a->vehicle));

@@ -57,6 +57,7 @@ void validate(const WheelRun& r) {
   terracal::check_range(WheelRanges::kDuration, r.duration, "wheel run duration");
   terracal::check_range(WheelRanges::kAverageFrom, r.average_from, "wheel run average_from");
   check_range("wheel run samples", r.samples, 2, 1e7, "");
+  check_range("wheel run load_ramp", r.load_ramp, 0, r.duration, "s (at most the duration)");
 }
 
 namespace {
@@ -91,6 +92,7 @@ WheelResult run_wheel(const TerrainSite& site, const WheelSpec& wheel, double sl
   // Start so that the run is centred on the site: the wheel ends as far past the centre as it began before it.
   w.position = {c.x - 0.5 * travel, c.y, site.surface_height() + outer};
   w.mass = wheel.mass;
+  w.load_ramp = run.load_ramp;
   const double iy = 0.5 * wheel.mass * wheel.radius * wheel.radius;
   const double ix = wheel.mass * (3 * wheel.radius * wheel.radius + wheel.width * wheel.width) / 12;
   w.inertia = {ix, iy, ix};

@@ -40,6 +40,9 @@ struct WheelRun {
   double duration = 4.0;      // [s] simulated per slip
   double average_from = 0.5;  // steady means over t >= average_from * duration
   int samples = 200;          // rows of the time series
+  // [s] The load grows linearly from zero over this time, as a vehicle's settling puts it on a wheel;
+  // 0: all at once (the wheel overshoots its static sinkage and the soil keeps the deeper rut).
+  double load_ramp = 0;
 };
 void validate(const WheelRun& r);
 

@@ -41,9 +41,8 @@ struct MbIntegrator::Impl {
   void* mem = nullptr;
   double t = 0;
   Eigen::MatrixXd mass;
-  std::unique_ptr<GglJacobian> jacobian;
-  double pivot_cj = 0;       // cj when KLU last chose its pivots  // null: IDAS's dense difference quotients
-  MbIntegratorStats before;  // counts of the runs before the last restart (IDAReInit zeroes IDAS's)
+  std::unique_ptr<GglJacobian> jacobian;  // null: IDAS's dense difference quotients
+  MbIntegratorStats before;               // counts of the runs before the last restart (IDAReInit zeroes IDAS's)
 
   explicit Impl(MbSystem& s) : sys(s) {}
 
@@ -166,9 +165,13 @@ MbIntegrator::~MbIntegrator() {
   SUNContext_Free(&s.context);
 }
 
-void MbIntegrator::advance(double t_out) {
+void MbIntegrator::advance(double t_out, bool stop) {
   Impl& s = *impl_;
-  if (t_out > s.t) s.check(IDASolve(s.mem, t_out, &s.t, s.yy, s.yp, IDA_NORMAL), "IDASolve");
+  if (t_out > s.t) {
+    // A stop time far ahead lifts an earlier one (IDAS keeps the last one set).
+    s.check(IDASetStopTime(s.mem, stop ? t_out : 1e300), "IDASetStopTime");
+    s.check(IDASolve(s.mem, t_out, &s.t, s.yy, s.yp, IDA_NORMAL), "IDASolve");
+  }
   s.sys.set_positions(N_VGetArrayPointer(s.yy));
   s.sys.set_velocities(N_VGetArrayPointer(s.yy) + s.nq);
 }

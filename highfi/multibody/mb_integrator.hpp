@@ -38,8 +38,10 @@ class MbIntegrator {
   MbIntegrator(const MbIntegrator&) = delete;
   MbIntegrator& operator=(const MbIntegrator&) = delete;
 
-  // Integrates to t and leaves the system's bodies in the state at t.
-  void advance(double t);
+  // Integrates to t and leaves the system's bodies in the state at t. With `stop`, no step goes past
+  // t (an applied force changes there: a held soil wrench, a controller's new input); without, IDAS
+  // may step past t and interpolate back.
+  void advance(double t, bool stop = false);
   // Starts again from the system's present state (after a discrete change: a gear shift changes a
   // coupling's ratio): velocities projected onto the constraints, accelerations and multipliers
   // recomputed.

@@ -57,6 +57,14 @@ FullVehicleSpec read_full_vehicle(const nlohmann::json& j, const std::string& so
     JsonObject w = o.object("wheel");
     v.wheel_mass = w.number("mass", 0, 1e4);
     v.wheel_inertia = read_moments(w, "inertia");
+    v.scm_wheel.width = w.number_or("width", 0, 0.005, 10);
+    if (w.has("grousers")) {
+      JsonObject g = w.object("grousers");
+      v.scm_wheel.grouser_count = int(g.number("count", 1, 360));
+      v.scm_wheel.grouser_height = g.number("height", 0, 1);
+      v.scm_wheel.grouser_thickness = g.number("thickness", 0, 1);
+      g.finish();
+    }
     w.finish();
   }
   if (o.has("powertrain")) {
@@ -74,6 +82,7 @@ FullVehicleSpec read_full_vehicle(const nlohmann::json& j, const std::string& so
   }
   v.tire = read_tmeasy(o.raw("tire"), source + ": tire");
   v.tire_vertical_damping = o.number_or("tire_vertical_damping", 0, 0, 1e7);
+  v.scm_wheel.radius = v.tire.unloaded_radius;
   o.finish();
   return v;
 }
@@ -125,12 +134,16 @@ FullVehicle::FullVehicle(const FullVehicleSpec& spec, const Vec3& origin, double
   tire_.params = spec.tire;
   tire_.vertical_damping = spec.tire_vertical_damping;
   tire_.friction = ground_friction;
-  for (const WishboneSide& w : corners_) {
-    const int spindle = w.spindle;
-    s.external.push_back({[this, spindle](double, const std::vector<mb::RigidBody>& b, std::vector<mb::Wrench>& f) {
-                            tire_.apply(b[std::size_t(spindle)], f[std::size_t(spindle)]);
-                          },
-                          {spindle}});
+  for (std::size_t wheel = 0; wheel < corners_.size(); ++wheel) {
+    const int spindle = corners_[wheel].spindle;
+    s.external.push_back(
+        {[this, spindle, wheel](double t, const std::vector<mb::RigidBody>& b, std::vector<mb::Wrench>& f) {
+           if (scm_)
+             scm_->apply(wheel, t, b[std::size_t(spindle)], f[std::size_t(spindle)]);
+           else
+             tire_.apply(b[std::size_t(spindle)], f[std::size_t(spindle)]);
+         },
+         {spindle}});
   }
 }
 
@@ -140,11 +153,26 @@ bool FullVehicle::update_gear() {
 
 std::vector<TireContact> FullVehicle::contacts() const {
   std::vector<TireContact> out;
-  for (const WishboneSide& w : corners_) {
+  for (std::size_t k = 0; k < corners_.size(); ++k) {
+    const mb::RigidBody& spindle = system_->bodies[std::size_t(corners_[k].spindle)];
     mb::Wrench scratch;
-    out.push_back(tire_.apply(system_->bodies[std::size_t(w.spindle)], scratch));
+    out.push_back(scm_ ? scm_->contact(k, spindle) : tire_.apply(spindle, scratch));
   }
   return out;
+}
+
+void FullVehicle::use_scm(const lowfi::ScmSoil& soil, const lowfi::ScmSettings& settings) {
+  if (!(spec_.scm_wheel.width > 0))
+    throw InputError(
+        fmt::format("{}: wheel.width is not given: the wheels cannot run on SCM soil without it", spec_.name));
+  scm_ = std::make_unique<ScmWheelContact>(soil, settings, spec_.scm_wheel, corners_.size());
+}
+
+void FullVehicle::step_soil(double t) {
+  if (!scm_) return;
+  std::vector<int> spindles;
+  for (const WishboneSide& w : corners_) spindles.push_back(w.spindle);
+  scm_->step(t, system_->bodies, spindles);
 }
 
 }  // namespace terracal::vehicle

@@ -12,6 +12,7 @@
 #include "highfi/vehicle/driveline.hpp"
 #include "highfi/vehicle/pitman_arm.hpp"
 #include "highfi/vehicle/rigid_ground_tire.hpp"
+#include "highfi/vehicle/scm_wheel_contact.hpp"
 
 namespace terracal::vehicle {
 
@@ -32,6 +33,9 @@ struct FullVehicleSpec {
   DrivelineSpec driveline;
   double wheel_mass = 0;              // wheel and tire, kg
   Vec3 wheel_inertia = Vec3::Zero();  // about the wheel's centre, spin about y, kg m^2
+  // The wheel as SCM soil sees it: a rigid cylinder of the tire's unloaded radius; width 0 when the
+  // file gives none (then the vehicle cannot run on SCM).
+  lowfi::ScmWheelShape scm_wheel;
   TmeasyParams tire;
   double tire_vertical_damping = 0;  // N s/m
   double total_mass() const;
@@ -57,19 +61,27 @@ class FullVehicle {
   // The driver's inputs against time (steering in [-1, 1], positive to the left; throttle and braking
   // in [0, 1]); none until set.
   void set_driver(DriverFunction driver) { driver_ = std::move(driver); }
+  DriverInput driver_input(double t) const { return driver_(t); }
   bool has_powertrain() const { return spec_.has_powertrain; }
   const Driveline& driveline() const { return driveline_; }
   // Shifts gear by the gearbox input's speed; true when it changed (restart the integrator then).
   bool update_gear();
   const PitmanArm& steering() const { return steering_; }
   const FullVehicleSpec& spec() const { return spec_; }
-  // Each tire's contact in the system's present state.
+  // Each tire's contact in the system's present state (on SCM: the held soil forces and the sinkage).
   std::vector<TireContact> contacts() const;
+  // The wheels on SCM soil instead of the tires on rigid ground (before the integrator is made);
+  // throws InputError when the spec's wheel has no width.
+  void use_scm(const lowfi::ScmSoil& soil, const lowfi::ScmSettings& settings);
+  const ScmWheelContact* scm() const { return scm_.get(); }
+  // One soil step at the present state, time t (on SCM; nothing on rigid ground).
+  void step_soil(double t);
 
  private:
   FullVehicleSpec spec_;
   std::unique_ptr<mb::MbSystem> system_;
   RigidGroundTire tire_;
+  std::unique_ptr<ScmWheelContact> scm_;  // null: rigid ground
   int chassis_ = -1;
   std::vector<WishboneSide> corners_;
   PitmanArm steering_;

@@ -9,7 +9,7 @@ namespace {
 constexpr const char* kHmmwv = R"json({
   "type": "full vehicle",
   "name": "HMMWV",
-  "source": "Chrono data/vehicle/hmmwv: chassis/HMMWV_Chassis.json, vehicle/HMMWV_Vehicle_4WD.json (suspension and steering locations), steering/HMMWV_PitmanArm.json (maximum angle 50 deg), suspension/HMMWV_DoubleWishboneFront.json and HMMWV_DoubleWishboneRear.json, wheel/HMMWV_Wheel_FrontLeft.json (45.4 kg, 0.113 kg m^2) plus tire/HMMWV_TMeasyTire.json (37.6 kg, [3.84, 6.69, 3.84] kg m^2, vertical damping 3900 N s/m); the TMeasy curves and the powertrain as the ROM preset's (Chrono's HMMWV engine, converter and gearbox, final drive in the gear ratios); driveline/HMMWV_Driveline4WD.json (driveshaft 0.5 kg m^2, axle driveshafts 0.5 plus their differential boxes 0.6); the gearbox input's 0.3 kg m^2 is ours",
+  "source": "Chrono data/vehicle/hmmwv: chassis/HMMWV_Chassis.json, vehicle/HMMWV_Vehicle_4WD.json (suspension and steering locations), steering/HMMWV_PitmanArm.json (maximum angle 50 deg), suspension/HMMWV_DoubleWishboneFront.json and HMMWV_DoubleWishboneRear.json, wheel/HMMWV_Wheel_FrontLeft.json (45.4 kg, 0.113 kg m^2) plus tire/HMMWV_TMeasyTire.json (37.6 kg, [3.84, 6.69, 3.84] kg m^2, vertical damping 3900 N s/m); on SCM the wheel is a cylinder of the tire's radius and the width of HMMWV_RigidTire (10 in); the TMeasy curves and the powertrain as the ROM preset's (Chrono's HMMWV engine, converter and gearbox, final drive in the gear ratios); driveline/HMMWV_Driveline4WD.json (driveshaft 0.5 kg m^2, axle driveshafts 0.5 plus their differential boxes 0.6); the gearbox input's 0.3 kg m^2 is ours",
   "chassis": {"mass": 2086.52, "com": [0.056, 0, 0.523], "inertia": [1078.52, 2955.66, 3570.20]},
   "axles": [
     {"location": [1.688965, 0, 0], "steered": true,
@@ -75,7 +75,7 @@ constexpr const char* kHmmwv = R"json({
     "gear_ratios": [0.04, 0.08, 0.16], "upshift_rpm": 2500, "downshift_rpm": 1200,
     "max_brake_torque": 4000},
   "driveline": {"turbine_inertia": 0.3, "driveshaft_inertia": 0.5, "axle_driveshaft_inertia": 1.1},
-  "wheel": {"mass": 83.0, "inertia": [3.953, 6.803, 3.953]},
+  "wheel": {"mass": 83.0, "inertia": [3.953, 6.803, 3.953], "width": 0.254},
   "tire": {
     "type": "TMeasy", "unloaded_radius": 0.4699, "wheel_inertia": 6.803, "vertical_stiffness": 411121.0,
     "rolling_resistance": 0.015, "nominal_load": 8562.8266, "max_load": 29969.893,

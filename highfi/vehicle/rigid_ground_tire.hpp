@@ -15,6 +15,7 @@ struct TireContact {
   double deflection = 0;              // m
   double fx = 0, fy = 0, fz = 0;      // N, heading, lateral, normal
   double sx = 0, sy = 0;              // slips
+  double sinkage = 0;                 // m below the undisturbed soil (0 on rigid ground)
   mb::Vec3 point = mb::Vec3::Zero();  // contact point, world
 };
 

@@ -1,5 +1,6 @@
 #include "highfi/vehicle/vehicle_run.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -106,6 +107,30 @@ void set_forward_speed(FullVehicle& v, double speed) {
   }
 }
 
+// From rest on rigid ground onto SCM soil, as a crane lowers it: every body lifted by the deepest
+// tire deflection (the wheels then just touch the surface, the suspension keeps its ride height) and
+// at rest; a vertical support on each wheel carries its tire's load at first and lets go of it
+// linearly over `ramp` seconds from time t, so that the soil takes the load quasi-statically (a load
+// put on at once drives a wheel past its static sinkage, and the soil keeps the deeper rut).
+void set_down_on_soil(FullVehicle& v, const VehicleRunOptions& o, double t, double ramp) {
+  double lift = o.scm.surface_height;
+  std::vector<double> loads;
+  for (const TireContact& c : v.contacts()) lift = std::max(lift, o.scm.surface_height + c.deflection);
+  for (const TireContact& c : v.contacts()) loads.push_back(c.fz);
+  mb::MbSystem& s = v.system();
+  for (mb::RigidBody& b : s.bodies)
+    if (!b.fixed) b.position.z() += lift, b.velocity.setZero(), b.omega.setZero();
+  for (mb::Shaft& sh : s.shafts) sh.speed = 0;
+  v.use_scm(*o.soil, o.scm);
+  for (std::size_t k = 0; k < loads.size(); ++k) {
+    const int spindle = v.corners()[k].spindle;
+    s.external.push_back({[=](double now, const std::vector<mb::RigidBody>&, std::vector<mb::Wrench>& w) {
+                            w[std::size_t(spindle)].force.z() += loads[k] * std::clamp(1 - (now - t) / ramp, 0.0, 1.0);
+                          },
+                          {spindle}});
+  }
+}
+
 VehicleRunResult run_full_vehicle(const FullVehicleSpec& spec, const DriverSeries* series, Maneuver* maneuver,
                                   const VehicleRunOptions& o) {
   if ((series == nullptr) == (maneuver == nullptr)) throw InputError("vehicle: give a driver file or a manoeuvre");
@@ -113,17 +138,49 @@ VehicleRunResult run_full_vehicle(const FullVehicleSpec& spec, const DriverSerie
   double lowest = 0;
   for (const AxleSpec& a : spec.axles) lowest = std::min(lowest, a.location.z() + a.suspension.spindle.com.z());
   FullVehicle v(spec, Vec3(0, 0, spec.tire.unloaded_radius - lowest), o.friction);
-  const double t0 = o.settle_time;
-  DriverInput held;  // a manoeuvre's inputs, held over a control period
+  // Settling: at rest on rigid ground (the springs lift the chassis to its ride height); on SCM, then
+  // lifted until the wheels just touch the soil and set down on it at rest for as long again.
+  const double t0 = o.soil ? 2 * o.settle_time : o.settle_time;
+  // A manoeuvre's inputs: the controller's latest, reached linearly over the control period from the
+  // ones before (inputs that jumped every period would cost the integrator a restart each).
+  DriverInput before, latest;
+  double changed_at = 0;
   v.set_driver([&](double t) {
     if (t < t0) return DriverInput{};
-    return series ? series->at(t - t0) : held;
+    if (series) return series->at(t - t0);
+    const double a = std::clamp((t - changed_at) / o.control_period, 0.0, 1.0);
+    return DriverInput{before.steering + a * (latest.steering - before.steering),
+                       before.throttle + a * (latest.throttle - before.throttle),
+                       before.braking + a * (latest.braking - before.braking)};
   });
   Snapshots snapshots(o);
   mb::MbIntegrator in(v.system(), {o.rtol, o.rtol * 1e-2, o.max_step});
+  // To time t of the run's clock (settling included). On SCM, soil step by soil step from the time
+  // the vehicle was set down, the integrator stopped exactly where the held wrenches change; `stop`
+  // stops it exactly at t too.
+  double soil_from = 0;
+  long soil_steps = 0;
+  const auto go = [&](double t, bool stop) {
+    if (v.scm()) {
+      const double h = v.scm()->time_step();
+      while (soil_from + double(soil_steps + 1) * h <= t + 1e-9 * h) {
+        const double ts = soil_from + double(++soil_steps) * h;
+        in.advance(ts, true);
+        v.step_soil(ts);
+      }
+      stop = true;
+    }
+    in.advance(t, stop);
+  };
   VehicleRunResult r;
-  // Settle at rest, then start at the initial speed from the ride height.
-  in.advance(t0);
+  go(o.settle_time, true);
+  if (o.soil) {
+    soil_from = in.time();
+    set_down_on_soil(v, o, soil_from, 0.5 * o.settle_time);
+    v.step_soil(soil_from);
+    in.reinitialize();
+    go(t0, true);
+  }
   set_forward_speed(v, o.initial_speed);
   in.reinitialize();
   const double dt = 1.0 / o.output_rate;
@@ -141,14 +198,16 @@ VehicleRunResult run_full_vehicle(const FullVehicleSpec& spec, const DriverSerie
     const double t = std::min(k * chunk, o.end_time);
     if (maneuver) {
       const VehicleSample now = sample(v, in, in.time() - t0);
-      held = maneuver->at(VehiclePose{now.time, now.x, now.y, now.yaw, now.vx});
+      before = v.driver_input(in.time());
+      latest = maneuver->at(VehiclePose{now.time, now.x, now.y, now.yaw, now.vx});
+      changed_at = in.time();
     }
     // Snapshots due before t: the integrator's state interpolated at their times (no step changes).
     for (double ts = snapshots.next(); ts < t - 1e-9; ts = snapshots.next()) {
-      in.advance(t0 + ts);
+      go(t0 + ts, false);
       snapshots.take(v, ts);
     }
-    in.advance(t0 + t);
+    go(t0 + t, maneuver != nullptr);  // a manoeuvre's inputs change at t
     if (v.update_gear()) in.reinitialize();
     r.max_constraint_violation = std::max(r.max_constraint_violation, in.constraint_violation());
     if (t >= next_row - 1e-9 || t >= o.end_time) {

@@ -1,9 +1,10 @@
 #pragma once
-// One run of the full vehicle on rigid ground, driven by a driver file or a manoeuvre: the vehicle
+// One run of the full vehicle on rigid ground or SCM soil, driven by a driver file or a manoeuvre: the vehicle
 // settles at rest first (not recorded: its springs lift it from the design position to its ride
 // height), then starts at the initial speed; rows of trajectory.csv (as the reduced-order vehicles
 // write them) and of wheels.csv at the output rate; with a snapshot folder, ParaView snapshots of the
 // bodies (vehicle_vtu.hpp) at the snapshot rate and the collection listing them.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,8 +21,12 @@ struct VehicleRunOptions {
   double rtol = 1e-5;            // IDAS relative tolerance (absolute: rtol / 100)
   double max_step = 0;           // s, IDAS's largest step; 0: free
   double control_period = 0.01;  // s, a manoeuvre's controller period (inputs held between)
-  double settle_time = 3;        // s at rest before the run
+  double settle_time = 3;        // s at rest before the run (on SCM: on rigid ground, then as long on the soil)
   double friction = 1;           // the ground's friction over the tire data's
+  // SCM soil instead of rigid ground: the wheels as rigid cylinders in it (scm_wheel_contact.hpp),
+  // the soil stepped every scm.time_step from the time the vehicle is set down on it.
+  std::optional<lowfi::ScmSoil> soil;
+  lowfi::ScmSettings scm;
   // Snapshots: DIR/vehicle_NNNNN.vtu at times k / vtu_rate from 0 to end_time and DIR/vehicle.pvd;
   // "": none. One between two output rows is the integrator's interpolated state: its steps are the
   // same as without snapshots, except when it is the first output after a restart (the start, a gear

@@ -93,7 +93,9 @@ void add_link(MeshBuilder& out, const mb::MbSystem& s, int i, const Vec3& si, in
 
 }  // namespace
 
-double drawn_tire_width(const FullVehicleSpec& spec) { return spec.tire.unloaded_radius * (12.5 / 18.5); }
+double drawn_tire_width(const FullVehicleSpec& spec) {
+  return spec.scm_wheel.width > 0 ? spec.scm_wheel.width : spec.tire.unloaded_radius * (12.5 / 18.5);
+}
 
 VehicleMesh vehicle_mesh(const FullVehicle& v, int wheel_facets) {
   const mb::MbSystem& s = v.system();

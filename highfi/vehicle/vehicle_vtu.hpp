@@ -45,8 +45,8 @@ inline constexpr Range kVehicleVtuRate{0, 1000, true, false, "Hz"};
 // Facets around a drawn wheel.
 inline constexpr int kWheelFacets = 32;
 
-// The tire's drawn width: the vehicle file gives none, so 0.6757 of the unloaded radius (the HMMWV's
-// 37x12.5R16.5 tire: 12.5 in wide, 18.5 in radius).
+// The wheel's drawn width: the vehicle file's wheel.width, or where it gives none 0.6757 of the
+// unloaded radius (the HMMWV's 37x12.5R16.5 tire: 12.5 in wide, 18.5 in radius).
 double drawn_tire_width(const FullVehicleSpec& spec);
 
 // The mesh of the vehicle's bodies now (world coordinates).

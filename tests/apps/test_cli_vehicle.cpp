@@ -148,3 +148,41 @@ TEST_CASE("terracal vehicle --vtu: snapshots of the bodies at the snapshot rate,
   for (std::size_t k = 0; k < e30.size(); ++k) CHECK(e30[k].first == Approx(double(k) / 30).margin(1e-12));
   CHECK(test::read_file(root + "/o30/trajectory.csv") == test::read_file(root + "/plain/trajectory.csv"));
 }
+
+TEST_CASE("terracal vehicle --terrain scm: the wheels sink into the soil and carry the vehicle",
+          "[apps][vehicle][scm]") {
+  ScratchDir dir("cli_vehicle_scm");
+  const std::string root = dir.path.string();
+  test::write(root + "/drive.txt", "0 0 0 0\n0.2 0 0 0\n");
+  test::write(root + "/sand.json",
+              R"({"Type": "SCM", "Soil parameters": {"Bekker Kphi": 1528430, "Bekker Kc": 990, "Bekker n exponent": 1.1,
+                  "Mohr cohesive limit": 1040, "Mohr friction limit": 28, "Janosi shear coefficient": 0.025,
+                  "Elastic stiffness": 4e7, "Damping": 3e4}})");
+  const CliResult r = run_cli("vehicle --vehicle hmmwv --terrain scm --scm " + root + "/sand.json --inputs " + root +
+                                  "/drive.txt --out " + root + "/o --no-plots",
+                              root);
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const auto run = nlohmann::json::parse(test::read_file(root + "/o/run.json"));
+  CHECK(run["terrain"] == "scm");
+  CHECK(run["rtol"].get<double>() == 1e-3);  // the default on SCM
+  CHECK(run["scm"]["grid"].get<double>() == 0.02);
+  CHECK(run["scm"]["effects"] == nlohmann::json::array({"damping"}));
+  // After settling on the sand each wheel has sunk several centimetres and the four carry the weight.
+  std::istringstream wheels(test::read_file(root + "/o/wheels.csv"));
+  std::string line;
+  std::getline(wheels, line);
+  double fz = 0;
+  for (int k = 0; k < 4 && std::getline(wheels, line); ++k) {
+    std::vector<double> v;
+    std::stringstream cells(line);
+    for (std::string c; std::getline(cells, c, ',');) v.push_back(std::stod(c));
+    REQUIRE(v.size() == 9);
+    fz += v[2];
+    CHECK(v[8] > 0.03);  // sinkage_m
+    CHECK(v[8] < 0.15);
+    CHECK(v[7] == 0);  // no tire deflection: the wheel is rigid on soil
+  }
+  const double weight = vehicle::load_full_vehicle("hmmwv").total_mass() * 9.81;
+  CHECK(std::abs(fz - weight) / weight < 0.01);
+}

@@ -64,7 +64,10 @@ TEST_CASE("vehicle vtu: the HMMWV's wheels are cylinders of the tire's radius ab
   REQUIRE(m.name_id.size() == m.cells.size());
   const double r0 = spec.tire.unloaded_radius, width = drawn_tire_width(spec);
   CHECK(r0 == Approx(0.4699));
-  CHECK(width == Approx(0.3175).margin(1e-4));  // 12.5 in
+  CHECK(width == Approx(0.254).margin(1e-6));  // the preset's wheel.width, 10 in
+  FullVehicleSpec unknown = spec;
+  unknown.scm_wheel.width = 0;
+  CHECK(drawn_tire_width(unknown) == Approx(0.3175).margin(1e-4));  // 12.5 in: the 37x12.5R16.5's proportions
   // Exactly the four spindles are drawn as wheels, each with 32 side quads and two end caps.
   std::map<int, std::vector<std::size_t>> wheel_cells;
   for (std::size_t c = 0; c < m.cells.size(); ++c)
