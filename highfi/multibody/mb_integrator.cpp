@@ -40,6 +40,7 @@ struct MbIntegrator::Impl {
   SUNLinearSolver solver = nullptr;
   void* mem = nullptr;
   double t = 0;
+  bool stopped = false;  // the last advance set a stop time
   Eigen::MatrixXd mass;
   std::unique_ptr<GglJacobian> jacobian;  // null: IDAS's dense difference quotients
   MbIntegratorStats before;               // counts of the runs before the last restart (IDAReInit zeroes IDAS's)
@@ -169,7 +170,8 @@ void MbIntegrator::advance(double t_out, bool stop) {
   Impl& s = *impl_;
   if (t_out > s.t) {
     // A stop time far ahead lifts an earlier one (IDAS keeps the last one set).
-    s.check(IDASetStopTime(s.mem, stop ? t_out : 1e300), "IDASetStopTime");
+    if (stop || s.stopped) s.check(IDASetStopTime(s.mem, stop ? t_out : 1e300), "IDASetStopTime");
+    s.stopped = stop;
     s.check(IDASolve(s.mem, t_out, &s.t, s.yy, s.yp, IDA_NORMAL), "IDASolve");
   }
   s.sys.set_positions(N_VGetArrayPointer(s.yy));
