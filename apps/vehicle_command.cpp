@@ -74,7 +74,8 @@ void write_outputs(const VehicleArgs& a, const vehicle::VehicleRunResult& r) {
 // mean of the two steered wheels' at full lock to the left, kinematic) and the track.
 ManeuverVehicle maneuver_vehicle(const vehicle::FullVehicleSpec& spec) {
   if (!spec.has_steering) throw InputError("--maneuver: the vehicle has no steering; drive it with --inputs");
-  const vehicle::SteerAngles lock = vehicle::steering_kinematics(spec, {-spec.steering.max_angle})[0];
+  const vehicle::SteerAngles lock =
+      vehicle::steering_kinematics(spec, {vehicle::steering_position(spec, 1.0)})[0];  // full left
   const double track = 2 * std::abs(spec.axles.front().suspension.spindle.com.y());
   return {spec.axles.front().location.x() - spec.axles.back().location.x(), 0.5 * (lock.left + lock.right), track};
 }

@@ -11,7 +11,8 @@
 
 namespace terracal::vehicle {
 double FullVehicleSpec::total_mass() const {  // the bodies' masses (shafts have inertia only)
-  double m = chassis.mass + (has_steering ? steering.link.mass + steering.arm.mass : 0.0);
+  double m = chassis.mass;
+  if (has_steering) m += rack_steering ? rack.rack.mass : steering.link.mass + steering.arm.mass;
   for (const AxleSpec& a : axles) {
     const DoubleWishboneSpec& s = a.suspension;
     m += 2 * (s.spindle.mass + s.upright.mass + s.upper_arm.body.mass + s.lower_arm.body.mass + wheel_mass);
@@ -48,7 +49,12 @@ FullVehicleSpec read_full_vehicle(const nlohmann::json& j, const std::string& so
   }
   if (o.has("steering")) {
     v.has_steering = true;
-    v.steering = read_pitman_arm(o.object("steering"));
+    JsonObject st = o.object("steering");
+    v.rack_steering = st.string_or("template", "pitman_arm", {"pitman_arm", "rack_pinion"}) == "rack_pinion";
+    if (v.rack_steering)
+      v.rack = read_rack_pinion(st);
+    else
+      v.steering = read_pitman_arm(st);
   }
   for (std::size_t k = 0; k < v.axles.size(); ++k)
     if (v.axles[k].steered && !v.has_steering)
@@ -111,13 +117,17 @@ FullVehicle::FullVehicle(const FullVehicleSpec& spec, const Vec3& origin, double
   chassis.position = origin + spec.chassis.com;
   chassis_ = s.add_body(chassis);
   const Mat3 wheel = spec.wheel_inertia.asDiagonal();
-  if (spec.has_steering) {
+  const auto steering_input = [this](double t) { return driver_(t).steering; };
+  if (spec.has_steering && spec.rack_steering) {
+    rack_ = build_rack_pinion(s, spec.rack, chassis_, origin);
+    add_rack_servo(s, spec.rack, rack_, steering_input);
+  } else if (spec.has_steering) {
     steering_ = build_pitman_arm(s, spec.steering, chassis_, origin);
-    add_steering_servo(s, spec.steering, steering_, [this](double t) { return driver_(t).steering; });
+    add_steering_servo(s, spec.steering, steering_, steering_input);
   }
   for (const AxleSpec& a : spec.axles)
     for (double side : {1.0, -1.0}) {
-      const int tierods = a.steered ? steering_.link : chassis_;
+      const int tierods = a.steered ? steering_link() : chassis_;
       const WishboneSide w = build_double_wishbone(s, a.suspension, chassis_, tierods, origin, a.location, side);
       // The wheel and tire turn with the spindle: their mass and inertia are the spindle's.
       mb::RigidBody& sp = s.bodies[std::size_t(w.spindle)];

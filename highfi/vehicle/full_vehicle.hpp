@@ -11,6 +11,7 @@
 #include "highfi/vehicle/double_wishbone.hpp"
 #include "highfi/vehicle/driveline.hpp"
 #include "highfi/vehicle/pitman_arm.hpp"
+#include "highfi/vehicle/rack_pinion.hpp"
 #include "highfi/vehicle/rigid_ground_tire.hpp"
 #include "highfi/vehicle/scm_wheel_contact.hpp"
 
@@ -27,7 +28,9 @@ struct FullVehicleSpec {
   BodySpec chassis;  // com in the chassis frame
   std::vector<AxleSpec> axles;
   bool has_steering = false;
+  bool rack_steering = false;  // the steering's template: rack-and-pinion (else Pitman arm)
   PitmanArmSpec steering;
+  RackPinionSpec rack;
   bool has_powertrain = false;
   PowertrainParams powertrain;
   DrivelineSpec driveline;
@@ -66,7 +69,10 @@ class FullVehicle {
   const Driveline& driveline() const { return driveline_; }
   // Shifts gear by the gearbox input's speed; true when it changed (restart the integrator then).
   bool update_gear();
-  const PitmanArm& steering() const { return steering_; }
+  const PitmanArm& steering() const { return steering_; }  // with the Pitman-arm template
+  const RackPinion& rack() const { return rack_; }         // with the rack-and-pinion template
+  // The body the steered axle's tie rods end on: the Pitman arm's link or the rack.
+  int steering_link() const { return spec_.rack_steering ? rack_.rack : steering_.link; }
   const FullVehicleSpec& spec() const { return spec_; }
   // Each tire's contact in the system's present state (on SCM: the held soil forces and the sinkage).
   std::vector<TireContact> contacts() const;
@@ -85,6 +91,7 @@ class FullVehicle {
   int chassis_ = -1;
   std::vector<WishboneSide> corners_;
   PitmanArm steering_;
+  RackPinion rack_;
   DriverFunction driver_ = [](double) { return DriverInput{}; };
   Driveline driveline_;
 };

@@ -7,24 +7,14 @@
 #include <fmt/format.h>
 
 namespace terracal::vehicle {
-namespace {
-BodySpec body(JsonObject o) {
-  BodySpec b;
-  b.mass = o.number("mass", 0, 1e5, true);
-  b.com = read_point(o, "com");
-  b.moments = read_moments(o, "inertia");
-  o.finish();
-  return b;
-}
-}  // namespace
 
 PitmanArmSpec read_pitman_arm(JsonObject o) {
   PitmanArmSpec s;
   o.string_or("template", "pitman_arm", {"pitman_arm"});
   s.name = read_name(o, s.name);
   if (o.has("source")) o.raw("source");
-  s.link = body(o.object("link"));
-  s.arm = body(o.object("arm"));
+  s.link = read_part(o.object("link"));
+  s.arm = read_part(o.object("arm"));
   {
     JsonObject r = o.object("revolute");
     s.revolute_point = read_point(r, "point");
@@ -49,16 +39,7 @@ PitmanArmSpec read_pitman_arm(JsonObject o) {
     i.finish();
   }
   s.location = read_point(o, "location");
-  if (o.has("orientation")) {
-    const nlohmann::json& q = o.raw("orientation");
-    if (!q.is_array() || q.size() != 4 || !q[0].is_number() || !q[1].is_number() || !q[2].is_number() ||
-        !q[3].is_number())
-      o.fail("orientation", fmt::format("value {} is not a quaternion; expected [w, x, y, z]", q.dump()));
-    s.orientation = mb::Quat(q[0].get<double>(), q[1].get<double>(), q[2].get<double>(), q[3].get<double>());
-    if (std::abs(s.orientation.norm() - 1) > 1e-3)
-      o.fail("orientation", fmt::format("has norm {}; expected a unit quaternion", s.orientation.norm()));
-    s.orientation.normalize();
-  }
+  s.orientation = read_orientation(o);
   if (o.has("servo")) {
     JsonObject v = o.object("servo");
     s.servo_stiffness = v.number_or("stiffness", s.servo_stiffness, 0, 1e12, true);

@@ -26,7 +26,15 @@ double predicted_turn_radius(double left, double right, double track, double whe
   return 0.5 * ((wheelbase / std::tan(inner) + 0.5 * track) + (wheelbase / std::tan(outer) - 0.5 * track));
 }
 
-std::vector<SteerAngles> steering_kinematics(const FullVehicleSpec& spec, const std::vector<double>& arm_angles,
+double steering_position(const FullVehicleSpec& spec, double input) {
+  return spec.rack_steering ? input * spec.rack.max_travel() : -input * spec.steering.max_angle;
+}
+
+double steering_position(const FullVehicle& v) {
+  return v.spec().rack_steering ? rack_travel(v.system(), v.rack()) : pitman_arm_angle(v.system(), v.steering());
+}
+
+std::vector<SteerAngles> steering_kinematics(const FullVehicleSpec& spec, const std::vector<double>& positions,
                                              double travel) {
   if (!spec.has_steering) throw InputError("steering kinematics: the vehicle has no steering");
   std::size_t steered = spec.axles.size();
@@ -36,12 +44,13 @@ std::vector<SteerAngles> steering_kinematics(const FullVehicleSpec& spec, const 
   FullVehicle v(spec, Vec3(0, 0, 10.0));  // in the air: no tire touches
   mb::MbSystem& s = v.system();
   s.bodies[std::size_t(v.chassis())].fixed = true;
-  const PitmanArm& arm = v.steering();
-  const mb::Joint hinge = s.joints[std::size_t(arm.revolute)];
-  s.joints.erase(s.joints.begin() + arm.revolute);  // the arm is held instead
-  mb::RigidBody& arm_body = s.bodies[std::size_t(arm.arm)];
-  arm_body.fixed = true;
-  const mb::RigidBody built_arm = arm_body;
+  // The steering's moving part is held instead of its joint to the chassis.
+  const int held_joint = spec.rack_steering ? v.rack().prismatic : v.steering().revolute;
+  const mb::Joint hinge = s.joints[std::size_t(held_joint)];
+  s.joints.erase(s.joints.begin() + held_joint);
+  mb::RigidBody& moved = s.bodies[std::size_t(spec.rack_steering ? v.rack().rack : v.steering().arm)];
+  moved.fixed = true;
+  const mb::RigidBody built = moved;
   const Vec3 pivot = s.bodies[std::size_t(hinge.i)].point(hinge.si);
   // Each wheel centre held at its design height.
   for (const WishboneSide& w : v.corners()) {
@@ -60,13 +69,17 @@ std::vector<SteerAngles> steering_kinematics(const FullVehicleSpec& spec, const 
       (s.bodies[std::size_t(left.spindle)].position - s.bodies[std::size_t(right.spindle)].position).norm();
   const double wheelbase = spec.axles[steered].location.x() - spec.axles.back().location.x();
   std::vector<SteerAngles> out;
-  for (double angle : arm_angles) {
-    const mb::Quat turn(Eigen::AngleAxisd(angle, arm.axis_chassis));
-    arm_body.orientation = turn * built_arm.orientation;
-    arm_body.position = pivot + turn * (built_arm.position - pivot);
+  for (double position : positions) {
+    if (spec.rack_steering) {
+      moved.position = built.position + position * v.rack().axis_chassis;
+    } else {
+      const mb::Quat turn(Eigen::AngleAxisd(position, v.steering().axis_chassis));
+      moved.orientation = turn * built.orientation;
+      moved.position = pivot + turn * (built.position - pivot);
+    }
     s.assemble();
     SteerAngles a;
-    a.arm_angle = angle;
+    a.position = position;
     a.left = steer_angle(s.bodies[std::size_t(left.spindle)]);
     a.right = steer_angle(s.bodies[std::size_t(right.spindle)]);
     a.ackermann_error = ackermann_error(a.left, a.right, track, wheelbase);

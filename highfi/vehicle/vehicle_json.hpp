@@ -1,10 +1,13 @@
 #pragma once
 // The small readers the full vehicle's JSON objects share: points, principal moments of inertia and
 // directions, each [x, y, z] checked where it is read (errors name the key path and the value).
+#include <cmath>
+
 #include <fmt/format.h>
 
 #include "core/json_object.hpp"
 #include "highfi/multibody/rigid_body.hpp"
+#include "highfi/vehicle/double_wishbone.hpp"
 
 namespace terracal::vehicle {
 
@@ -39,6 +42,29 @@ inline std::string read_name(JsonObject& o, const std::string& fallback) {
   const nlohmann::json& n = o.raw("name");
   if (!n.is_string()) o.fail("name", fmt::format("value {} is not a string", n.dump()));
   return n.get<std::string>();
+}
+
+// A rigid part: "mass", "com" [x, y, z], principal "inertia" [Ixx, Iyy, Izz].
+inline BodySpec read_part(JsonObject o) {
+  BodySpec b;
+  b.mass = o.number("mass", 0, 1e5, true);
+  b.com = read_point(o, "com");
+  b.moments = read_moments(o, "inertia");
+  o.finish();
+  return b;
+}
+
+// An optional "orientation" [w, x, y, z], a unit quaternion (to 1e-3; normalised).
+inline mb::Quat read_orientation(JsonObject& o) {
+  if (!o.has("orientation")) return mb::Quat::Identity();
+  const nlohmann::json& q = o.raw("orientation");
+  if (!q.is_array() || q.size() != 4 || !q[0].is_number() || !q[1].is_number() || !q[2].is_number() ||
+      !q[3].is_number())
+    o.fail("orientation", fmt::format("value {} is not a quaternion; expected [w, x, y, z]", q.dump()));
+  mb::Quat r(q[0].get<double>(), q[1].get<double>(), q[2].get<double>(), q[3].get<double>());
+  if (std::abs(r.norm() - 1) > 1e-3)
+    o.fail("orientation", fmt::format("has norm {}; expected a unit quaternion", r.norm()));
+  return r.normalized();
 }
 
 }  // namespace terracal::vehicle

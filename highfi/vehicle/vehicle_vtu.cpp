@@ -109,8 +109,8 @@ VehicleMesh vehicle_mesh(const FullVehicle& v, int wheel_facets) {
     part[std::size_t(w.lower_arm)] = VtuPart::lower_arm;
   }
   if (v.has_steering()) {
-    part[std::size_t(v.steering().link)] = VtuPart::steering_link;
-    part[std::size_t(v.steering().arm)] = VtuPart::pitman_arm;
+    part[std::size_t(v.steering_link())] = VtuPart::steering_link;  // the Pitman arm's link or the rack
+    if (!v.spec().rack_steering) part[std::size_t(v.steering().arm)] = VtuPart::pitman_arm;
   }
   const std::vector<std::vector<Vec3>> points = attachment_points(s);
   const double radius = v.spec().tire.unloaded_radius, width = drawn_tire_width(v.spec());
@@ -132,7 +132,7 @@ VehicleMesh vehicle_mesh(const FullVehicle& v, int wheel_facets) {
     if (std::any_of(v.corners().begin(), v.corners().end(),
                     [&](const WishboneSide& w) { return w.tierod_joint == int(k); }))
       p = VtuPart::tie_rod;
-    else if (v.has_steering() && (j.i == v.steering().link || j.j == v.steering().link))
+    else if (v.has_steering() && (j.i == v.steering_link() || j.j == v.steering_link()))
       p = VtuPart::idler;
     add_link(out, s, j.i, j.si, j.j, j.sj, p);
   }

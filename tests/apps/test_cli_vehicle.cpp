@@ -17,6 +17,7 @@
 #include "highfi/vehicle/vehicle_vtu.hpp"
 #include "rom/trajectory_csv.hpp"
 #include "tests/apps/cli_runner.hpp"
+#include "tests/highfi/vehicle/hmmwv_rack.hpp"
 #include "tests/scratch_dir.hpp"
 #include "tests/vtu_payload.hpp"
 
@@ -185,4 +186,28 @@ TEST_CASE("terracal vehicle --terrain scm: the wheels sink into the soil and car
   }
   const double weight = vehicle::load_full_vehicle("hmmwv").total_mass() * 9.81;
   CHECK(std::abs(fz - weight) / weight < 0.01);
+}
+
+TEST_CASE("terracal vehicle: a vehicle file with rack-and-pinion steering drives a manoeuvre", "[apps][vehicle]") {
+  ScratchDir dir("cli_vehicle_rack");
+  const std::string root = dir.path.string();
+  test::write(root + "/rack.json", test::hmmwv_rack_json().dump(2));
+  test::write(root + "/dlc.json", R"({"type": "iso3888_1", "initial_speed": 10, "target_speed": 10})");
+  const CliResult r = run_cli("vehicle --vehicle " + root + "/rack.json --maneuver " + root +
+                                  "/dlc.json --end-time 2 --no-plots --out " + root + "/o",
+                              root);
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const auto run = nlohmann::json::parse(test::read_file(root + "/o/run.json"));
+  CHECK(run["max_constraint_violation"].get<double>() < 1e-5);
+  // The lane change starts with a turn to the left: by 2 s the chassis has moved left of its start.
+  std::istringstream traj(test::read_file(root + "/o/trajectory.csv"));
+  std::string line, last;
+  while (std::getline(traj, line)) last = line;
+  std::vector<double> v;
+  std::stringstream cells(last);
+  for (std::string c; std::getline(cells, c, ',');) v.push_back(std::stod(c));
+  INFO(last);
+  CHECK(v[1] > 15);   // x: at about 10 m/s
+  CHECK(v[2] > 0.1);  // y: to the left
 }

@@ -7,6 +7,7 @@
 
 #include "highfi/multibody/mb_integrator.hpp"
 #include "highfi/vehicle/steering_kinematics.hpp"
+#include "tests/highfi/vehicle/hmmwv_rack.hpp"
 
 using namespace terracal;
 using namespace terracal::vehicle;
@@ -50,9 +51,10 @@ TEST_CASE("full vehicle: full throttle from rest goes straight", "[vehicle]") {
   CHECK(violation < 1e-8);
 }
 
-TEST_CASE("full vehicle: a constant steering input at walking speed turns on the radius the steering predicts",
-          "[vehicle]") {
-  const FullVehicleSpec spec = load_full_vehicle("hmmwv");
+namespace {
+// A constant steering input of 0.3 at walking speed: the rear axle's path against the radius the
+// steering's kinematics predict.
+void check_steady_turn(const FullVehicleSpec& spec) {
   FullVehicle v(spec, mb::Vec3(0, 0, spec.tire.unloaded_radius + 0.026));
   mb::MbSystem& s = v.system();
   const int c = v.chassis();
@@ -87,7 +89,7 @@ TEST_CASE("full vehicle: a constant steering input at walking speed turns on the
     travel += local.z() + spec.chassis.com.z() - (-0.026);  // the spindles' design height is -0.026 m
   }
   travel /= double(v.corners().size());
-  const SteerAngles k = steering_kinematics(spec, {pitman_arm_angle(s, v.steering())}, travel)[0];
+  const SteerAngles k = steering_kinematics(spec, {steering_position(v)}, travel)[0];
   const double wheelbase = spec.axles.front().location.x() - spec.axles.back().location.x();
   const double predicted = predicted_turn_radius(k.left, k.right, 2 * 0.91, wheelbase);
   INFO("path radius " << radius << " m; predicted " << predicted << " m (wheels " << k.left << ", " << k.right
@@ -95,4 +97,14 @@ TEST_CASE("full vehicle: a constant steering input at walking speed turns on the
   CHECK(std::abs(radius - predicted) / predicted < 0.03);
   CHECK(radius > 10);
   CHECK(radius < 20);
+}
+}  // namespace
+
+TEST_CASE("full vehicle: a constant steering input at walking speed turns on the radius the steering predicts",
+          "[vehicle]") {
+  check_steady_turn(load_full_vehicle("hmmwv"));
+}
+
+TEST_CASE("full vehicle: with rack-and-pinion steering it turns on the radius the steering predicts", "[vehicle]") {
+  check_steady_turn(test::hmmwv_with_rack());
 }

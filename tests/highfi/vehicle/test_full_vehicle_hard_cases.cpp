@@ -1,7 +1,9 @@
 // The full HMMWV's hard cases: dropped from 0.3 m, at rest under the Moon's gravity, braked fully from
-// 10 m/s, and at full lock at 4 m/s. Each stays finite and bounded with its joints held.
+// 10 m/s, at full lock at 4 m/s, and with a wheel jacked off the ground. Each stays finite and bounded
+// with its joints held.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 #include "highfi/multibody/mb_integrator.hpp"
@@ -120,4 +122,50 @@ TEST_CASE("full vehicle, hard cases: full lock at 4 m/s", "[vehicle]") {
   CHECK(w.max_roll < 0.2);    // on its wheels
   CHECK(w.max_speed < 10.0);  // bounded
   CHECK(w.violation < 1e-6);
+}
+
+TEST_CASE("full vehicle, hard cases: a wheel off the ground spins up alone through the open differentials",
+          "[vehicle]") {
+  const FullVehicleSpec spec = hmmwv();
+  FullVehicle v(spec, mb::Vec3(0, 0, design_height(spec)));
+  mb::MbSystem& s = v.system();
+  // A jack under the front left wheel lifts it from 3 s on: its force grows over 0.5 s to 1.5 times
+  // the wheel's static load; from 4 s the driver holds half throttle.
+  const int lifted = v.corners()[0].spindle;
+  const double jack = 1.5 * spec.total_mass() * 9.81 / 4;
+  s.external.push_back({[=](double t, const std::vector<mb::RigidBody>&, std::vector<mb::Wrench>& w) {
+                          w[std::size_t(lifted)].force.z() += jack * std::clamp((t - 3.0) / 0.5, 0.0, 1.0);
+                        },
+                        {lifted}});
+  v.set_driver([](double t) { return DriverInput{0, t > 4.0 ? 0.5 : 0.0, 0}; });
+  mb::MbIntegrator in(s, {1e-6, 1e-8});
+  Watch w;
+  in.advance(3.0);
+  const double x0 = s.bodies[std::size_t(v.chassis())].position.x();
+  for (double t = 3.05; t <= 8 + 1e-9; t += 0.05) {
+    in.advance(t);
+    if (v.update_gear()) in.reinitialize();
+    w.look(v, in);
+  }
+  const auto contacts = v.contacts();
+  const auto spin = [&](int k) {
+    const mb::RigidBody& b = s.bodies[std::size_t(v.corners()[std::size_t(k)].spindle)];
+    return std::abs(b.omega.y());
+  };
+  const double moved = s.bodies[std::size_t(v.chassis())].position.x() - x0;
+  INFO("lifted wheel: load " << contacts[0].fz << " N, spin " << spin(0) << " rad/s; others' spin " << spin(1) << ", "
+                             << spin(2) << ", " << spin(3) << " rad/s; chassis moved " << moved
+                             << " m; constraint error " << w.violation);
+  CHECK(w.finite);
+  CHECK_FALSE(contacts[0].touching);
+  CHECK(contacts[1].touching);
+  // Open centre and axle differentials give every wheel the torque the free one takes (the torque that
+  // spins up its 6.8 kg m^2): it races, and the three on the ground roll alike, slowly.
+  CHECK(spin(0) > 10 * spin(1));
+  CHECK(std::abs(spin(2) - spin(3)) < 0.05 * spin(2));
+  CHECK(std::abs(spin(1) - spin(2)) < 0.1 * spin(2));
+  CHECK(moved > 0);
+  CHECK(w.max_speed < 5.0);
+  CHECK(w.max_roll < 0.2);
+  CHECK(w.violation < 1e-5);  // at rtol 1e-6, the free wheel at 134 rad/s
 }

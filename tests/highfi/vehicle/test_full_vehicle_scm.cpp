@@ -81,5 +81,5 @@ TEST_CASE("full vehicle on SCM: at constant throttle its speed and wheel slips s
   CHECK(s_hi < 0.5);                                                // none digs in
   CHECK(s_hi - s_lo < 0.1);                                         // the slips settle
   CHECK(std::abs(r.samples.back().y) < 0.01 * r.samples.back().x);  // straight
-  CHECK(r.max_constraint_violation < 1e-5);  // at rtol 1e-3
+  CHECK(r.max_constraint_violation < 1e-5);                         // at rtol 1e-3
 }

@@ -16,7 +16,7 @@ TEST_CASE("steering: the HMMWV's wheel angles and Ackermann error, kinematic aga
   const double max_arm = spec.steering.max_angle;
   const auto kin = steering_kinematics(spec, {-max_arm, -0.5 * max_arm, 0.0, 0.5 * max_arm, max_arm});
   for (const auto& k : kin)
-    UNSCOPED_INFO("arm " << k.arm_angle * 180 / M_PI << " deg: left " << k.left * 180 / M_PI << ", right "
+    UNSCOPED_INFO("arm " << k.position * 180 / M_PI << " deg: left " << k.left * 180 / M_PI << ", right "
                          << k.right * 180 / M_PI << " deg, Ackermann error " << k.ackermann_error * 180 / M_PI
                          << " deg");
   // Straight ahead at the arm's zero; both wheels turn the same way, by tens of degrees at full lock.
