@@ -40,12 +40,7 @@ PitmanArmSpec read_pitman_arm(JsonObject o) {
   }
   s.location = read_point(o, "location");
   s.orientation = read_orientation(o);
-  if (o.has("servo")) {
-    JsonObject v = o.object("servo");
-    s.servo_stiffness = v.number_or("stiffness", s.servo_stiffness, 0, 1e12, true);
-    s.servo_damping = v.number_or("damping", s.servo_damping, 0, 1e12);
-    v.finish();
-  }
+  read_servo(o, s.servo_stiffness, s.servo_damping);
   o.finish();
   return s;
 }

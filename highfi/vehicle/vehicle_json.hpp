@@ -67,4 +67,13 @@ inline mb::Quat read_orientation(JsonObject& o) {
   return r.normalized();
 }
 
+// An optional "servo" object: "stiffness" (> 0) and "damping" (>= 0), kept as given where absent.
+inline void read_servo(JsonObject& o, double& stiffness, double& damping) {
+  if (!o.has("servo")) return;
+  JsonObject v = o.object("servo");
+  stiffness = v.number_or("stiffness", stiffness, 0, 1e12, true);
+  damping = v.number_or("damping", damping, 0, 1e12);
+  v.finish();
+}
+
 }  // namespace terracal::vehicle

@@ -8,6 +8,7 @@
 #include "highfi/multibody/mb_integrator.hpp"
 #include "highfi/vehicle/steering_kinematics.hpp"
 #include "tests/highfi/vehicle/hmmwv_rack.hpp"
+#include "tests/highfi/vehicle/wheel_posts.hpp"
 
 using namespace terracal;
 using namespace terracal::vehicle;
@@ -36,21 +37,8 @@ TEST_CASE("rack-and-pinion: the wheels' angles against the rack's travel", "[veh
 TEST_CASE("rack-and-pinion: the pinion's servo holds the rack at the input's travel", "[vehicle]") {
   const FullVehicleSpec spec = test::hmmwv_with_rack();
   FullVehicle v(spec, mb::Vec3(0, 0, 10.0));  // in the air, chassis held, posts under the wheel centres
+  test::hold_on_posts(v);
   mb::MbSystem& s = v.system();
-  s.bodies[std::size_t(v.chassis())].fixed = true;
-  s.index();
-  std::vector<double> design;
-  for (const auto& w : v.corners()) design.push_back(s.bodies[std::size_t(w.spindle)].position.z());
-  const auto corners = v.corners();
-  for (std::size_t k = 0; k < corners.size(); ++k) {
-    const int spindle = corners[k].spindle;
-    const double z = design[k];
-    s.external.push_back({[=](double, const std::vector<mb::RigidBody>& b, std::vector<mb::Wrench>& f) {
-                            const mb::RigidBody& sp = b[std::size_t(spindle)];
-                            f[std::size_t(spindle)].force.z() += 2e7 * (z - sp.position.z()) - 2e4 * sp.velocity.z();
-                          },
-                          {spindle}});
-  }
   v.set_driver([](double t) { return DriverInput{0.5 * std::min(1.0, t), 0, 0}; });
   mb::MbIntegrator in(s, {1e-8, 1e-10});
   in.advance(3.0);

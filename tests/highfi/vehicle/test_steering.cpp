@@ -7,6 +7,7 @@
 
 #include "highfi/multibody/mb_integrator.hpp"
 #include "highfi/vehicle/steering_kinematics.hpp"
+#include "tests/highfi/vehicle/wheel_posts.hpp"
 
 using namespace terracal;
 using namespace terracal::vehicle;
@@ -32,18 +33,8 @@ TEST_CASE("steering: the HMMWV's wheel angles and Ackermann error, kinematic aga
 
   // The dynamic vehicle, chassis held, posts under the wheels, steering servo at half input.
   FullVehicle v(spec, mb::Vec3(0, 0, 10.0));
+  test::hold_on_posts(v);
   mb::MbSystem& s = v.system();
-  s.bodies[std::size_t(v.chassis())].fixed = true;
-  s.index();
-  std::vector<double> design;
-  for (const auto& w : v.corners()) design.push_back(s.bodies[std::size_t(w.spindle)].position.z());
-  const auto corners = v.corners();
-  s.external.push_back([corners, design](double, const std::vector<mb::RigidBody>& b, std::vector<mb::Wrench>& f) {
-    for (std::size_t k = 0; k < corners.size(); ++k) {
-      const mb::RigidBody& sp = b[std::size_t(corners[k].spindle)];
-      f[std::size_t(corners[k].spindle)].force.z() += 2e7 * (design[k] - sp.position.z()) - 2e4 * sp.velocity.z();
-    }
-  });
   v.set_driver([](double t) { return DriverInput{std::min(1.0, t) * 0.5, 0, 0}; });
   mb::MbIntegrator in(s, {1e-8, 1e-10});
   in.advance(3.0);
