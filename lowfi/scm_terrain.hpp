@@ -93,6 +93,8 @@ class ScmTerrain final : public Terrain {
   Volumes volumes() const;
   // Stored node (i, j), or nullptr if never touched.
   const ScmNode* node(int i, int j) const;
+  // Every stored node (for snapshots of the surface).
+  const ScmNodeGrid& grid() const { return nodes_; }
 
  private:
   // A node under a body whose underside is below the soil's free surface there.

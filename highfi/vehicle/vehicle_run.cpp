@@ -14,6 +14,7 @@
 #include "core/vtu_writer.hpp"
 #include "highfi/multibody/mb_integrator.hpp"
 #include "highfi/vehicle/vehicle_vtu.hpp"
+#include "lowfi/scm_surface_vtu.hpp"
 
 namespace terracal::vehicle {
 namespace {
@@ -72,12 +73,18 @@ class Snapshots {
   void take(const FullVehicle& v, double t) {
     const std::string name = fmt::format("vehicle_{:05d}.vtu", entries_.size());
     write_vehicle_vtu(dir_ / name, v, t);
+    if (v.scm()) {  // the soil's surface as its last step left it (at most one soil step earlier)
+      const std::string soil = fmt::format("soil_{:05d}.vtu", entries_.size());
+      lowfi::write_scm_surface_vtu(dir_ / soil, v.scm()->soil().terrain(), t);
+      soil_entries_.emplace_back(t, soil);
+    }
     entries_.emplace_back(t, name);
     if (std::chrono::steady_clock::now() - written_at_ > std::chrono::seconds(2)) write_collection();
   }
   void write_collection() {
     if (dir_.empty() || written_ == entries_.size()) return;
     write_pvd(dir_ / "vehicle.pvd", entries_);
+    if (!soil_entries_.empty()) write_pvd(dir_ / "soil.pvd", soil_entries_);
     written_ = entries_.size();
     written_at_ = std::chrono::steady_clock::now();
   }
@@ -86,7 +93,7 @@ class Snapshots {
  private:
   std::filesystem::path dir_;
   double rate_ = 20;
-  std::vector<std::pair<double, std::string>> entries_;
+  std::vector<std::pair<double, std::string>> entries_, soil_entries_;
   std::size_t written_ = 0;
   std::chrono::steady_clock::time_point written_at_{};
 };

@@ -160,7 +160,7 @@ TEST_CASE("terracal vehicle --terrain scm: the wheels sink into the soil and car
                   "Mohr cohesive limit": 1040, "Mohr friction limit": 28, "Janosi shear coefficient": 0.025,
                   "Elastic stiffness": 4e7, "Damping": 3e4}})");
   const CliResult r = run_cli("vehicle --vehicle hmmwv --terrain scm --scm " + root + "/sand.json --inputs " + root +
-                                  "/drive.txt --out " + root + "/o --no-plots",
+                                  "/drive.txt --out " + root + "/o --no-plots --vtu --vtu-rate 5",
                               root);
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
@@ -186,6 +186,28 @@ TEST_CASE("terracal vehicle --terrain scm: the wheels sink into the soil and car
   }
   const double weight = vehicle::load_full_vehicle("hmmwv").total_mass() * 9.81;
   CHECK(std::abs(fz - weight) / weight < 0.01);
+  // With --vtu the soil's surface too: soil.pvd lists a snapshot per vehicle snapshot (0 and 0.2 s);
+  // the surface holds the four ruts, its lowest point as deep as the deepest wheel within a node's slope.
+  CHECK(std::filesystem::exists(root + "/o/vtu/soil.pvd"));
+  CHECK(read_pvd(root + "/o/vtu/soil.pvd").size() == 2);
+  const std::string soil = test::read_file(root + "/o/vtu/soil_00001.vtu");
+  CHECK(soil.find("NumberOfCells=\"0\"") == std::string::npos);
+  const auto points = test::array_payload<float>(soil, "Points");
+  const auto plastic = test::array_payload<float>(soil, "plastic_sinkage");
+  REQUIRE(points.size() == 3 * plastic.size());
+  double lowest = 0, deepest = 0;
+  for (std::size_t k = 0; k < plastic.size(); ++k) {
+    lowest = std::min(lowest, double(points[3 * k + 2]));
+    deepest = std::max(deepest, double(plastic[k]));
+  }
+  double wheel = 0;
+  std::istringstream rows(test::read_file(root + "/o/wheels.csv"));
+  std::getline(rows, line);
+  while (std::getline(rows, line)) wheel = std::max(wheel, std::stod(line.substr(line.rfind(',') + 1)));
+  INFO("surface lowest " << lowest << " m, deepest plastic sinkage " << deepest << " m, deepest wheel " << wheel
+                         << " m");
+  CHECK(std::abs(lowest + deepest) < 1e-6);  // heights are the undisturbed level less the sinkage
+  CHECK(std::abs(deepest - wheel) < 0.01);   // the ruts as deep as the wheels
 }
 
 TEST_CASE("terracal vehicle: a vehicle file with rack-and-pinion steering drives a manoeuvre", "[apps][vehicle]") {
