@@ -22,4 +22,17 @@ struct BodyShape {
   std::vector<std::array<int, 3>> triangles;
 };
 
+// A wheel: a cylinder about the body y axis, optionally with straight grousers across its width.
+inline BodyShape wheel_shape(double radius, double width, int grousers = 0, double grouser_height = 0,
+                             double grouser_thickness = 0) {
+  BodyShape s;
+  s.type = ShapeType::kCylinder;
+  s.radius = radius;
+  s.width = width;
+  s.grouser_count = grousers;
+  s.grouser_height = grouser_height;
+  s.grouser_thickness = grouser_thickness;
+  return s;
+}
+
 }  // namespace terracal

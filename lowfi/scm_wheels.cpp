@@ -20,12 +20,7 @@ std::vector<RigidBody> wheel_bodies(const ScmSettings& settings, const std::vect
     validate(w);
     RigidBody b;
     b.name = w.name;
-    b.shape.type = ShapeType::kCylinder;
-    b.shape.radius = w.radius;
-    b.shape.width = w.width;
-    b.shape.grouser_count = w.grouser_count;
-    b.shape.grouser_height = w.grouser_height;
-    b.shape.grouser_thickness = w.grouser_thickness;
+    b.shape = wheel_shape(w.radius, w.width, w.grouser_count, w.grouser_height, w.grouser_thickness);
     b.position = {0, 0, settings.surface_height + b.bounding_radius() + 1.0};
     bodies.push_back(std::move(b));
   }

@@ -82,12 +82,7 @@ WheelResult run_wheel(const TerrainSite& site, const WheelSpec& wheel, double sl
 
   RigidBody w;
   w.name = fmt::format("wheel at slip {}", slip);
-  w.shape.type = ShapeType::kCylinder;
-  w.shape.radius = wheel.radius;
-  w.shape.width = wheel.width;
-  w.shape.grouser_count = wheel.grouser_count;
-  w.shape.grouser_height = wheel.grouser_height;
-  w.shape.grouser_thickness = wheel.grouser_thickness;
+  w.shape = wheel_shape(wheel.radius, wheel.width, wheel.grouser_count, wheel.grouser_height, wheel.grouser_thickness);
   const Vec3<double> c = site.centre();
   // Start so that the run is centred on the site: the wheel ends as far past the centre as it began before it.
   w.position = {c.x - 0.5 * travel, c.y, site.surface_height() + outer};

@@ -169,12 +169,7 @@ TEST_CASE("SCM wheels driven from outside: a grousered wheel fed the terrain's o
   w.grouser_thickness = 0.02;
   RigidBody b;
   b.name = "rig wheel";
-  b.shape.type = ShapeType::kCylinder;
-  b.shape.radius = w.radius;
-  b.shape.width = w.width;
-  b.shape.grouser_count = w.grouser_count;
-  b.shape.grouser_height = w.grouser_height;
-  b.shape.grouser_thickness = w.grouser_thickness;
+  b.shape = wheel_shape(w.radius, w.width, w.grouser_count, w.grouser_height, w.grouser_thickness);
   b.position = {0, 0, w.radius + w.grouser_height};
   b.mass = w.mass;
   b.inertia = {10, 10, 10};
