@@ -191,11 +191,15 @@ std::unique_ptr<TerrainSite> scm_site(const lowfi::ScmSoil& soil, const TerrainO
   s.time_step = o.step > 0 ? o.step : 1e-3;
   s.gravity = gravity;
   if (o.gravity.size() == 3) s.gravity = {o.gravity[0], o.gravity[1], o.gravity[2]};
-  std::vector<std::string> effects;
-  for (const auto& e : o.scm_effects)
-    if (!e.empty() && e != "none") effects.push_back(e);
-  s.effects = lowfi::parse_scm_effects(effects, "--scm-effects");
+  s.effects = parse_scm_effects_option(o.scm_effects);
   return std::make_unique<lowfi::ScmSite>(soil, s);
+}
+
+lowfi::ScmEffectChoice parse_scm_effects_option(const std::vector<std::string>& list) {
+  std::vector<std::string> effects;
+  for (const auto& e : list)
+    if (!e.empty() && e != "none") effects.push_back(e);
+  return lowfi::parse_scm_effects(effects, "--scm-effects");
 }
 
 std::vector<double> parse_list(const std::string& text, const std::string& option) {

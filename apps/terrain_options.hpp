@@ -82,6 +82,9 @@ CrmScene crm_site_scene(const CrmSoil& soil, const TerrainOptions& o, double hal
 // soil `depth` deep.
 std::unique_ptr<TerrainSite> crm_site(const CrmSoil& soil, const TerrainOptions& o, double half_length,
                                       double half_width, double depth);
+// The SCM effects a --scm-effects list names ("none" and empty entries name none), parsed; throws
+// InputError naming --scm-effects and an unknown name.
+lowfi::ScmEffectChoice parse_scm_effects_option(const std::vector<std::string>& list);
 std::unique_ptr<TerrainSite> scm_site(const lowfi::ScmSoil& soil, const TerrainOptions& o, const Vec3<double>& gravity);
 
 // Parses "0,0.2,0.4" into numbers; InputError naming the option.

@@ -56,9 +56,8 @@ void write_outputs(const VehicleArgs& a, const vehicle::VehicleRunResult& r) {
                       {"wall_seconds", r.wall_seconds},
                       {"real_time_factor", a.run.end_time / std::max(r.wall_seconds, 1e-12)}};
   if (a.run.soil) {
-    std::vector<std::string> effects;
-    for (const auto& e : a.scm_effects)
-      if (!e.empty() && e != "none") effects.push_back(e);
+    std::vector<std::string> effects;  // those on, in the registry's order
+    a.run.scm.effects.named.for_each_named([&](auto tag) { effects.push_back(decltype(tag)::type::kName); });
     j["scm"] = {{"soil", a.scm}, {"grid", a.run.scm.grid}, {"time_step", a.run.scm.time_step}, {"effects", effects}};
   }
   if (a.vtu)
@@ -140,10 +139,7 @@ Command add_vehicle(CLI::App& app) {
       if (a->scm.empty()) throw InputError("--terrain scm: give the soil's parameter set with --scm FILE");
       if (sub->count("--mu") > 0) throw InputError("--mu: only with --terrain rigid (the soil sets the friction)");
       a->run.soil = lowfi::read_scm_json(a->scm);
-      std::vector<std::string> effects;
-      for (const auto& e : a->scm_effects)
-        if (!e.empty() && e != "none") effects.push_back(e);
-      a->run.scm.effects = lowfi::parse_scm_effects(effects, "--scm-effects");
+      a->run.scm.effects = parse_scm_effects_option(a->scm_effects);
       lowfi::validate(a->run.scm, *a->run.soil);
       // The held soil wrench's error is of the soil step's order: a tighter integrator buys nothing
       // and costs 3-4x (docs/decisions.md).
