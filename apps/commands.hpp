@@ -18,5 +18,6 @@ Command add_wheel(CLI::App& app);
 Command add_pipeline(CLI::App& app);
 Command add_rom(CLI::App& app);
 Command add_vehicle(CLI::App& app);
+Command add_calibrate_rom(CLI::App& app);
 
 }  // namespace terracal::app

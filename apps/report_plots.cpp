@@ -180,4 +180,29 @@ void plot_trajectory(const std::string& dir, const std::string& title) {
   publish(work, "trajectory.png", dir);
 }
 
+// One panel per channel: columns 1 (time) and, per channel k, 3k-1..3k+1 (reference, preset,
+// calibrated) of `csv`.
+void plot_rom_fit(const std::string& dir, const std::string& csv, const std::string& png, const std::string& title,
+                  const std::vector<std::pair<std::string, std::string>>& channels) {
+  const std::string work = dir + "/.plot_" + png;
+  std::filesystem::create_directories(work);
+  std::filesystem::copy_file(dir + "/" + csv, work + "/fit.csv", std::filesystem::copy_options::overwrite_existing);
+  std::string s = fmt::format(
+      "set terminal pngcairo noenhanced size 1400,{} font 'Sans,11'\nset output '{}'\n"
+      "set datafile separator ','\nset grid\nset key box opaque\nset xlabel 'time [s]'\n"
+      "set multiplot layout {},2 title '{}'\n",
+      450 * ((channels.size() + 1) / 2), png, (channels.size() + 1) / 2, title);
+  for (std::size_t k = 0; k < channels.size(); ++k) {
+    const std::size_t c = 2 + 3 * k;
+    s += fmt::format(
+        "set title '{0}'\nset ylabel '[{1}]'\nplot 'fit.csv' using 1:{2} with lines lw 3 lc rgb 'black' title "
+        "'reference', '' using 1:{3} with lines lw 2 dt 2 lc rgb 'gray50' title 'preset ROM', '' using 1:{4} with "
+        "lines lw 2 lc rgb 'red' title 'calibrated ROM (MAP)'\n",
+        channels[k].first, channels[k].second, c, c + 1, c + 2);
+  }
+  s += "unset multiplot\n";
+  render(work, s, png);
+  publish(work, png, dir);
+}
+
 }  // namespace terracal::app

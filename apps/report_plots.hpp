@@ -19,5 +19,9 @@ void plot_wheel_models(const std::string& dir,
 // DIR/trajectory.png from DIR/trajectory.csv: path, speeds, yaw rate and roll, accelerations,
 // engine speed and gear.
 void plot_trajectory(const std::string& dir, const std::string& title);
+// DIR/PNG from DIR/CSV (time, then per channel its reference, preset-ROM and calibrated-ROM columns):
+// one panel per channel (name, unit).
+void plot_rom_fit(const std::string& dir, const std::string& csv, const std::string& png, const std::string& title,
+                  const std::vector<std::pair<std::string, std::string>>& channels);
 
 }  // namespace terracal::app

@@ -1,5 +1,7 @@
 // `terracal rom`: one reduced-order vehicle (11 or 18 DOF) driven by a driver file or a built-in
-// manoeuvre; writes trajectory.csv, trajectory.png and run.json.
+// manoeuvre; writes trajectory.csv, trajectory.png and run.json, and with a driver file inputs.txt
+// (its rows: the inputs applied).
+#include <algorithm>
 #include <filesystem>
 #include <memory>
 
@@ -114,12 +116,24 @@ int run_batch(const RomArgs& a, const rom::RomVehicle& vehicle, const rom::RomRu
       r.vehicles * o.end_time / std::max(r.wall_seconds, 1e-12), a.out);
   return 0;
 }
-// One vehicle: trajectory.csv, run.json and trajectory.png.
+// One vehicle: trajectory.csv, run.json and trajectory.png; with a driver file, inputs.txt.
 int run_single(const RomArgs& a, const rom::RomVehicle& vehicle, const rom::RomRunOptions& run,
                rom::RomDriver& driver) {
   std::filesystem::create_directories(a.out);
   const rom::RomRunResult r = rom::run_rom(vehicle, driver, run);
   rom::write_trajectory_csv(a.out + "/trajectory.csv", r.samples);
+  if (driver.series) {  // the inputs applied, as a driver file: the series' rows (read back exactly)
+    std::string source = driver.series->source();
+    std::replace_if(
+        source.begin(), source.end(), [](char c) { return c == '\n' || c == '\r'; }, '?');
+    std::string d =
+        fmt::format("# driver inputs of terracal rom: the rows of {}\n# time steering throttle braking\n", source);
+    const DriverSeries& s = *driver.series;
+    for (std::size_t i = 0; i < s.times().size(); ++i)
+      d += fmt::format("{:.17g} {:.17g} {:.17g} {:.17g}\n", s.times()[i], s.steering()[i], s.throttle()[i],
+                       s.braking()[i]);
+    write_text_atomically(a.out + "/inputs.txt", d);
+  }
   const nlohmann::json j = {{"model", rom::model_name(run.model)},
                             {"integrator", rom::integrator_name(run.integrator)},
                             {"vehicle", a.vehicle},

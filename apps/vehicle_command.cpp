@@ -1,6 +1,8 @@
 // `terracal vehicle`: the full multibody vehicle on rigid ground, driven by a driver file or a built-in
-// manoeuvre; writes trajectory.csv (as `terracal rom`), wheels.csv, run.json and trajectory.png; with
+// manoeuvre; writes trajectory.csv (as `terracal rom`), wheels.csv, inputs.txt (the driver inputs
+// applied, as a driver file), run.json and trajectory.png; with
 // --vtu, ParaView snapshots of the bodies in vtu/ (vehicle_NNNNN.vtu and vehicle.pvd).
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <memory>
@@ -44,6 +46,19 @@ void write_outputs(const VehicleArgs& a, const vehicle::VehicleRunResult& r) {
     w += fmt::format("{:.6g},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", s.time, s.wheel, s.contact.fz,
                      s.contact.fx, s.contact.fy, s.contact.sx, s.contact.sy, s.contact.deflection, s.contact.sinkage);
   write_text_atomically(a.out + "/wheels.csv", w);
+  // The inputs applied, as a driver file (DriverSeries::read gives them back exactly).
+  std::string source = a.inputs.empty() ? a.maneuver : a.inputs;
+  std::replace_if(
+      source.begin(), source.end(), [](char c) { return c == '\n' || c == '\r'; }, '?');  // one line
+  std::string d = a.inputs.empty() ? fmt::format(
+                                         "# driver inputs of terracal vehicle --maneuver {}: at every control time "
+                                         "and the end, linear between rows\n",
+                                         source)
+                                   : fmt::format("# driver inputs of terracal vehicle: the rows of {}\n", source);
+  d += "# time steering throttle braking\n";
+  for (const auto& k : r.inputs)
+    d += fmt::format("{:.17g} {:.17g} {:.17g} {:.17g}\n", k.time, k.input.steering, k.input.throttle, k.input.braking);
+  write_text_atomically(a.out + "/inputs.txt", d);
   nlohmann::json j = {{"model", "full multibody vehicle"},
                       {"integrator", "IDAS (GGL index 2)"},
                       {"vehicle", a.vehicle},

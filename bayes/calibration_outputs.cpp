@@ -33,20 +33,6 @@ double noise_sd_in_units(const CalibrationProblem& pb, const CalibrationResult& 
   return std::sqrt(res.point.noise_var[t]) * rms(pb.set(t).w);
 }
 
-std::vector<std::size_t> thinned_draws(long draws, int keep) {
-  std::vector<std::size_t> idx;
-  const long n = std::min<long>(draws, keep);
-  for (long k = 0; k < n; ++k) idx.push_back(static_cast<std::size_t>((k * draws) / n));
-  return idx;
-}
-
-Variable chain_draw_variable(const std::string& name, const std::string& units,
-                             const std::vector<std::vector<double>>& per_chain) {
-  Variable v{name, {"chain", "draw"}, {per_chain.size(), per_chain.empty() ? 0 : per_chain[0].size()}, {}, units};
-  for (const auto& c : per_chain) v.data.insert(v.data.end(), c.begin(), c.end());
-  return v;
-}
-
 constexpr const char* kElasticMethod = "weighted linear least squares on unload/reload branches";
 
 // Ke is not sampled: its posterior entry is the normal approximation of the linear fit. The keys
@@ -162,15 +148,7 @@ InferenceData make_inference_data(const CalibrationProblem& pb, const Calibratio
   }
   id.groups.push_back(posterior);
 
-  // Running acceptance rate of each chain up to each draw.
-  std::vector<std::vector<double>> rate(res.accepted.size());
-  for (std::size_t c = 0; c < res.accepted.size(); ++c) {
-    double s = 0;
-    for (std::size_t d = 0; d < res.accepted[c].size(); ++d)
-      rate[c].push_back((s += res.accepted[c][d]) / double(d + 1));
-  }
-  id.groups.push_back(
-      {"sample_stats", {chain_draw_variable("lp", "1", res.lp), chain_draw_variable("acceptance_rate", "1", rate)}});
+  id.groups.push_back(sample_stats_group(res.lp, res.accepted));
 
   Group observed{"observed_data", {}}, constant{"constant_data", {}}, predictive{"posterior_predictive", {}};
   Rng rng = Rng::for_stream(seed, 7);

@@ -13,6 +13,8 @@
 
 #include "bayes/dram.hpp"
 #include "bayes/ensemble.hpp"
+#include "bayes/independence.hpp"
+#include "bayes/safe_eval.hpp"
 #include "core/checkpoint_file.hpp"
 #include "core/errors.hpp"
 
@@ -110,10 +112,56 @@ class Ensemble : public MultiChain {
   EnsembleSampler sampler_;
 };
 
+// Independence chains: the Laplace proposal, refitted to the pooled states halfway through the
+// warm-up and at its end (from its second half); fixed while draws are kept.
+class Independence : public MultiChain {
+ public:
+  Independence(const Target& target, const std::vector<Eigen::VectorXd>& starts, const Eigen::VectorXd& noise0,
+               const PointEstimate& est, std::uint64_t seed)
+      : sampler_(target, IndependenceOptions{}, est.x, est.covariance, starts,
+                 std::vector<Eigen::VectorXd>(starts.size(), noise0), Rng::for_stream(seed, 98)) {}
+  int chains() const override { return static_cast<int>(sampler_.size()); }
+  void advance(int iterations, bool adapt, std::vector<ChainRecord>* record) override {
+    std::vector<Eigen::VectorXd> pool;
+    for (int i = 0; i < iterations; ++i) {
+      std::vector<long> before(sampler_.size());
+      for (std::size_t k = 0; k < sampler_.size(); ++k) before[k] = sampler_.stats()[k].accepted;
+      sampler_.step();
+      if (adapt) {
+        pool.insert(pool.end(), sampler_.states().begin(), sampler_.states().end());
+        if (i + 1 == iterations / 2 || i + 1 == iterations) {
+          sampler_.refit(pool);
+          pool.clear();
+        }
+      }
+      if (record)
+        for (std::size_t k = 0; k < sampler_.size(); ++k)
+          record_state((*record)[k], sampler_.states()[k], sampler_.nuisances()[k], sampler_.log_densities()[k],
+                       sampler_.stats()[k].accepted > before[k]);
+    }
+  }
+  long failed_evaluations() const override {
+    long n = 0;
+    for (const auto& s : sampler_.stats()) n += s.failed_evaluations;
+    return n;
+  }
+  nlohmann::json save() const override { return sampler_.save(); }
+  void load(const nlohmann::json& j) override { sampler_.load(j); }
+
+ private:
+  IndependenceSampler sampler_;
+};
+
 // Starting points dispersed around the MAP: MAP + 2 L z (L the Cholesky factor of the Laplace
 // covariance), redrawn until inside the support, so that R-hat can detect chains that disagree.
 // A start that cannot be dispersed is reported: identical chains would make R-hat meaningless.
-std::vector<Eigen::VectorXd> dispersed_starts(const CalibrationProblem& pb, const PointEstimate& est, int count,
+// The log density at a candidate start, -inf where the forward model fails.
+double start_log_density(const Target& target, const Eigen::VectorXd& x, const Eigen::VectorXd& noise_var) {
+  ChainStats ignored;
+  return safe_log_density(target, x, noise_var, ignored);
+}
+
+std::vector<Eigen::VectorXd> dispersed_starts(const Target& target, const PointEstimate& est, int count,
                                               std::uint64_t seed, std::vector<std::string>& notes) {
   Rng rng = Rng::for_stream(seed, 1);
   const Eigen::MatrixXd L = est.covariance.llt().matrixL();  // positive definite by construction (point_estimate)
@@ -123,10 +171,10 @@ std::vector<Eigen::VectorXd> dispersed_starts(const CalibrationProblem& pb, cons
     Eigen::VectorXd x = est.x;
     bool found = false;
     for (int attempt = 0; attempt < 200 && !found; ++attempt) {
-      Eigen::VectorXd z(pb.dim());
-      for (int j = 0; j < pb.dim(); ++j) z[j] = rng.normal();
+      Eigen::VectorXd z(target.dim);
+      for (int j = 0; j < target.dim; ++j) z[j] = rng.normal();
       const Eigen::VectorXd y = est.x + 2.0 * L * z;
-      if (std::isfinite(pb.log_posterior(pb.expand(y), est.noise_var))) {
+      if (std::isfinite(start_log_density(target, y, est.noise_var))) {
         x = y;
         found = true;
       }
@@ -279,21 +327,28 @@ CalibrationResult calibrate(const CalibrationProblem& pb, const CalibrationOptio
   for (int i : pb.free_indices()) res.names.emplace_back(kShortNames[i]);
   res.num_params = pb.dim();
   for (int t = 0; t < pb.num_types(); ++t) res.names.push_back("sigma2_" + pb.set(t).name);
+  sample_posterior(pb.target(), opt, res);
+  return res;
+}
 
-  const Target target = pb.target();
+void sample_posterior(const Target& target, const CalibrationOptions& opt, CalibrationResult& res) {
+  if (opt.chains < 2) throw InputError(fmt::format("chains {}: at least 2 chains are needed for R-hat", opt.chains));
+  const int dim = target.dim;
   int count = opt.chains;
   if (opt.sampler == SamplerKind::kEnsemble)
-    count = std::max(opt.chains, 2 * pb.dim() + 2) + std::max(opt.chains, 2 * pb.dim() + 2) % 2;
+    count = std::max(opt.chains, 2 * dim + 2) + std::max(opt.chains, 2 * dim + 2) % 2;
   if (res.point.unconstrained_directions > 0)
     res.notes.push_back(
         fmt::format("the data do not constrain {} combination(s) of the free parameters (the least-squares "
                     "covariance is singular): the posterior there is set by the priors and sampling may not "
                     "converge; fix a parameter or give an informative prior",
                     res.point.unconstrained_directions));
-  const auto starts = dispersed_starts(pb, res.point, count, opt.seed, res.notes);
+  const auto starts = dispersed_starts(target, res.point, count, opt.seed, res.notes);
   auto make_sampler = [&]() -> std::unique_ptr<MultiChain> {
     if (opt.sampler == SamplerKind::kDram)
       return std::make_unique<DramChains>(target, starts, res.point.noise_var, res.point.covariance, opt.seed);
+    if (opt.sampler == SamplerKind::kIndependence)
+      return std::make_unique<Independence>(target, starts, res.point.noise_var, res.point, opt.seed);
     return std::make_unique<Ensemble>(target, starts, res.point.noise_var, opt.seed);
   };
   std::unique_ptr<MultiChain> sampler = make_sampler();
@@ -334,7 +389,6 @@ CalibrationResult calibrate(const CalibrationProblem& pb, const CalibrationOptio
   }
 
   collect_draws(cp, sampler->failed_evaluations(), count, nv, res);
-  return res;
 }
 
 }  // namespace terracal::bayes

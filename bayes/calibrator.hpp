@@ -20,7 +20,10 @@
 
 namespace terracal::bayes {
 
-enum class SamplerKind { kDram, kEnsemble };
+// DRAM chains, the affine-invariant ensemble, or independence Metropolis-Hastings chains with a
+// t proposal fitted to the Laplace approximation (independence.hpp: for simulation-backed targets,
+// one batch of runs per step).
+enum class SamplerKind { kDram, kEnsemble, kIndependence };
 
 struct CalibrationProgress {
   // "resumed" or "restarted" (a checkpoint was found; `message` says what of it), then "warm-up"
@@ -67,5 +70,11 @@ struct CalibrationResult {
 };
 
 CalibrationResult calibrate(const CalibrationProblem& problem, const CalibrationOptions& options);
+
+// Stage 2 and 3 alone, for any target (the SCM problem's, or a simulation-backed one): `res` comes
+// with its point estimate (x, covariance, noise_var, unconstrained_directions), `names` (the target's
+// free parameters, then its noise variances) and `num_params`; the draws, diagnostics and
+// termination are added to it.
+void sample_posterior(const Target& target, const CalibrationOptions& options, CalibrationResult& res);
 
 }  // namespace terracal::bayes

@@ -1,6 +1,7 @@
 #include "bayes/ensemble.hpp"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -57,7 +58,38 @@ void EnsembleSampler::step() {
 
 void EnsembleSampler::move_half(std::size_t first, std::size_t other_first) {
   const std::size_t half = walkers_.size() / 2;
+  if (target_->log_density_batch) return move_half_batched(first, other_first);
   for (std::size_t k = first; k < first + half; ++k) stretch_move(k, other_first);
+}
+
+// The same stretch moves, but every proposal of the half drawn first and evaluated as one batch.
+// (The random numbers come in another order than stretch_move's, so the draws differ from the
+// one-by-one path's for the same seed; each path is reproducible on its own.)
+void EnsembleSampler::move_half_batched(std::size_t first, std::size_t other_first) {
+  const std::size_t half = walkers_.size() / 2;
+  std::vector<Eigen::VectorXd> ys(half), nus(half);
+  std::vector<double> zs(half), lps(half);
+  for (std::size_t i = 0; i < half; ++i) {
+    const std::size_t k = first + i, j = other_first + rng_.below(half);
+    zs[i] = stretch_factor(opt_.a, rng_);
+    ys[i] = walkers_[j] + zs[i] * (walkers_[k] - walkers_[j]);
+    nus[i] = nuisances_[k];
+  }
+  try {
+    target_->log_density_batch(ys, nus, lps);
+  } catch (const std::exception&) {
+    lps.assign(half, std::numeric_limits<double>::quiet_NaN());
+  }
+  if (lps.size() != half) throw std::logic_error("Target.log_density_batch: wrong number of results");
+  for (std::size_t i = 0; i < half; ++i) {
+    const std::size_t k = first + i;
+    const double lp = checked_log_density(lps[i], stats_[k]);
+    ++stats_[k].iterations;
+    if (!accept((target_->dim - 1) * std::log(zs[i]) + log_density_ratio(lp, logp_[k]), rng_)) continue;
+    walkers_[k] = std::move(ys[i]);
+    logp_[k] = lp;
+    ++stats_[k].accepted;
+  }
 }
 
 // y = x_j + z (x_k - x_j) with x_j from the other half, accepted with min(1, z^(d-1) pi(y)/pi(x_k))

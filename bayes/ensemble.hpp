@@ -42,6 +42,7 @@ class EnsembleSampler {
 
  private:
   void move_half(std::size_t first, std::size_t other_first);
+  void move_half_batched(std::size_t first, std::size_t other_first);
   void stretch_move(std::size_t k, std::size_t other_first);
   void gibbs_update(std::size_t k);
 

@@ -25,4 +25,12 @@ struct InferenceData {
   std::vector<Group> groups;
 };
 
+// Indices of `keep` draws spread evenly over `draws` (all of them when there are fewer).
+std::vector<std::size_t> thinned_draws(long draws, int keep);
+// A (chain, draw) variable from per-chain draws of equal length.
+Variable chain_draw_variable(const std::string& name, const std::string& units,
+                             const std::vector<std::vector<double>>& per_chain);
+// sample_stats: lp, and each chain's running acceptance rate up to each draw (accepted: 0/1 per draw).
+Group sample_stats_group(const std::vector<std::vector<double>>& lp, const std::vector<std::vector<double>>& accepted);
+
 }  // namespace terracal::bayes

@@ -19,28 +19,14 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Hard physical limits: a priors file may narrow them, never widen them.
-struct Limits {
-  double lower, upper;
-  bool lower_open;
-};
-constexpr std::array<Limits, kNumParams> kPhysical = {{
-    {-1e9, 1e9, false},  // Kc
-    {0.0, 1e11, false},  // Kphi
-    {0.0, 2.0, true},    // n: 0 < n <= 2
-    {0.0, 1e7, false},   // c
-    {0.0, 60.0, false},  // phi [deg]
-    {0.0, 10.0, true},   // k > 0
+constexpr std::array<Range, kNumParams> kPhysical = {{
+    {-1e9, 1e9},               // Kc
+    {0.0, 1e11},               // Kphi
+    {0.0, 2.0, true, false},   // n: 0 < n <= 2
+    {0.0, 1e7},                // c
+    {0.0, 60.0},               // phi [deg]
+    {0.0, 10.0, true, false},  // k > 0
 }};
-
-std::string range_text(int i) {
-  const auto& l = kPhysical[i];
-  return fmt::format("{}{}, {}]", l.lower_open ? "(" : "[", l.lower, l.upper);
-}
-
-bool physically_allowed(int i, double x) {
-  const auto& l = kPhysical[i];
-  return (l.lower_open ? x > l.lower : x >= l.lower) && x <= l.upper;
-}
 
 double get_number(const nlohmann::json& j, const std::string& path, const std::string& key, const char* field) {
   if (!j.contains(field)) throw InputError(fmt::format("{}: key '{}': missing field '{}'", path, key, field));
@@ -121,6 +107,45 @@ Prior fixed_prior(double value) {
   return p;
 }
 
+Prior parse_prior(const nlohmann::json& spec, const std::string& path, const std::string& key, const Range& allowed,
+                  const Prior& base) {
+  if (!spec.is_object() || !spec.contains("type") || !spec["type"].is_string())
+    throw InputError(fmt::format("{}: key '{}': expected an object with a string field 'type'", path, key));
+  Prior pr = base;
+  pr.user_given = true;
+  const std::string type = spec["type"];
+  refuse_unknown_fields(spec, path, key, type);
+  if (spec.contains("lower")) pr.lower = get_number(spec, path, key, "lower");
+  if (spec.contains("upper")) pr.upper = get_number(spec, path, key, "upper");
+  if (type == "uniform") {
+    pr.kind = Prior::Kind::kUniform;
+  } else if (type == "normal" || type == "lognormal") {
+    pr.kind = type == "normal" ? Prior::Kind::kNormal : Prior::Kind::kLogNormal;
+    pr.mean = get_number(spec, path, key, "mean");
+    pr.sd = get_number(spec, path, key, "sd");
+    if (!(pr.sd > 0)) throw InputError(fmt::format("{}: key '{}.sd': {} must be > 0", path, key, pr.sd));
+  } else if (type == "fixed") {
+    const double value = get_number(spec, path, key, "value");
+    if (!allowed.contains(value))
+      throw InputError(
+          fmt::format("{}: key '{}.value': {} is outside the physical range {}", path, key, value, allowed.text()));
+    return fixed_prior(value);
+  } else {
+    throw InputError(
+        fmt::format("{}: key '{}.type': {} is not a prior type; expected uniform, normal, lognormal or fixed", path,
+                    key, excerpt(type)));
+  }
+  if (!(pr.lower < pr.upper))
+    throw InputError(fmt::format("{}: key '{}': lower {} must be below upper {}", path, key, pr.lower, pr.upper));
+  if (!allowed.contains(pr.lower))
+    throw InputError(
+        fmt::format("{}: key '{}.lower': {} is outside the physical range {}", path, key, pr.lower, allowed.text()));
+  if (!allowed.contains(pr.upper))
+    throw InputError(
+        fmt::format("{}: key '{}.upper': {} is outside the physical range {}", path, key, pr.upper, allowed.text()));
+  return pr;
+}
+
 Priors load_priors(const std::string& path) {
   const nlohmann::json j = read_json_file(path, "priors file");
   if (!j.is_object()) throw InputError(fmt::format("{}: expected a JSON object keyed by parameter name", path));
@@ -135,41 +160,7 @@ Priors load_priors(const std::string& path) {
       throw InputError(fmt::format("{}: keys '{}' and '{}' both give the prior of {}; expected one of them", path,
                                    named_by[i], key, kShortNames[i]));
     named_by[i] = key;
-    if (!spec.is_object() || !spec.contains("type") || !spec["type"].is_string())
-      throw InputError(fmt::format("{}: key '{}': expected an object with a string field 'type'", path, key));
-    Prior& pr = p[i];
-    pr.user_given = true;
-    const std::string type = spec["type"];
-    refuse_unknown_fields(spec, path, key, type);
-    if (spec.contains("lower")) pr.lower = get_number(spec, path, key, "lower");
-    if (spec.contains("upper")) pr.upper = get_number(spec, path, key, "upper");
-    if (type == "uniform") {
-      pr.kind = Prior::Kind::kUniform;
-    } else if (type == "normal" || type == "lognormal") {
-      pr.kind = type == "normal" ? Prior::Kind::kNormal : Prior::Kind::kLogNormal;
-      pr.mean = get_number(spec, path, key, "mean");
-      pr.sd = get_number(spec, path, key, "sd");
-      if (!(pr.sd > 0)) throw InputError(fmt::format("{}: key '{}.sd': {} must be > 0", path, key, pr.sd));
-    } else if (type == "fixed") {
-      const double value = get_number(spec, path, key, "value");
-      if (!physically_allowed(i, value))
-        throw InputError(
-            fmt::format("{}: key '{}.value': {} is outside the physical range {}", path, key, value, range_text(i)));
-      pr = fixed_prior(value);
-      continue;
-    } else {
-      throw InputError(
-          fmt::format("{}: key '{}.type': {} is not a prior type; expected uniform, normal, lognormal or fixed", path,
-                      key, excerpt(type)));
-    }
-    if (!(pr.lower < pr.upper))
-      throw InputError(fmt::format("{}: key '{}': lower {} must be below upper {}", path, key, pr.lower, pr.upper));
-    if (!physically_allowed(i, pr.lower))
-      throw InputError(
-          fmt::format("{}: key '{}.lower': {} is outside the physical range {}", path, key, pr.lower, range_text(i)));
-    if (!physically_allowed(i, pr.upper))
-      throw InputError(
-          fmt::format("{}: key '{}.upper': {} is outside the physical range {}", path, key, pr.upper, range_text(i)));
+    p[i] = parse_prior(spec, path, key, kPhysical[i], p[i]);
   }
   return p;
 }

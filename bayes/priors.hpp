@@ -5,7 +5,10 @@
 #include <array>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "bayes/scm_parameters.hpp"
+#include "core/range.hpp"
 
 namespace terracal::bayes {
 
@@ -38,5 +41,12 @@ Prior fixed_prior(double value);
 // "Kc": {"type": "fixed", "value": 0}}. Keys are short ("Kphi") or Chrono names ("Bekker Kphi").
 // Throws InputError naming the file, key, value and allowed range.
 Priors load_priors(const std::string& path);
+
+// One prior from its JSON object ({"type": "uniform", "lower": .., "upper": ..}, normal/lognormal
+// with "mean" and "sd", or fixed with "value"): fields the file leaves out keep `base`'s values;
+// bounds and a fixed value must lie in `allowed`. The reader of every priors file (SCM parameters
+// here, vehicle parameters in calibrate-rom). Throws InputError naming path, key, value and range.
+Prior parse_prior(const nlohmann::json& spec, const std::string& path, const std::string& key, const Range& allowed,
+                  const Prior& base);
 
 }  // namespace terracal::bayes

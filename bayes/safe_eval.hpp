@@ -17,6 +17,15 @@ namespace terracal::bayes {
 
 inline constexpr double kMinusInf = -std::numeric_limits<double>::infinity();
 
+// The failure conventions of safe_log_density for one value of a batch.
+inline double checked_log_density(double lp, ChainStats& stats) {
+  if (std::isnan(lp) || lp == std::numeric_limits<double>::infinity()) {
+    ++stats.failed_evaluations;
+    return kMinusInf;
+  }
+  return lp;
+}
+
 // log density, or -inf (counted in stats.failed_evaluations) when the evaluation failed.
 inline double safe_log_density(const Target& target, const Eigen::VectorXd& x, const Eigen::VectorXd& nuisance,
                                ChainStats& stats) {
@@ -26,11 +35,7 @@ inline double safe_log_density(const Target& target, const Eigen::VectorXd& x, c
   } catch (const std::exception&) {
     lp = std::numeric_limits<double>::quiet_NaN();
   }
-  if (std::isnan(lp) || lp == std::numeric_limits<double>::infinity()) {
-    ++stats.failed_evaluations;
-    return kMinusInf;
-  }
-  return lp;
+  return checked_log_density(lp, stats);
 }
 
 // A starting point must be inside the support: a chain started at -inf has no direction to go.

@@ -3,6 +3,7 @@
 // (the noise variances of the calibration) that an exact Gibbs step draws given x. Samplers are
 // independent of the calibration problem: the tests run them on textbook targets.
 #include <functional>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -19,6 +20,13 @@ struct Target {
   std::function<double(const Eigen::VectorXd& x, const Eigen::VectorXd& nuisance)> log_density;
   // Draws the nuisance from its exact conditional given x (conjugate update).
   std::function<void(const Eigen::VectorXd& x, Eigen::VectorXd& nuisance, Rng& rng)> gibbs;
+  // Optional: the log densities of many points at once, out[i] of (xs[i], nuisances[i]), with the
+  // meaning and failure conventions of log_density (a failed point is NaN or +inf). A forward model
+  // that runs a simulation per point evaluates them as one batch (threads, or one GPU launch); the
+  // ensemble sampler then proposes a whole half of its walkers before evaluating any.
+  std::function<void(const std::vector<Eigen::VectorXd>& xs, const std::vector<Eigen::VectorXd>& nuisances,
+                     std::vector<double>& out)>
+      log_density_batch;
 };
 
 // Counters a chain keeps; saved in checkpoints.

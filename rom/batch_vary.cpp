@@ -41,6 +41,9 @@ enum ParamId : int {
   kTireCorneringScale,
   kTireLongitudinalScale,
   kTorqueScale,
+  kTireCorneringScaleFront,
+  kTireCorneringScaleRear,
+  kRollingResistance,
   kParamCount
 };
 
@@ -69,6 +72,9 @@ const ParamInfo kParams[kParamCount] = {
     {"tire_cornering_scale", "-", {0, 100, true, false, ""}},
     {"tire_longitudinal_scale", "-", {0, 100, true, false, ""}},
     {"torque_scale", "-", {0, 100, true, false, ""}},
+    {"tire_cornering_scale_front", "-", {0, 100, true, false, ""}},
+    {"tire_cornering_scale_rear", "-", {0, 100, true, false, ""}},
+    {"rolling_resistance", "-", {0, 1, false, false, ""}},
 };
 
 int param_id(const std::string& name) {
@@ -146,6 +152,15 @@ void apply(RomVehicle& v, const RomVehicle& base, int id, double x) {
     case kTireLongitudinalScale:
       for (int a = 0; a < 2; ++a)
         for (int l = 0; l < 2; ++l) v.tire[a].x[l].df0 = x * base.tire[a].x[l].df0;
+      break;
+    case kTireCorneringScaleFront:
+    case kTireCorneringScaleRear: {
+      const int a = id == kTireCorneringScaleFront ? 0 : 1;
+      for (int l = 0; l < 2; ++l) v.tire[a].y[l].df0 = x * base.tire[a].y[l].df0;
+      break;
+    }
+    case kRollingResistance:
+      for (auto& t : v.tire) t.rolling_resistance = x;
       break;
     case kTorqueScale:
       for (int i = 0; i < base.powertrain.max_torque.n; ++i)

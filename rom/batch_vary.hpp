@@ -24,6 +24,9 @@
 //   tire_cornering_scale     factor [-] on the lateral df0 at both loads of both axles' tires
 //   tire_longitudinal_scale  factor [-] on the longitudinal df0 at both loads of both axles' tires
 //   torque_scale             factor [-] on every y value of the engine's full-load torque map
+//   tire_cornering_scale_front, tire_cornering_scale_rear
+//                            factor [-] on the lateral df0 of one axle's tires
+//   rolling_resistance       coefficient [-] of every tire (the vehicle needs the rolling_resistance effect)
 //
 // Each parameter has an allowed range (the vehicle reader's, vary_parameter_range); a drawn value
 // outside it, or a drawn vehicle that fails rom::validate, is an InputError naming the parameter,

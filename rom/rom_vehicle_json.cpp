@@ -53,6 +53,8 @@ RomVehicle read_own(JsonObject& o, const std::string& folder, bool tire_given) {
   o.string_or("type", "ROM vehicle", {"ROM vehicle"});
   o.raw("name");
   if (o.has("source")) o.raw("source");
+  for (const char* k : {"Posterior", "Fit"})  // calibrate-rom's record of how the values were found
+    if (o.has(k)) o.raw(k);
   read_effects(o, v);
   v.mass = o.number("mass", 0, 1e7, true);
   axle_pair(o, "unsprung_mass", v.unsprung_mass, 0, 1e6, false);

@@ -201,11 +201,19 @@ VehicleRunResult run_full_vehicle(const FullVehicleSpec& spec, const DriverSerie
   if (snapshots.next() == 0) snapshots.take(v, 0);
   double next_row = dt;
   auto last_report = std::chrono::steady_clock::now();
+  if (series)
+    for (std::size_t i = 0; i < series->times().size(); ++i)
+      r.inputs.push_back(
+          {series->times()[i], DriverInput{series->steering()[i], series->throttle()[i], series->braking()[i]}});
+  double t_prev = 0;  // the last control time
   for (long k = 1;; ++k) {
     const double t = std::min(k * chunk, o.end_time);
     if (maneuver) {
       const VehicleSample now = sample(v, in, in.time() - t0);
       before = v.driver_input(in.time());
+      // Linear from here to the next control time (the ramp takes a control period, chunk at most).
+      r.inputs.push_back({t_prev, before});
+      t_prev = t;
       latest = maneuver->at(VehiclePose{now.time, now.x, now.y, now.yaw, now.vx});
       changed_at = in.time();
     }
@@ -222,7 +230,10 @@ VehicleRunResult run_full_vehicle(const FullVehicleSpec& spec, const DriverSerie
       next_row += dt;
     }
     if (const double ts = snapshots.next(); ts <= t + 1e-9) snapshots.take(v, ts);  // due now
-    if (t >= o.end_time) break;
+    if (t >= o.end_time) {
+      if (maneuver) r.inputs.push_back({t, v.driver_input(in.time())});
+      break;
+    }
     if (std::chrono::steady_clock::now() - last_report > std::chrono::seconds(5)) {
       last_report = std::chrono::steady_clock::now();
       const VehicleSample& now = r.samples.back();

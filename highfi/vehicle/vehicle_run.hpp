@@ -20,7 +20,7 @@ struct VehicleRunOptions {
   double output_rate = 100;      // rows per second
   double rtol = 1e-5;            // IDAS relative tolerance (absolute: rtol / 100)
   double max_step = 0;           // s, IDAS's largest step; 0: free
-  double control_period = 0.01;  // s, a manoeuvre's controller period (inputs held between)
+  double control_period = 0.01;  // s, a manoeuvre's controller period (each output reached linearly over it)
   double settle_time = 3;        // s at rest before the run (on SCM: on rigid ground, then as long on the soil)
   double friction = 1;           // the ground's friction over the tire data's
   // SCM soil instead of rigid ground: the wheels as rigid cylinders in it (scm_wheel_contact.hpp),
@@ -49,8 +49,18 @@ struct WheelSample {
   TireContact contact;
 };
 
+// The driver inputs in effect at `time` (the trajectory's clock: 0 is trajectory.csv's first row).
+struct DriverKnot {
+  double time = 0;
+  DriverInput input;
+};
+
 struct VehicleRunResult {
   std::vector<VehicleSample> samples;
+  // The driver inputs applied, as knots that are linear between them (DriverSeries::at reproduces
+  // them): a driver file's own rows; a manoeuvre's inputs at every control time (each ramp's start)
+  // and at end_time. Times strictly increasing.
+  std::vector<DriverKnot> inputs;
   std::vector<WheelSample> wheels;
   long steps = 0, residuals = 0;
   double wall_seconds = 0, max_constraint_violation = 0;

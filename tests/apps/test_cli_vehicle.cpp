@@ -1,6 +1,7 @@
 // terracal vehicle: a short run of the full HMMWV writes trajectory.csv with the reduced-order
 // vehicles' columns, wheels.csv whose loads carry the vehicle, and run.json; with --vtu, ParaView
-// snapshots of its bodies at the snapshot rate, listed in vtu/vehicle.pvd, without changing the run.
+// snapshots of its bodies at the snapshot rate, listed in vtu/vehicle.pvd, without changing the run;
+// inputs.txt, the driver inputs applied, read back as a driver file (and driving the same run again).
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -12,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/csv.hpp"
+#include "core/vehicle/driver_inputs.hpp"
 #include "core/vtu_writer.hpp"
 #include "highfi/vehicle/full_vehicle.hpp"
 #include "highfi/vehicle/vehicle_vtu.hpp"
@@ -27,11 +29,19 @@ using namespace terracal::test;
 TEST_CASE("terracal vehicle: a short run writes the trajectory and the wheel loads", "[apps][vehicle]") {
   ScratchDir dir("cli_vehicle");
   const std::string root = dir.path.string();
-  test::write(root + "/drive.txt", "0 0 0 0\n0.5 0 0.3 0\n");
+  // A throttle ramp; the middle row lies on it (0.15 has no exact double: inputs.txt keeps every digit).
+  test::write(root + "/drive.txt", "# time steering throttle braking\n0 0 0 0\n0.25, 0, 0.15, 0\n0.5 0 0.3 0\n");
   const CliResult r =
       run_cli("vehicle --vehicle hmmwv --inputs " + root + "/drive.txt --out " + root + "/o --no-plots", root);
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
+  // inputs.txt, read as a driver file, gives back the rows of the one given.
+  const DriverSeries given = DriverSeries::read(root + "/drive.txt");
+  const DriverSeries applied = DriverSeries::read(root + "/o/inputs.txt");
+  CHECK(applied.times() == given.times());
+  CHECK(applied.steering() == given.steering());
+  CHECK(applied.throttle() == given.throttle());
+  CHECK(applied.braking() == given.braking());
   std::istringstream traj(test::read_file(root + "/o/trajectory.csv"));
   std::string header, line;
   std::getline(traj, header);
@@ -232,4 +242,38 @@ TEST_CASE("terracal vehicle: a vehicle file with rack-and-pinion steering drives
   INFO(last);
   CHECK(v[1] > 15);   // x: at about 10 m/s
   CHECK(v[2] > 0.1);  // y: to the left
+  // inputs.txt: the inputs applied, a knot at every control time (0.01 s; each new output is reached
+  // linearly within it) from 0 to the end, the first steering to the left.
+  const DriverSeries in = DriverSeries::read(root + "/o/inputs.txt");
+  REQUIRE(in.size() == 201);
+  CHECK(in.start_time() == 0);
+  CHECK(in.end_time() == 2);
+  double most_left = 0;
+  for (int k = 0; k < in.size(); ++k) {
+    INFO("row " << k);
+    CHECK(in.times()[std::size_t(k)] == Approx(0.01 * k).margin(1e-12));
+    CHECK(std::abs(in.steering()[std::size_t(k)]) <= 1);
+    most_left = std::max(most_left, in.steering()[std::size_t(k)]);
+  }
+  CHECK(in.steering()[0] == 0);  // the controller's first output is reached over the first period
+  CHECK(most_left > 0.05);
+  // Driven by inputs.txt the vehicle drives the same run (the integrator stops at the control times
+  // only in the manoeuvre's run: a few micrometres apart after 2 s).
+  const CliResult again = run_cli("vehicle --vehicle " + root + "/rack.json --inputs " + root +
+                                      "/o/inputs.txt --initial-speed 10 --no-plots --out " + root + "/again",
+                                  root);
+  INFO(again.err);
+  REQUIRE(again.exit_code == 0);
+  std::istringstream traj2(test::read_file(root + "/again/trajectory.csv"));
+  std::string last2;
+  while (std::getline(traj2, line)) last2 = line;
+  std::vector<double> v2;
+  std::stringstream cells2(last2);
+  for (std::string c; std::getline(cells2, c, ',');) v2.push_back(std::stod(c));
+  REQUIRE(v2.size() == v.size());
+  CHECK(v2[0] == v[0]);                  // time: 2 s, the file's last row
+  CHECK(std::abs(v2[1] - v[1]) < 1e-4);  // x
+  CHECK(std::abs(v2[2] - v[2]) < 1e-4);  // y
+  CHECK(std::abs(v2[4] - v[4]) < 1e-5);  // yaw
+  CHECK(std::abs(v2[7] - v[7]) < 1e-4);  // vx
 }

@@ -1,5 +1,5 @@
 // `terracal rom` end to end: a manoeuvre and a driver file write trajectory.csv with the contract's
-// header, 100 Hz rows, and run.json.
+// header, 100 Hz rows, and run.json; with a driver file, inputs.txt holding its rows.
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 
 #include "core/device_selftest.hpp"
+#include "core/vehicle/driver_inputs.hpp"
 #include "rom/trajectory_csv.hpp"
 #include "tests/apps/cli_runner.hpp"
 #include "tests/skip.hpp"
@@ -39,6 +40,25 @@ TEST_CASE("terracal rom: a step steer writes trajectory.csv at 100 Hz", "[cli][r
   CHECK(rows == 301);
   CHECK(yaw_rate_end > 0.05);  // positive steering turns left
   CHECK(std::ifstream(dir.str() + "/out/run.json").good());
+  // A manoeuvre's held inputs are not reported by the run: no inputs.txt (docs/formats.md).
+  CHECK_FALSE(std::filesystem::exists(dir.str() + "/out/inputs.txt"));
+}
+
+TEST_CASE("terracal rom --inputs: inputs.txt gives back the driver file's rows", "[cli][rom]") {
+  const ScratchDir dir("cli_rom_inputs");
+  // Commas, a comment and values without an exact double (inputs.txt keeps every digit).
+  std::ofstream(dir.str() + "/drive.txt") << "# a gentle turn\n0 0 0.3 0\n0.4, 0.1, 0.35, 0\n1 -0.05 0.2 0.1\n";
+  const CliResult r = run_cli("rom --model 11dof --vehicle hmmwv --inputs " + dir.str() +
+                                  "/drive.txt --initial-speed 10 --no-plots --out " + dir.str() + "/out",
+                              dir.str());
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const terracal::DriverSeries given = terracal::DriverSeries::read(dir.str() + "/drive.txt");
+  const terracal::DriverSeries applied = terracal::DriverSeries::read(dir.str() + "/out/inputs.txt");
+  CHECK(applied.times() == given.times());
+  CHECK(applied.steering() == given.steering());
+  CHECK(applied.throttle() == given.throttle());
+  CHECK(applied.braking() == given.braking());
 }
 
 #include <hdf5.h>

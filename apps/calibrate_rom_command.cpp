@@ -1,0 +1,82 @@
+// terracal calibrate-rom: a reduced-order vehicle's parameters and their posterior from reference
+// runs (apps/rom_calibration.hpp); writes rom_params.json (loads as --vehicle), posterior.h5 and
+// the fits.
+#include <filesystem>
+#include <map>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "apps/cli_checks.hpp"
+#include "apps/commands.hpp"
+#include "apps/out_dir.hpp"
+#include "apps/rom_calibration.hpp"
+#include "apps/rom_choices.hpp"
+#include "core/atomic_file.hpp"
+
+namespace terracal::app {
+
+namespace {
+struct CalibrateRomArgs {
+  RomCalibrationSettings s;
+  std::string references, device = "auto";
+};
+}  // namespace
+
+Command add_calibrate_rom(CLI::App& app) {
+  auto* sub = app.add_subcommand("calibrate-rom",
+                                 "Fit a reduced-order vehicle's parameters and their posterior to reference runs");
+  auto a = std::make_shared<CalibrateRomArgs>();
+  RomCalibrationSettings& s = a->s;
+  add_choice(sub, "--model", s.model, kRomModels, "vehicle model");
+  sub->add_option("--vehicle", s.vehicle, "vehicle file (JSON, terracal's format) or preset: hmmwv, sedan")->required();
+  sub->add_option("--reference", a->references,
+                  "reference folders, comma-separated, each with trajectory.csv and inputs.txt")
+      ->required();
+  sub->add_option("--params", s.params_json, "parameters to fit and their priors (JSON); default: docs/rom.md")
+      ->check(CLI::ExistingFile);
+  sub->add_option("--out", s.out, "output folder (rom_params.json, posterior.h5, fit_*.csv, fit_*.png)")->required();
+  add_seed_option(sub, s.seed, "random seed: the same seed gives the same draws");
+  const std::map<std::string, bayes::SamplerKind> samplers{{"independence", bayes::SamplerKind::kIndependence},
+                                                           {"ensemble", bayes::SamplerKind::kEnsemble}};
+  add_choice(sub, "--sampler", s.sampler, samplers,
+             "independence (t proposal from the least-squares fit, one batch per step) or ensemble (affine-invariant)");
+  sub->add_option("--chains", s.chains,
+                  "chains run side by side, one batch per step (ensemble: walkers, even, at least 2 x parameters + 2); "
+                  "0: 32 (ensemble: that minimum)")
+      ->check(whole_in(0, 100000))
+      ->capture_default_str();
+  sub->add_option("--min-ess", s.min_ess, "bulk effective sample size required for every parameter")
+      ->check(in_range(Range{0, 1e9, true, false}))
+      ->capture_default_str();
+  sub->add_option("--max-draws", s.max_draws, "draw cap per walker; reaching it is reported as not converged")
+      ->check(whole_in(10, 100000000))
+      ->capture_default_str();
+  sub->add_option("--warmup", s.warmup, "steps per chain discarded before the draws (the proposal adapts in them)")
+      ->check(whole_in(0, 1000000))
+      ->capture_default_str();
+  sub->add_option("--global-points", s.global_points, "random points of the global search")
+      ->check(whole_in(0, 10000000))
+      ->capture_default_str();
+  sub->add_option("--step", s.step, "the ROM's fixed step [s]")
+      ->check(in_range(Range{1e-5, 0.01, false, false}))
+      ->capture_default_str();
+  sub->add_option("--device", a->device, "where the batches run: cpu, cuda or auto")
+      ->check(CLI::IsMember({"cpu", "cuda", "auto"}))
+      ->capture_default_str();
+  sub->add_flag("!--no-plots", s.plots, "skip the PNG plots");
+  return [a] {
+    const OutDir out = prepare_out_dir("--out", a->s.out);
+    a->s.references = rom::split_dirs(a->references, "--reference");
+    a->s.device = batch_device(a->device);
+    std::filesystem::create_directories(a->s.out);
+    const RomCalibrationOutcome r = run_rom_calibration(a->s);
+    fmt::print(
+        "calibrate-rom: {}; {} ROM runs ({} failed) in {:.3g} s ({:.3g} s in the batches); written to "
+        "{}/rom_params.json\n",
+        r.result.termination, r.runs, r.failed_runs, r.wall_seconds, r.forward_seconds, a->s.out);
+    return r.result.converged ? 0 : 1;
+  };
+}
+
+}  // namespace terracal::app

@@ -1,0 +1,274 @@
+#include "apps/rom_calibration.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <spdlog/spdlog.h>
+
+#include "apps/report_plots.hpp"
+#include "bayes/model_outputs.hpp"
+#include "bayes/model_point_estimate.hpp"
+#include "bayes/posterior_h5.hpp"
+#include "core/atomic_file.hpp"
+#include "core/errors.hpp"
+#include "core/json_file.hpp"
+#include "core/text_check.hpp"
+#include "rom/batch_vary.hpp"
+#include "rom/rom_forward.hpp"
+#include "rom/rom_vehicle_edit.hpp"
+#include "rom/rom_vehicle_json.hpp"
+
+namespace terracal::app {
+namespace {
+
+// The value a parameter has in `base` (a scale is 1 there).
+double base_value(const rom::RomVehicle& v, const std::string& n) {
+  if (n == "mass") return v.mass;
+  if (n == "cg_height") return v.cg_height;
+  if (n == "cg_to_front") return v.cg_to_front;
+  if (n == "yaw_inertia") return v.yaw_inertia;
+  if (n == "roll_inertia") return v.roll_inertia;
+  if (n == "max_steer") return v.max_steer;
+  if (n == "friction") return v.friction;
+  if (n == "gravity") return v.gravity;
+  if (n == "drag_area") return v.drag_area;
+  if (n == "roll_stiffness_front") return v.roll_stiffness[0];
+  if (n == "roll_stiffness_rear") return v.roll_stiffness[1];
+  if (n == "roll_damping_front") return v.roll_damping[0];
+  if (n == "roll_damping_rear") return v.roll_damping[1];
+  if (n == "max_brake_torque") return v.powertrain.max_brake_torque;
+  if (n == "rolling_resistance") return v.tire[0].rolling_resistance;
+  return 1.0;  // the scales
+}
+
+bayes::ModelParameter uniform(const rom::RomVehicle& base, const std::string& name, double lo, double hi) {
+  bayes::ModelParameter p{name, rom::vary_parameter_unit(name), {}, base_value(base, name)};
+  p.prior.lower = lo;
+  p.prior.upper = hi;
+  return p;
+}
+
+bool has_roll(rom::RomModel m) { return m == rom::RomModel::k18Dof; }
+
+// The RMSE of each channel of one reference between two prediction vectors laid out as RomForward's.
+double rmse(const std::vector<double>& a, const std::vector<double>& b, std::size_t from, std::size_t n) {
+  double s = 0;
+  for (std::size_t i = from; i < from + n; ++i) s += (a[i] - b[i]) * (a[i] - b[i]);
+  return std::sqrt(s / double(n));
+}
+
+}  // namespace
+
+std::vector<bayes::ModelParameter> default_rom_parameters(rom::RomModel model, const rom::RomVehicle& b) {
+  std::vector<bayes::ModelParameter> p = {uniform(b, "tire_cornering_scale_front", 0.2, 5),
+                                          uniform(b, "tire_cornering_scale_rear", 0.2, 5),
+                                          uniform(b, "tire_longitudinal_scale", 0.2, 5)};
+  if (has_roll(model))
+    for (const char* n : {"roll_stiffness_front", "roll_stiffness_rear", "roll_damping_front", "roll_damping_rear"})
+      p.push_back(uniform(b, n, 0.25 * base_value(b, n), 4 * base_value(b, n)));
+  p.push_back(uniform(b, "max_steer", 0.5 * b.max_steer, std::min(1.5 * b.max_steer, 1.5)));
+  p.push_back(uniform(b, "torque_scale", 0.3, 3));
+  if (b.has(rom::kEffectRollingResistance)) p.push_back(uniform(b, "rolling_resistance", 0, 0.1));
+  if (b.has(rom::kEffectAeroDrag)) p.push_back(uniform(b, "drag_area", 0, std::max(10 * b.drag_area, 10.0)));
+  return p;
+}
+
+std::vector<bayes::ModelParameter> read_rom_parameters(const std::string& path, rom::RomModel model,
+                                                       const rom::RomVehicle& base,
+                                                       std::vector<std::pair<std::string, double>>& fixed) {
+  const nlohmann::json j = read_json_file(path, "parameters file");
+  if (!j.is_object() || j.empty())
+    throw InputError(fmt::format("{}: expected a JSON object keyed by parameter name, with at least one key", path));
+  const auto& names = rom::vary_parameter_names();
+  std::vector<bayes::ModelParameter> out;
+  for (const auto& [key, spec] : j.items()) {
+    if (std::find(names.begin(), names.end(), key) == names.end() || rom::is_run_setting(key))
+      throw InputError(fmt::format("{}: unknown key {}; expected a vehicle parameter: {}", path, excerpt(key),
+                                   fmt::join(names, ", ")));
+    if (!has_roll(model) && key.rfind("roll_", 0) == 0)
+      throw InputError(fmt::format("{}: key '{}': the {} model has no roll stiffness or damping", path, key,
+                                   rom::model_name(model)));
+    bayes::ModelParameter p{key, rom::vary_parameter_unit(key), {}, base_value(base, key)};
+    p.prior = bayes::parse_prior(spec, path, key, rom::vary_parameter_range(key), p.prior);
+    if (p.prior.fixed()) {
+      fixed.emplace_back(key, p.prior.value);
+      continue;
+    }
+    if (!(p.prior.lower <= p.initial && p.initial <= p.prior.upper))
+      p.initial = 0.5 * (p.prior.lower + p.prior.upper);  // the preset's value is outside: start in the middle
+    out.push_back(p);
+  }
+  if (out.empty()) throw InputError(fmt::format("{}: every parameter is fixed; nothing to fit", path));
+  return out;
+}
+
+std::vector<bayes::ModelChannel> rom_channels(const std::vector<rom::RomReference>& refs, rom::RomModel model,
+                                              std::vector<rom::RomChannel>& which) {
+  which.clear();
+  for (int c = 0; c < rom::kRomChannelCount; ++c) {
+    const auto ch = static_cast<rom::RomChannel>(c);
+    if (ch == rom::kRcRoll && model == rom::RomModel::k11Dof) continue;
+    const bool everywhere = std::all_of(refs.begin(), refs.end(), [&](const auto& r) { return r.has[c]; });
+    if (!everywhere && ch == rom::kRcRoll) continue;  // roll is optional; the others are required
+    which.push_back(ch);
+  }
+  std::vector<bayes::ModelChannel> out;
+  for (rom::RomChannel c : which) {
+    bayes::ModelChannel m{rom::kRomChannelNames[c], rom::kRomChannelUnits[c], {}, {}, {}, {}};
+    for (std::size_t k = 0; k < refs.size(); ++k) {
+      m.y.insert(m.y.end(), refs[k].values[c].begin(), refs[k].values[c].end());
+      m.x.insert(m.x.end(), refs[k].time.begin(), refs[k].time.end());
+      m.curve.insert(m.curve.end(), refs[k].time.size(), static_cast<int>(k));
+      m.curve_labels.push_back(refs[k].name);
+    }
+    out.push_back(std::move(m));
+  }
+  return out;
+}
+
+namespace {
+
+// fit_<reference>.csv and .png: each channel's reference, preset-ROM and calibrated-ROM values.
+void write_fits(const RomCalibrationSettings& s, const std::vector<rom::RomReference>& refs,
+                const std::vector<rom::RomChannel>& which, const std::vector<double>& preset,
+                const std::vector<double>& map, nlohmann::ordered_json& rmse_json) {
+  std::size_t total = 0;
+  for (const auto& r : refs) total += r.time.size();
+  std::size_t first = 0;
+  for (const auto& r : refs) {
+    std::string csv = "time";
+    for (rom::RomChannel c : which)
+      csv += fmt::format(",{0}_reference,{0}_preset,{0}_calibrated", rom::kRomChannelNames[c]);
+    csv += "\n";
+    for (std::size_t i = 0; i < r.time.size(); ++i) {
+      csv += fmt::format("{:.9g}", r.time[i]);
+      for (std::size_t k = 0; k < which.size(); ++k) {
+        const std::size_t at = k * total + first + i;
+        csv += fmt::format(",{:.9g},{:.9g},{:.9g}", r.values[which[k]][i], preset[at], map[at]);
+      }
+      csv += "\n";
+    }
+    const std::string name = "fit_" + r.name;
+    write_text_atomically(s.out + "/" + name + ".csv", csv);
+    nlohmann::ordered_json e;
+    std::vector<std::pair<std::string, std::string>> panels;
+    for (std::size_t k = 0; k < which.size(); ++k) {
+      std::vector<double> y(r.values[which[k]].begin(), r.values[which[k]].end());
+      std::vector<double> yp(preset.begin() + k * total + first, preset.begin() + k * total + first + r.time.size());
+      std::vector<double> ym(map.begin() + k * total + first, map.begin() + k * total + first + r.time.size());
+      e[rom::kRomChannelNames[which[k]]] = {{"preset", rmse(y, yp, 0, y.size())},
+                                            {"calibrated", rmse(y, ym, 0, y.size())}};
+      panels.emplace_back(rom::kRomChannelNames[which[k]], rom::kRomChannelUnits[which[k]]);
+    }
+    rmse_json[r.name] = e;
+    if (s.plots)
+      plot_rom_fit(s.out, name + ".csv", name + ".png",
+                   fmt::format("{}: reference and {} ROM", r.name, rom::model_name(s.model)), panels);
+    first += r.time.size();
+  }
+}
+
+}  // namespace
+
+RomCalibrationOutcome run_rom_calibration(const RomCalibrationSettings& s) {
+  const auto start = std::chrono::steady_clock::now();
+  rom::RomVehicle base = rom::load_rom_vehicle(s.vehicle);
+  rom::check_model_effects(base, s.model);
+  std::vector<std::pair<std::string, double>> fixed;
+  std::vector<bayes::ModelParameter> params = s.params_json.empty()
+                                                  ? default_rom_parameters(s.model, base)
+                                                  : read_rom_parameters(s.params_json, s.model, base, fixed);
+  for (const auto& [n, v] : fixed) rom::apply_vary_parameter(base, base, n, v);
+  std::vector<rom::RomReference> refs;
+  for (const auto& d : s.references) refs.push_back(rom::read_rom_reference(d));
+  std::vector<rom::RomChannel> which;
+  std::vector<bayes::ModelChannel> channels = rom_channels(refs, s.model, which);
+
+  RomCalibrationOutcome out;
+  for (const auto& p : params) out.parameters.push_back(p.name);
+  const rom::RomForward forward({base, s.model, out.parameters, which, &refs, s.step, s.device});
+  const auto batch = [&](const std::vector<Eigen::VectorXd>& xs, std::vector<std::vector<double>>& f) {
+    std::vector<std::vector<double>> ps;
+    for (const auto& x : xs) ps.emplace_back(x.data(), x.data() + x.size());
+    forward(ps, f);
+  };
+  const bayes::ModelProblem pb(params, channels, batch);
+  std::vector<std::string> channel_names;
+  for (const auto& c : channels) channel_names.push_back(c.name);
+  spdlog::info("calibrate-rom: {} parameters ({}); channels {}; {} references", pb.dim(),
+               fmt::join(out.parameters, ", "), fmt::join(channel_names, ", "), refs.size());
+
+  bayes::CalibrationResult& res = out.result;
+  res.point = bayes::estimate_model_point(pb, {.seed = s.seed, .global_points = s.global_points});
+  std::string at;
+  for (int j = 0; j < pb.dim(); ++j)
+    at += fmt::format("{}{} = {:.4g} +- {:.2g}", j ? ", " : "", out.parameters[j], res.point.x[j],
+                      std::sqrt(res.point.covariance(j, j)));
+  spdlog::info("calibrate-rom: point estimate after {} runs: {} ({})", pb.runs(), at, res.point.ceres_report);
+  res.names = out.parameters;
+  res.num_params = pb.dim();
+  for (const auto& c : channels) res.names.push_back("sigma2_" + c.name);
+  bayes::CalibrationOptions o;
+  o.seed = s.seed;
+  o.sampler = s.sampler;
+  o.chains = s.chains > 0 ? s.chains : s.sampler == bayes::SamplerKind::kEnsemble ? 2 * (pb.dim() + 1) : 32;
+  o.min_ess = s.min_ess;
+  o.max_rhat = s.max_rhat;
+  o.warmup = s.warmup;
+  o.block = s.sampler == bayes::SamplerKind::kEnsemble ? 200 : 25;
+  o.max_draws = s.max_draws;
+  o.progress = [&](const bayes::CalibrationProgress& p) {
+    if (p.stage == "sampling")
+      spdlog::info("calibrate-rom: {} draws per walker, max R-hat {:.4f}, min bulk ESS {:.0f} ({} runs so far)",
+                   p.draws_per_chain, p.max_rhat, p.min_ess, pb.runs());
+  };
+  bayes::sample_posterior(pb.target(), o, res);
+  out.runs = pb.runs();
+  out.failed_runs = pb.failed_runs();
+  out.forward_seconds = forward.stats().wall_seconds;
+
+  // Outputs: the preset and the MAP vehicle run once more for the fits.
+  std::vector<Eigen::VectorXd> two(2, Eigen::VectorXd(pb.dim()));
+  for (int j = 0; j < pb.dim(); ++j) two[0][j] = params[j].initial;
+  two[1] = res.point.x;
+  const auto f = pb.predict(two);
+  std::vector<std::string> names = out.parameters;
+  std::vector<double> values(res.point.x.data(), res.point.x.data() + pb.dim());
+  for (const auto& [n, v] : fixed) {
+    names.push_back(n);
+    values.push_back(v);
+  }
+  nlohmann::ordered_json j = rom::vehicle_json_with(s.vehicle, names, values);
+  j["name"] = fmt::format("{} ({} calibrated)", j.value("name", s.vehicle), rom::model_name(s.model));
+  nlohmann::ordered_json rmse_json;
+  if (!f[0].empty() && !f[1].empty()) write_fits(s, refs, which, f[0], f[1], rmse_json);
+  j["Posterior"] = bayes::model_posterior_json(pb, res);
+  nlohmann::ordered_json noise;
+  for (int c = 0; c < pb.num_channels(); ++c) noise[channels[c].name] = std::sqrt(res.point.noise_var[c]);
+  out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  j["Fit"] = {{"model", rom::model_name(s.model)},
+              {"vehicle", s.vehicle},
+              {"references", s.references},
+              {"point_estimate", "MAP"},
+              {"fixed", fixed.empty() ? nlohmann::ordered_json::object() : nlohmann::ordered_json(fixed)},
+              {"noise_sd", noise},
+              {"rmse", rmse_json},
+              {"sampler", s.sampler == bayes::SamplerKind::kEnsemble ? "ensemble" : "independence"},
+              {"chains", res.chains},
+              {"draws", res.draws},
+              {"seed", s.seed},
+              {"converged", res.converged},
+              {"termination", res.termination},
+              {"runs", out.runs},
+              {"failed_runs", out.failed_runs},
+              {"device", s.device == rom::BatchDevice::kCuda ? "cuda" : "cpu"},
+              {"wall_seconds", out.wall_seconds}};
+  write_text_atomically(s.out + "/rom_params.json", j.dump(2) + "\n");
+  bayes::write_inference_data_h5(s.out + "/posterior.h5", bayes::make_model_inference_data(pb, res, s.seed));
+  return out;
+}
+
+}  // namespace terracal::app

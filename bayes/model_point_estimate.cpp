@@ -1,0 +1,211 @@
+#include "bayes/model_point_estimate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <ceres/ceres.h>
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+#include "core/rng.hpp"
+
+namespace terracal::bayes {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// The posterior with the noise variances at their conditional optimum SSE_c/N_c (up to a constant),
+// negated: lower is better; +inf for a failed run or a point outside the support.
+double profile_objective(const ModelProblem& pb, const Eigen::VectorXd& x, const Eigen::VectorXd& sse) {
+  const double lp = pb.log_prior(x);
+  if (!std::isfinite(lp) || !sse.allFinite()) return kInf;
+  double f = -lp;
+  for (int c = 0; c < pb.num_channels(); ++c) {
+    const double n = static_cast<double>(pb.channel(c).size());
+    f += 0.5 * n * std::log(std::max(sse[c] / n, 1e-300));
+  }
+  return f;
+}
+
+// Start, then uniform draws inside the bounds, in batches; the best by the profile objective.
+Eigen::VectorXd global_search(const ModelProblem& pb, const ModelPointOptions& o, int& evaluations) {
+  Rng rng = Rng::for_stream(o.seed, 7);
+  Eigen::VectorXd best(pb.dim());
+  for (int j = 0; j < pb.dim(); ++j) best[j] = pb.parameter(j).initial;
+  double best_f = profile_objective(pb, best, pb.sse({best})[0]);
+  evaluations = 1;
+  for (int done = 0; done < o.global_points;) {
+    const int n = std::min(o.batch, o.global_points - done);
+    std::vector<Eigen::VectorXd> xs(n, Eigen::VectorXd(pb.dim()));
+    for (auto& x : xs)
+      for (int j = 0; j < pb.dim(); ++j) {
+        const Prior& pr = pb.parameter(j).prior;
+        x[j] = pr.lower + (pr.upper - pr.lower) * rng.uniform();
+      }
+    const auto s = pb.sse(xs);
+    for (int i = 0; i < n; ++i)
+      if (const double f = profile_objective(pb, xs[i], s[i]); f < best_f) {
+        best_f = f;
+        best = xs[i];
+      }
+    done += n;
+    evaluations += n;
+  }
+  if (!std::isfinite(best_f))
+    throw RunError(
+        fmt::format("calibration: none of the {} points of the global search ran; check the references "
+                    "and the priors",
+                    evaluations));
+  return best;
+}
+
+// Weighted residuals (f - y)/s_c of every row, their Jacobian by central differences (one-sided at a
+// bound), the forward model run as one batch per evaluation. Works in scaled coordinates u = x/scale.
+class BatchResiduals : public ceres::CostFunction {
+ public:
+  BatchResiduals(const ModelProblem& pb, const Eigen::VectorXd& scale, const Eigen::VectorXd& noise_sd, double step)
+      : pb_(pb), scale_(scale), sd_(noise_sd), step_(step) {
+    mutable_parameter_block_sizes()->push_back(pb.dim());
+    set_num_residuals(static_cast<int>(pb.rows()));
+  }
+
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const int d = pb_.dim();
+    Eigen::VectorXd x(d);
+    for (int j = 0; j < d; ++j) x[j] = parameters[0][j] * scale_[j];
+    std::vector<Eigen::VectorXd> xs{x};
+    std::vector<double> lo(d), hi(d);
+    if (jacobians && jacobians[0]) {
+      for (int j = 0; j < d; ++j) {
+        const Prior& pr = pb_.parameter(j).prior;
+        const double h = step_ * scale_[j];
+        lo[j] = std::max(x[j] - h, pr.lower);
+        hi[j] = std::min(x[j] + h, pr.upper);
+        Eigen::VectorXd a = x, b = x;
+        a[j] = lo[j];
+        b[j] = hi[j];
+        xs.push_back(a);
+        xs.push_back(b);
+      }
+    }
+    const auto f = pb_.predict(xs);
+    for (const auto& row : f)
+      if (row.empty()) return false;  // a failed run: Ceres rejects the step
+    weighted(f[0], residuals);
+    if (!(jacobians && jacobians[0])) return true;
+    std::vector<double> ra(pb_.rows()), rb(pb_.rows());
+    for (int j = 0; j < d; ++j) {
+      weighted(f[1 + 2 * j], ra.data());
+      weighted(f[2 + 2 * j], rb.data());
+      const double du = (hi[j] - lo[j]) / scale_[j];
+      for (std::size_t i = 0; i < pb_.rows(); ++i) jacobians[0][i * d + j] = du > 0 ? (rb[i] - ra[i]) / du : 0.0;
+    }
+    return true;
+  }
+
+ private:
+  void weighted(const std::vector<double>& f, double* r) const {
+    std::size_t k = 0;
+    for (int c = 0; c < pb_.num_channels(); ++c)
+      for (std::size_t i = 0; i < pb_.channel(c).size(); ++i, ++k) r[k] = (f[k] - pb_.channel(c).y[i]) / sd_[c];
+  }
+  const ModelProblem& pb_;
+  Eigen::VectorXd scale_, sd_;
+  double step_;
+};
+
+Eigen::VectorXd scales(const ModelProblem& pb, const Eigen::VectorXd& x) {
+  Eigen::VectorXd s(pb.dim());
+  for (int j = 0; j < pb.dim(); ++j) {
+    const Prior& pr = pb.parameter(j).prior;
+    s[j] = std::max({std::abs(x[j]), 1e-3 * (pr.upper - pr.lower), 1e-12});
+  }
+  return s;
+}
+
+void update_noise(const ModelProblem& pb, PointEstimate& est) {
+  const Eigen::VectorXd s = pb.sse({est.x})[0];
+  est.noise_var.resize(pb.num_channels());
+  est.weighted_rss = 0;
+  for (int c = 0; c < pb.num_channels(); ++c) {
+    est.noise_var[c] = std::max(s[c] / static_cast<double>(pb.channel(c).size()), 1e-24);
+    est.weighted_rss += s[c] / est.noise_var[c];
+  }
+}
+
+// One bounded least-squares solve from est.x at the current noise scales.
+void polish(const ModelProblem& pb, const ModelPointOptions& o, PointEstimate& est) {
+  const Eigen::VectorXd scale = scales(pb, est.x);
+  Eigen::VectorXd u = est.x.cwiseQuotient(scale);
+  ceres::Problem problem;
+  problem.AddResidualBlock(new BatchResiduals(pb, scale, est.noise_var.cwiseSqrt(), o.relative_step), nullptr,
+                           u.data());
+  for (int j = 0; j < pb.dim(); ++j) {
+    problem.SetParameterLowerBound(u.data(), j, pb.parameter(j).prior.lower / scale[j]);
+    problem.SetParameterUpperBound(u.data(), j, pb.parameter(j).prior.upper / scale[j]);
+  }
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::DENSE_QR;
+  options.max_num_iterations = o.max_iterations;
+  options.function_tolerance = 1e-10;
+  options.parameter_tolerance = 1e-10;
+  options.num_threads = 1;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &problem, &summary);
+  est.ceres_report = summary.BriefReport();
+  const Eigen::VectorXd candidate = u.cwiseProduct(scale);
+  if (profile_objective(pb, candidate, pb.sse({candidate})[0]) <= profile_objective(pb, est.x, pb.sse({est.x})[0]))
+    est.x = candidate;
+}
+
+// (J^T J)^-1 of the weighted residuals at est.x. In scaled coordinates (unit: the parameter's size)
+// a direction's variance is kept within [1e-14, 1]: data from a simulation can pin a parameter far
+// more tightly than bevameter curves pin a soil (a floor of 1e-6 would make proposals 1000 times too
+// wide), and a direction the data leave open (information below 1e-12 of the largest) is counted
+// and given the prior's scale.
+void covariance(const ModelProblem& pb, const ModelPointOptions& o, PointEstimate& est) {
+  const int d = pb.dim();
+  const Eigen::VectorXd scale = scales(pb, est.x);
+  const Eigen::VectorXd u = est.x.cwiseQuotient(scale);
+  BatchResiduals res(pb, scale, est.noise_var.cwiseSqrt(), o.relative_step);
+  Eigen::VectorXd r(pb.rows());
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> J(pb.rows(), d);
+  const double* params[] = {u.data()};
+  double* jac[] = {J.data()};
+  constexpr double kMinScaledVariance = 1e-14;
+  Eigen::MatrixXd cov_u = Eigen::MatrixXd::Identity(d, d) * 1e-6;
+  bool computed = res.Evaluate(params, r.data(), jac) && J.allFinite();
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(computed ? Eigen::MatrixXd(J.transpose() * J)
+                                                              : Eigen::MatrixXd::Identity(d, d));
+  Eigen::VectorXd lambda = eig.eigenvalues();  // of the information matrix
+  const double lambda_max = std::max(lambda.maxCoeff(), 1e-300);
+  int unconstrained = 0;
+  Eigen::VectorXd var(d);
+  for (int a = 0; a < d; ++a) {
+    const bool open = lambda[a] < 1e-12 * lambda_max;
+    unconstrained += open;
+    var[a] = computed && !open ? std::clamp(1.0 / lambda[a], kMinScaledVariance, 1.0) : 1.0;
+  }
+  if (computed) cov_u = eig.eigenvectors() * var.asDiagonal() * eig.eigenvectors().transpose();
+  est.covariance_ok = computed && unconstrained == 0;
+  est.unconstrained_directions = computed ? unconstrained : d;
+  est.covariance = scale.asDiagonal() * cov_u * scale.asDiagonal();
+}
+
+}  // namespace
+
+PointEstimate estimate_model_point(const ModelProblem& pb, const ModelPointOptions& o) {
+  PointEstimate est;
+  est.x = global_search(pb, o, est.global_evaluations);
+  update_noise(pb, est);
+  for (int round = 0; round < o.polish_rounds; ++round) {
+    polish(pb, o, est);
+    update_noise(pb, est);
+  }
+  covariance(pb, o, est);
+  return est;
+}
+
+}  // namespace terracal::bayes

@@ -1,0 +1,159 @@
+#include "bayes/model_problem.hpp"
+
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+
+namespace terracal::bayes {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kNegInf = -std::numeric_limits<double>::infinity();
+// Remembered SSEs; the map is cleared when it reaches this many points (a few MB).
+constexpr std::size_t kCacheLimit = 20000;
+
+std::vector<double> key_of(const Eigen::VectorXd& x) { return {x.data(), x.data() + x.size()}; }
+
+}  // namespace
+
+ModelProblem::ModelProblem(std::vector<ModelParameter> parameters, std::vector<ModelChannel> channels,
+                           BatchForward forward)
+    : parameters_(std::move(parameters)), channels_(std::move(channels)), forward_(std::move(forward)) {
+  if (parameters_.empty()) throw InputError("calibration: no parameter to fit");
+  if (channels_.empty()) throw InputError("calibration: no channel to compare");
+  for (const auto& p : parameters_) {
+    if (p.prior.fixed()) throw InputError(fmt::format("calibration: parameter {} is fixed, not fitted", p.name));
+    if (!(p.prior.lower < p.prior.upper))
+      throw InputError(fmt::format("calibration: parameter {}: lower bound {} is not below upper bound {}", p.name,
+                                   p.prior.lower, p.prior.upper));
+  }
+  for (const auto& c : channels_) {
+    if (c.y.empty()) throw InputError(fmt::format("calibration: channel {} has no rows", c.name));
+    if (c.x.size() != c.y.size() || c.curve.size() != c.y.size())
+      throw InputError(fmt::format("calibration: channel {}: y, x and curve differ in length", c.name));
+    offset_.push_back(rows_);
+    rows_ += c.size();
+  }
+}
+
+double ModelProblem::log_prior(const Eigen::VectorXd& x) const {
+  double lp = 0;
+  for (int j = 0; j < dim(); ++j) {
+    if (!parameters_[j].prior.contains(x[j])) return kNegInf;
+    lp += parameters_[j].prior.log_density(x[j]);
+  }
+  return lp;
+}
+
+std::vector<std::vector<double>> ModelProblem::predict(const std::vector<Eigen::VectorXd>& xs) const {
+  // Only points inside the support are run: a simulation outside its parameters' range may not
+  // even start.
+  std::vector<Eigen::VectorXd> inside;
+  std::vector<std::size_t> where;
+  for (std::size_t i = 0; i < xs.size(); ++i)
+    if (std::isfinite(log_prior(xs[i]))) {
+      inside.push_back(xs[i]);
+      where.push_back(i);
+    }
+  std::vector<std::vector<double>> out(xs.size()), ran;
+  if (inside.empty()) return out;
+  runs_ += static_cast<long>(inside.size());
+  try {
+    forward_(inside, ran);
+  } catch (const std::exception&) {
+    ran.assign(inside.size(), {});
+  }
+  for (std::size_t k = 0; k < inside.size(); ++k) {
+    bool ok = k < ran.size() && ran[k].size() == rows_;
+    for (std::size_t r = 0; ok && r < rows_; ++r) ok = std::isfinite(ran[k][r]);
+    if (ok)
+      out[where[k]] = std::move(ran[k]);
+    else
+      ++failed_runs_;
+  }
+  return out;
+}
+
+Eigen::VectorXd ModelProblem::sse_of(const std::vector<double>& f) const {
+  Eigen::VectorXd s = Eigen::VectorXd::Constant(num_channels(), kNaN);
+  if (f.size() != rows_) return s;
+  for (int c = 0; c < num_channels(); ++c) {
+    double sum = 0;
+    for (std::size_t i = 0; i < channels_[c].size(); ++i) {
+      const double r = channels_[c].y[i] - f[offset_[c] + i];
+      sum += r * r;
+    }
+    s[c] = sum;
+  }
+  return s;
+}
+
+std::vector<Eigen::VectorXd> ModelProblem::sse(const std::vector<Eigen::VectorXd>& xs) const {
+  std::vector<Eigen::VectorXd> out(xs.size());
+  std::vector<Eigen::VectorXd> todo;
+  std::vector<std::size_t> where;
+  {
+    std::lock_guard<std::mutex> lock(cache_mutex_);
+    for (std::size_t i = 0; i < xs.size(); ++i) {
+      const auto it = cache_.find(key_of(xs[i]));
+      if (it != cache_.end()) {
+        out[i] = it->second;
+      } else {
+        todo.push_back(xs[i]);
+        where.push_back(i);
+      }
+    }
+  }
+  if (todo.empty()) return out;
+  const auto f = predict(todo);
+  std::lock_guard<std::mutex> lock(cache_mutex_);
+  if (cache_.size() + todo.size() > kCacheLimit) cache_.clear();
+  for (std::size_t k = 0; k < todo.size(); ++k) {
+    out[where[k]] = sse_of(f[k]);
+    cache_[key_of(todo[k])] = out[where[k]];
+  }
+  return out;
+}
+
+double ModelProblem::log_posterior(const Eigen::VectorXd& x, const Eigen::VectorXd& sse,
+                                   const Eigen::VectorXd& noise_var) const {
+  const double lp = log_prior(x);
+  if (lp == kNegInf) return kNegInf;
+  if (!sse.allFinite()) return kNaN;  // the run failed: the sampler counts it and rejects
+  double ll = lp;
+  for (int c = 0; c < num_channels(); ++c) {
+    const double n = static_cast<double>(channels_[c].size());
+    // The Jeffreys prior on s^2 contributes -log s^2.
+    ll += -0.5 * sse[c] / noise_var[c] - (0.5 * n + 1.0) * std::log(noise_var[c]);
+  }
+  return ll;
+}
+
+Target ModelProblem::target() const {
+  Target t;
+  t.dim = dim();
+  t.nuisance_dim = num_channels();
+  t.log_density = [this](const Eigen::VectorXd& x, const Eigen::VectorXd& nv) {
+    if (!std::isfinite(log_prior(x))) return kNegInf;
+    return log_posterior(x, sse({x})[0], nv);
+  };
+  t.log_density_batch = [this](const std::vector<Eigen::VectorXd>& xs, const std::vector<Eigen::VectorXd>& nvs,
+                               std::vector<double>& out) {
+    const auto s = sse(xs);
+    out.resize(xs.size());
+    for (std::size_t i = 0; i < xs.size(); ++i)
+      out[i] = std::isfinite(log_prior(xs[i])) ? log_posterior(xs[i], s[i], nvs[i]) : kNegInf;
+  };
+  t.gibbs = [this](const Eigen::VectorXd& x, Eigen::VectorXd& nv, Rng& rng) {
+    const Eigen::VectorXd s = sse({x})[0];
+    for (int c = 0; c < num_channels(); ++c)  // s^2 | theta ~ InvGamma(N/2, SSE/2)
+      nv[c] = 0.5 * s[c] / rng.gamma(0.5 * static_cast<double>(channels_[c].size()));
+  };
+  return t;
+}
+
+}  // namespace terracal::bayes

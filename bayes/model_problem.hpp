@@ -1,0 +1,89 @@
+#pragma once
+// A calibration problem whose forward model is a simulation (a reduced-order vehicle, a wheel run):
+// named parameters with priors, observed channels, and a forward model that evaluates many
+// parameter vectors in one call (CPU threads or one GPU batch). The calibrator knows no vehicle:
+// the caller (apps/) wraps its simulation as a BatchForward.
+//
+// Noise model. Each channel c (a signal such as yaw rate) has its own unknown noise variance s_c^2:
+//   y_i = f_i(theta) + s_c eps_i,  eps_i ~ N(0, 1),
+// absolute noise in the channel's unit; s_c^2 has the Jeffreys prior 1/s^2, so given theta it is
+// inverse-gamma(N_c/2, SSE_c/2): a conjugate Gibbs step, as for SCM (calibration_problem.hpp).
+//
+// Failures. A run that fails (diverges, throws, returns a non-finite value) makes its point's log
+// density NaN: samplers reject it and count it; the point estimate treats it as infinitely bad.
+#include <atomic>
+#include <functional>
+#include <map>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "bayes/priors.hpp"
+#include "bayes/target.hpp"
+
+namespace terracal::bayes {
+
+struct ModelParameter {
+  std::string name, unit;
+  Prior prior;           // its support bounds the search; a fixed prior is not allowed here
+  double initial = 0.0;  // where the global search starts (the preset's value)
+};
+
+struct ModelChannel {
+  std::string name, unit;  // "yaw_rate", "rad/s"
+  std::vector<double> y;   // observed values, the rows of every reference in turn
+  std::vector<double> x;   // the abscissa of each row (time), for plots
+  std::vector<int> curve;  // which reference a row belongs to
+  std::vector<std::string> curve_labels;
+  std::size_t size() const { return y.size(); }
+};
+
+// out[i]: the predictions of every channel's rows for params[i], the channels in order and each
+// channel's rows as in ModelChannel::y; an empty vector when that run failed.
+using BatchForward =
+    std::function<void(const std::vector<Eigen::VectorXd>& params, std::vector<std::vector<double>>& out)>;
+
+class ModelProblem {
+ public:
+  // Throws InputError for no parameters, a fixed or inverted prior, an empty channel, or channel
+  // vectors of different lengths.
+  ModelProblem(std::vector<ModelParameter> parameters, std::vector<ModelChannel> channels, BatchForward forward);
+
+  int dim() const { return static_cast<int>(parameters_.size()); }
+  int num_channels() const { return static_cast<int>(channels_.size()); }
+  const ModelParameter& parameter(int j) const { return parameters_[j]; }
+  const ModelChannel& channel(int c) const { return channels_[c]; }
+  std::size_t rows() const { return rows_; }
+
+  double log_prior(const Eigen::VectorXd& x) const;  // -inf outside the support
+  // Every channel's predictions for each x (one batch); empty for a failed run or a point outside
+  // the prior's support (not run).
+  std::vector<std::vector<double>> predict(const std::vector<Eigen::VectorXd>& xs) const;
+  // SSE per channel for each x (one batch); NaN entries for a failed run or a point outside the
+  // support. Results are remembered, so a Gibbs step at a point just evaluated costs no run.
+  std::vector<Eigen::VectorXd> sse(const std::vector<Eigen::VectorXd>& xs) const;
+  // The per-channel SSE of one prediction vector.
+  Eigen::VectorXd sse_of(const std::vector<double>& prediction) const;
+  // log p(theta, s^2 | y) up to a constant, from a point's SSE.
+  double log_posterior(const Eigen::VectorXd& x, const Eigen::VectorXd& sse, const Eigen::VectorXd& noise_var) const;
+  // The sampler's view: x = the parameters, nuisance = the noise variances with their Gibbs step;
+  // log_density_batch evaluates a batch in one forward call.
+  Target target() const;
+
+  long runs() const { return runs_; }                // forward runs asked for
+  long failed_runs() const { return failed_runs_; }  // of which failed
+
+ private:
+  std::vector<ModelParameter> parameters_;
+  std::vector<ModelChannel> channels_;
+  BatchForward forward_;
+  std::size_t rows_ = 0;
+  std::vector<std::size_t> offset_;  // first row of each channel in a prediction vector
+  mutable std::mutex cache_mutex_;
+  mutable std::map<std::vector<double>, Eigen::VectorXd> cache_;
+  mutable std::atomic<long> runs_{0}, failed_runs_{0};
+};
+
+}  // namespace terracal::bayes

@@ -1,0 +1,53 @@
+#pragma once
+// The ROM as a calibrator's forward model: many parameter sets of one base vehicle, each run on
+// every reference manoeuvre, as one batch per reference (OpenMP threads, or one CUDA launch). The
+// predictions are the batch's sampled channels, interpolated linearly at the reference's times.
+#include <string>
+#include <vector>
+
+#include "rom/rom_batch.hpp"
+#include "rom/rom_reference.hpp"
+#include "rom/rom_vehicle.hpp"
+
+namespace terracal::rom {
+
+struct RomForwardSetup {
+  RomVehicle base;
+  RomModel model = RomModel::k18Dof;
+  std::vector<std::string> parameters;  // names from vary_parameter_names(), the order of each parameter vector
+  std::vector<RomChannel> channels;     // compared channels, in this order
+  const std::vector<RomReference>* references = nullptr;
+  double step = 1e-3;  // half-implicit step [s]
+  BatchDevice device = BatchDevice::kCpu;
+};
+
+struct RomForwardStats {
+  long runs = 0;  // vehicle runs (parameter sets x references)
+  double wall_seconds = 0;
+};
+
+class RomForward {
+ public:
+  // Throws InputError for an unknown parameter, a reference lacking a compared channel, or a
+  // reference whose sample spacing is not a whole number of steps.
+  explicit RomForward(RomForwardSetup setup);
+  // out[i]: for params[i], every channel's rows over all references (channel-major, then reference,
+  // then sample), or empty when the vehicle failed on some reference or its parameters are invalid.
+  void operator()(const std::vector<std::vector<double>>& params, std::vector<std::vector<double>>& out) const;
+  // The vehicle of one parameter vector (the base with the values applied).
+  RomVehicle vehicle(const std::vector<double>& p) const;
+  const RomForwardSetup& setup() const { return s_; }
+  const RomForwardStats& stats() const { return stats_; }
+  std::size_t rows_per_channel() const { return rows_; }
+
+ private:
+  RomForwardSetup s_;
+  std::vector<double> rate_;  // output rate per reference [Hz]
+  std::size_t rows_ = 0;
+  mutable RomForwardStats stats_;
+};
+
+// The batch's channel for a compared channel.
+BatchChannel batch_channel(RomChannel c);
+
+}  // namespace terracal::rom
