@@ -27,6 +27,7 @@ struct BatchKernel {
   int samples = 0;
   int n_channels = 0;
   int channel[kBatchChannelCount] = {};
+  bool sample_aux = false;        // a channel (ax, ay) needs the right-hand side at the sample
   double* metrics = nullptr;      // [metric][count]
   double* channels = nullptr;     // [channel][sample][count]
   double* final_state = nullptr;  // [state][count]
@@ -54,7 +55,14 @@ struct BatchKernel {
     }
   }
 
-  TERRACAL_HD void record(int s, long i, const double* y, const RomAux& aux) const {
+  // A sample at state y: ax and ay from the right-hand side there, with the inputs of the step that
+  // led to it, as a single run samples them (rom_run.cpp, sample_at).
+  TERRACAL_HD void record(int s, long i, const RomVehicle& v, const DriverInput& in, int gear, const double* y) const {
+    RomAux aux;
+    if (sample_aux) {
+      double dy[M::kStates];
+      M::rhs(v, in, gear, y, dy, &aux, true);
+    }
     for (int c = 0; c < n_channels; ++c)
       channels[(long(c) * samples + s) * count + i] = channel_value(channel[c], y, aux);
   }
@@ -78,7 +86,7 @@ struct BatchKernel {
     int gear = M::initial_state(v, initial_speed, y);
     RomAux aux;
     double max_ay = 0, max_r = 0, max_roll = 0, failed_at = -1;
-    if (sample_every > 0) record(0, i, y, aux);
+    if (sample_every > 0) record(0, i, v, d.at(0.0), gear, y);
     for (long k = 0; k < steps; ++k) {
       if (!half_implicit_step<M>(v, d.at(k * step), gear, y, step, &aux)) {
         failed_at = (k + 1) * step;
@@ -87,7 +95,8 @@ struct BatchKernel {
       max_ay = max_of(max_ay, fabs(aux.ay));
       max_r = max_of(max_r, fabs(y[M::kYawRate]));
       max_roll = max_of(max_roll, fabs(M::roll_of(y)));
-      if (sample_every > 0 && (k + 1) % sample_every == 0) record(int((k + 1) / sample_every), i, y, aux);
+      if (sample_every > 0 && (k + 1) % sample_every == 0)
+        record(int((k + 1) / sample_every), i, v, d.at(k * step), gear, y);
     }
     const double m[kBatchMetricCount] = {y[M::kX], y[M::kY], y[M::kYaw], y[M::kVx], max_ay, max_r, max_roll, failed_at};
     for (int k = 0; k < kBatchMetricCount; ++k) metrics[long(k) * count + i] = m[k];
@@ -108,7 +117,10 @@ BatchKernel<M> configure_batch(const BatchOptions& o, long n_vehicles, long n_dr
   k.sample_every = o.output_rate > 0 ? static_cast<long>(1.0 / (o.output_rate * o.step) + 0.5) : 0;
   k.samples = k.sample_every > 0 ? static_cast<int>(k.steps / k.sample_every) + 1 : 0;
   k.n_channels = k.sample_every > 0 ? static_cast<int>(o.channels.size()) : 0;
-  for (int c = 0; c < k.n_channels; ++c) k.channel[c] = o.channels[c];
+  for (int c = 0; c < k.n_channels; ++c) {
+    k.channel[c] = o.channels[c];
+    k.sample_aux = k.sample_aux || o.channels[c] == kChAx || o.channels[c] == kChAy;
+  }
   r.vehicles = n;
   r.samples = k.samples;
   r.states = M::kStates;

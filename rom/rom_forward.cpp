@@ -90,7 +90,8 @@ void RomForward::operator()(const std::vector<std::vector<double>>& params,
         double* dst = out[i].data() + c * rows_ + first_row;
         for (std::size_t r = 0; r < ref.time.size(); ++r) {
           // Linear between the batch's samples s = time * rate.
-          const double s = ref.time[r] * rate_[k];
+          double s = ref.time[r] * rate_[k];
+          if (std::fabs(s - std::round(s)) < 1e-9) s = std::round(s);  // on a sample: that sample, to the bit
           const int s0 = std::clamp(static_cast<int>(std::floor(s)), 0, b.samples - 1);
           const int s1 = std::min(s0 + 1, b.samples - 1);
           const double w = std::clamp(s - s0, 0.0, 1.0);

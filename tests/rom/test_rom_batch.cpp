@@ -43,7 +43,7 @@ TEST_CASE("rom batch: each CPU batch vehicle equals its own single run, channels
   o.end_time = 2.0;
   o.initial_speed = 12.0;
   o.output_rate = 100;
-  o.channels = {kChVx, kChYawRate, kChY};
+  o.channels = {kChVx, kChYawRate, kChY, kChAy};
   const BatchResult b = run_rom_batch(vehicles, {&d}, 40, o);
   REQUIRE(b.samples == 201);
   CHECK(b.failed == 0);
@@ -57,6 +57,7 @@ TEST_CASE("rom batch: each CPU batch vehicle equals its own single run, channels
       CHECK(b.channels[(0 * b.samples + s) * 40 + i] == r.samples[s].vx);
       CHECK(b.channels[(1 * b.samples + s) * 40 + i] == r.samples[s].yaw_rate);
       CHECK(b.channels[(2 * b.samples + s) * 40 + i] == r.samples[s].y);
+      CHECK(b.channels[(3 * b.samples + s) * 40 + i] == r.samples[s].ay);
     }
   }
 }

@@ -1,0 +1,432 @@
+// Independence Metropolis-Hastings (bayes/independence) on targets with known answers: a correlated
+// Gaussian sampled through a deliberately imperfect t proposal, the batch and single evaluation paths
+// (identical chains), failed evaluations, checkpoints, the proposal refit and the refused set-ups.
+// Expectations are checked against 4 Monte Carlo standard errors from the multi-chain ESS.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "bayes/diagnostics.hpp"
+#include "bayes/independence.hpp"
+#include "bayes/json_state.hpp"
+
+using namespace terracal::bayes;
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+using terracal::Rng;
+
+namespace {
+
+VectorXd vec(std::initializer_list<double> v) {
+  VectorXd out(v.size());
+  std::size_t i = 0;
+  for (double e : v) out[i++] = e;
+  return out;
+}
+
+double pooled_mean(const Chains& c) {
+  double s = 0, n = 0;
+  for (const auto& chain : c)
+    for (double v : chain) s += v, n += 1;
+  return s / n;
+}
+
+double pooled_sd(const Chains& c) {
+  const double m = pooled_mean(c);
+  double s = 0, n = 0;
+  for (const auto& chain : c)
+    for (double v : chain) s += (v - m) * (v - m), n += 1;
+  return std::sqrt(s / (n - 1));
+}
+
+// Standard error of the pooled mean from the multi-chain ESS.
+double mcse(const Chains& c) { return pooled_sd(c) / std::sqrt(ess_basic(c)); }
+
+// A 3-D Gaussian with unequal scales and correlations 0.6, -0.3, 0.2.
+struct Gauss3 {
+  VectorXd mu = vec({1.0, -2.0, 0.5});
+  VectorXd sd = vec({1.0, 2.0, 0.5});
+  MatrixXd cov() const {
+    MatrixXd r(3, 3);
+    r << 1.0, 0.6, -0.3, 0.6, 1.0, 0.2, -0.3, 0.2, 1.0;
+    return sd.asDiagonal() * r * sd.asDiagonal();
+  }
+  Target target() const {
+    const MatrixXd l = cov().llt().matrixL();
+    Target t;
+    t.dim = 3;
+    t.log_density = [mu = mu, l](const VectorXd& x, const VectorXd&) {
+      return -0.5 * l.triangularView<Eigen::Lower>().solve(x - mu).squaredNorm();
+    };
+    return t;
+  }
+};
+
+// y_i ~ N(mu, s2), mu | s2 ~ N(0, s2 / k0), s2 ~ InvGamma(a0, b0): mu is x, s2 the nuisance with its
+// exact Gibbs step (as in test_samplers.cpp). Used where the nuisance's state must travel too.
+struct NormalInverseGamma {
+  std::vector<double> y;
+  double k0 = 0.5, a0 = 3, b0 = 1;
+  NormalInverseGamma() {
+    Rng rng(2024);
+    for (int i = 0; i < 10; ++i) y.push_back(2.0 + 0.5 * rng.normal());
+  }
+  double sum_sq(double mu) const {
+    double s = k0 * mu * mu;
+    for (double v : y) s += (v - mu) * (v - mu);
+    return s;
+  }
+  Target target() const {
+    Target t;
+    t.dim = 1;
+    t.nuisance_dim = 1;
+    t.log_density = [this](const VectorXd& x, const VectorXd& s2) { return -0.5 * sum_sq(x[0]) / s2[0]; };
+    t.gibbs = [this](const VectorXd& x, VectorXd& s2, Rng& rng) {
+      s2[0] = (b0 + 0.5 * sum_sq(x[0])) / rng.gamma(a0 + 0.5 * double(y.size() + 1));
+    };
+    return t;
+  }
+};
+
+std::vector<VectorXd> copies(int n, const VectorXd& v) { return std::vector<VectorXd>(n, v); }
+
+// Per-chain histories of every coordinate: out[j][c][i].
+std::vector<Chains> run_recording(IndependenceSampler& s, int steps) {
+  const int d = int(s.states()[0].size());
+  std::vector<Chains> out(d, Chains(s.size()));
+  for (int i = 0; i < steps; ++i) {
+    s.step();
+    for (std::size_t k = 0; k < s.size(); ++k)
+      for (int j = 0; j < d; ++j) out[j][k].push_back(s.states()[k][j]);
+  }
+  return out;
+}
+
+double pooled_acceptance(const IndependenceSampler& s) {
+  double acc = 0, it = 0;
+  for (const auto& st : s.stats()) acc += double(st.accepted), it += double(st.iterations);
+  return acc / it;
+}
+
+// Student t with 4 degrees of freedom: P(T <= t) (closed form for even df).
+double t4_cdf(double t) {
+  const double u = t / std::sqrt(4.0 + t * t);
+  return 0.5 + 0.5 * u * (1.5 - 0.5 * u * u);
+}
+
+// The whole state of a sampler, for bit-for-bit comparisons.
+std::vector<double> snapshot(const IndependenceSampler& s) {
+  std::vector<double> d;
+  for (std::size_t k = 0; k < s.size(); ++k) {
+    d.insert(d.end(), s.states()[k].data(), s.states()[k].data() + s.states()[k].size());
+    d.insert(d.end(), s.nuisances()[k].data(), s.nuisances()[k].data() + s.nuisances()[k].size());
+    d.push_back(s.log_densities()[k]);
+    d.push_back(double(s.stats()[k].accepted));
+    d.push_back(double(s.stats()[k].failed_evaluations));
+  }
+  return d;
+}
+
+}  // namespace
+
+TEST_CASE("independence: an imperfect t proposal still samples a correlated 3-D Gaussian exactly",
+          "[bayes][independence]") {
+  const Gauss3 g;
+  const Target t = g.target();
+  const MatrixXd cov = g.cov();
+  // Proposal mean 0.5 sd off in every coordinate, covariance twice the target's: a sampler that
+  // left out the q(x)/q(y) factor would be pulled towards the proposal's mean (by far more than
+  // 4 MCSE) and would show the proposal's spread.
+  const VectorXd m0 = g.mu + 0.5 * g.sd;
+  const int chains = 16, steps = 2000;
+  IndependenceSampler s(t, IndependenceOptions{}, m0, 2.0 * cov, copies(chains, g.mu),
+                        copies(chains, VectorXd()), Rng(11));
+  const std::vector<Chains> x = run_recording(s, steps);
+
+  for (int j = 0; j < 3; ++j) {
+    const double m = pooled_mean(x[j]), se = mcse(x[j]), ess = ess_basic(x[j]);
+    INFO("x" << j << ": mean " << m << ", truth " << g.mu[j] << ", MCSE " << se << ", ESS " << ess);
+    CHECK(ess > 5000);  // nearly independent draws: an independence sampler that barely moves fails here
+    CHECK(std::abs(m - g.mu[j]) < 4 * se);
+    CHECK(rhat_rank(x[j]) < 1.01);
+  }
+  // Covariance entries, each as the expectation of (x_i - mu_i)(x_j - mu_j): within 4 MCSE and 10 %.
+  for (int i = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j) {
+      Chains p(chains);
+      for (int k = 0; k < chains; ++k)
+        for (int n = 0; n < steps; ++n) p[k].push_back((x[i][k][n] - g.mu[i]) * (x[j][k][n] - g.mu[j]));
+      const double c = pooled_mean(p), se = mcse(p);
+      INFO("cov(" << i << "," << j << "): " << c << ", truth " << cov(i, j) << ", MCSE " << se);
+      CHECK(std::abs(c - cov(i, j)) < 4 * se);
+      CHECK(std::abs(c - cov(i, j)) < 0.1 * std::abs(cov(i, j)));
+    }
+  const double acc = pooled_acceptance(s);
+  INFO("acceptance " << acc);
+  CHECK(acc > 0.45);
+  CHECK(acc < 0.95);  // not 1: the proposal is not the target
+  for (const auto& st : s.stats()) {
+    CHECK(st.iterations == steps);
+    CHECK(st.failed_evaluations == 0);
+  }
+}
+
+TEST_CASE("independence: one batch call per step, and the same chains as with single evaluations",
+          "[bayes][independence]") {
+  const NormalInverseGamma nig;  // with a nuisance: the Gibbs step and its re-evaluation are in the loop
+  const Target single = nig.target();
+  Target batched = single;
+  int batch_calls = 0, single_calls = 0;
+  std::vector<VectorXd> expected_nuisances;
+  bool sizes_ok = true, nuisances_ok = true;
+  batched.log_density = [&](const VectorXd& x, const VectorXd& s2) {
+    ++single_calls;
+    return single.log_density(x, s2);
+  };
+  batched.log_density_batch = [&](const std::vector<VectorXd>& xs, const std::vector<VectorXd>& nus,
+                                   std::vector<double>& out) {
+    ++batch_calls;
+    sizes_ok = sizes_ok && xs.size() == 8 && nus.size() == 8;
+    nuisances_ok = nuisances_ok && nus == expected_nuisances;  // the chains' current nuisances
+    out.resize(xs.size());
+    for (std::size_t i = 0; i < xs.size(); ++i) out[i] = single.log_density(xs[i], nus[i]);
+  };
+  const int chains = 8, steps = 300;
+  std::vector<VectorXd> starts;
+  for (int k = 0; k < chains; ++k) starts.push_back(vec({1.5 + 0.1 * k}));
+  const std::vector<VectorXd> nus = copies(chains, vec({0.3}));
+  IndependenceSampler a(single, IndependenceOptions{}, vec({1.8}), MatrixXd::Constant(1, 1, 0.05), starts, nus,
+                        Rng(21));
+  IndependenceSampler b(batched, IndependenceOptions{}, vec({1.8}), MatrixXd::Constant(1, 1, 0.05), starts, nus,
+                        Rng(21));
+  single_calls = 0;  // the starts' evaluations
+  long moves = 0;
+  for (int i = 0; i < steps; ++i) {
+    a.step();
+    expected_nuisances = b.nuisances();
+    b.step();
+    REQUIRE(batch_calls == i + 1);
+    // After the batch only the Gibbs re-evaluation of each chain's own state: one per chain.
+    REQUIRE(single_calls == chains * (i + 1));
+    REQUIRE(snapshot(a) == snapshot(b));
+  }
+  CHECK(sizes_ok);
+  CHECK(nuisances_ok);
+  for (const auto& st : b.stats()) moves += st.accepted;
+  CHECK(moves > chains * steps / 4);  // the chains did move: the comparison is not of frozen states
+  CHECK(a.save() == b.save());
+}
+
+TEST_CASE("independence: failed evaluations are rejected and counted, the chain never enters their region",
+          "[bayes][independence]") {
+  // Standard normal in 2-D whose density is NaN for x1 > 1: the chains sample the normal truncated
+  // to x1 <= 1, E x1 = -phi(1)/Phi(1). Each proposal is evaluated once, so the failures of a chain
+  // are a binomial count with p = P(proposal has x1 > 1), the t4 proposal's marginal being t4 with
+  // scale `scale` (1.3) about 0.
+  Target t;
+  t.dim = 2;
+  t.log_density = [](const VectorXd& x, const VectorXd&) {
+    return x[0] > 1 ? std::numeric_limits<double>::quiet_NaN() : -0.5 * x.squaredNorm();
+  };
+  Target tb = t;  // the same through the batch path, its first call throwing (every point failed)
+  int calls = 0;
+  tb.log_density_batch = [&](const std::vector<VectorXd>& xs, const std::vector<VectorXd>& nus,
+                             std::vector<double>& out) {
+    if (calls++ == 0) throw std::runtime_error("the forward model broke");
+    out.resize(xs.size());
+    for (std::size_t i = 0; i < xs.size(); ++i) out[i] = t.log_density(xs[i], nus[i]);
+  };
+  const int chains = 8, steps = 2000;
+  IndependenceSampler s(t, IndependenceOptions{}, vec({0, 0}), MatrixXd::Identity(2, 2), copies(chains, vec({0, 0})),
+                        copies(chains, VectorXd()), Rng(31));
+  IndependenceSampler sb(tb, IndependenceOptions{}, vec({0, 0}), MatrixXd::Identity(2, 2),
+                         copies(chains, vec({0, 0})), copies(chains, VectorXd()), Rng(31));
+  std::vector<Chains> x(2, Chains(chains));
+  bool finite = true, outside = false;
+  for (int i = 0; i < steps; ++i) {
+    s.step();
+    sb.step();
+    for (int k = 0; k < chains; ++k) {
+      finite = finite && s.states()[k].allFinite() && std::isfinite(s.log_densities()[k]);
+      outside = outside || s.states()[k][0] > 1 || sb.states()[k][0] > 1;
+      for (int j = 0; j < 2; ++j) x[j][k].push_back(s.states()[k][j]);
+    }
+  }
+  CHECK(finite);
+  CHECK_FALSE(outside);
+  const double p = 1 - t4_cdf(1 / IndependenceOptions{}.scale);
+  long failed = 0;
+  for (const auto& st : s.stats()) {
+    CHECK(st.iterations == steps);
+    CHECK(st.failed_evaluations > 0);
+    failed += st.failed_evaluations;
+  }
+  const double n = double(chains) * steps, sd = std::sqrt(n * p * (1 - p));
+  INFO("failed " << failed << ", expected " << n * p << " +- " << sd);
+  CHECK(std::abs(double(failed) - n * p) < 5 * sd);
+  // The throwing batch counted one failure for every chain, on top of the same NaN region.
+  long failed_b = 0;
+  for (const auto& st : sb.stats()) failed_b += st.failed_evaluations;
+  CHECK(std::abs(double(failed_b - chains) - n * p) < 5 * sd);
+
+  const double phi1 = std::exp(-0.5) / std::sqrt(2 * std::numbers::pi), Phi1 = 0.5 * std::erfc(-1 / std::sqrt(2.0));
+  const double m1 = pooled_mean(x[0]), se1 = mcse(x[0]), m2 = pooled_mean(x[1]), se2 = mcse(x[1]);
+  INFO("E x1 " << m1 << " (truth " << -phi1 / Phi1 << ", MCSE " << se1 << "), E x2 " << m2 << " (MCSE " << se2
+               << ")");
+  CHECK(std::abs(m1 + phi1 / Phi1) < 4 * se1);
+  CHECK(std::abs(m2) < 4 * se2);
+}
+
+TEST_CASE("independence: save and load continue with bit-identical states", "[bayes][independence]") {
+  const NormalInverseGamma nig;  // nuisances and their Gibbs draws are part of the state
+  const Target t = nig.target();
+  const int chains = 6;
+  std::vector<VectorXd> starts;
+  for (int k = 0; k < chains; ++k) starts.push_back(vec({1.0 + 0.2 * k}));
+  IndependenceSampler s(t, IndependenceOptions{}, vec({1.5}), MatrixXd::Constant(1, 1, 0.2), starts,
+                        copies(chains, vec({0.5})), Rng(41));
+  std::vector<VectorXd> pool;
+  for (int i = 0; i < 50; ++i) {
+    s.step();
+    pool.insert(pool.end(), s.states().begin(), s.states().end());
+  }
+  s.refit(pool);  // the refitted proposal is part of what must be saved
+  const std::string saved = s.save().dump();  // through text: doubles must round-trip exactly
+
+  auto record = [](IndependenceSampler& x) {
+    std::vector<double> d;
+    for (int i = 0; i < 50; ++i) {
+      x.step();
+      const std::vector<double> snap = snapshot(x);
+      d.insert(d.end(), snap.begin(), snap.end());
+    }
+    return d;
+  };
+  const std::vector<double> d1 = record(s);
+  // Another proposal, other starts, nuisances and seed: everything must come from the checkpoint.
+  IndependenceSampler fresh(t, IndependenceOptions{}, vec({0.0}), MatrixXd::Constant(1, 1, 3.0),
+                            copies(chains, vec({2.0})), copies(chains, vec({1.0})), Rng(5));
+  fresh.load(nlohmann::json::parse(saved));
+  const std::vector<double> d2 = record(fresh);
+  REQUIRE(d1.size() == d2.size());
+  CHECK(d1 == d2);
+  CHECK(fresh.save() == s.save());
+  for (const auto& st : fresh.stats()) CHECK(st.iterations == 100);
+
+  // A foreign or mis-sized checkpoint is refused and leaves the sampler as it was.
+  const nlohmann::json before = fresh.save();
+  nlohmann::json foreign = before;
+  foreign["sampler"] = "dram";
+  CHECK_THROWS_AS(fresh.load(foreign), std::invalid_argument);
+  nlohmann::json short_of_a_chain = before;
+  short_of_a_chain["log_densities"].erase(0);
+  CHECK_THROWS(fresh.load(short_of_a_chain));
+  CHECK(fresh.save() == before);
+}
+
+TEST_CASE("independence: refit to draws of the target raises the acceptance of a far too wide proposal",
+          "[bayes][independence]") {
+  const Gauss3 g;
+  const Target t = g.target();
+  const MatrixXd cov = g.cov();
+  const int chains = 16, steps = 300;
+  // Proposal 100 times the target's covariance (10 times its sd): nearly every draw lands where the
+  // target is negligible.
+  IndependenceSampler s(t, IndependenceOptions{}, g.mu, 100.0 * cov, copies(chains, g.mu), copies(chains, VectorXd()),
+                        Rng(51));
+  for (int i = 0; i < steps; ++i) s.step();
+  const double before = pooled_acceptance(s);
+
+  // Exact draws of the target; too few of them (< 4 dim) or a degenerate set leave the proposal as is.
+  Rng rng(52);
+  const MatrixXd l = cov.llt().matrixL();
+  std::vector<VectorXd> draws;
+  for (int n = 0; n < 4000; ++n) {
+    VectorXd z(3);
+    for (int j = 0; j < 3; ++j) z[j] = rng.normal();
+    draws.push_back(g.mu + l * z);
+  }
+  const nlohmann::json proposal0 = s.save();
+  s.refit(std::vector<VectorXd>(draws.begin(), draws.begin() + 11));
+  CHECK(s.save() == proposal0);
+  s.refit(copies(40, g.mu));  // zero covariance: not positive definite
+  CHECK(s.save() == proposal0);
+
+  s.refit(draws);
+  // The refitted proposal: the draws' mean, and their covariance times scale^2.
+  const nlohmann::json j = s.save();
+  const VectorXd mean = vector_from_json(j.at("mean"), 3);
+  const MatrixXd chol = matrix_from_json(j.at("chol"), 3, 3);
+  const MatrixXd fitted = chol * chol.transpose();
+  const double s2 = IndependenceOptions{}.scale * IndependenceOptions{}.scale;
+  for (int a = 0; a < 3; ++a) {
+    CHECK(std::abs(mean[a] - g.mu[a]) < 5 * g.sd[a] / std::sqrt(4000.0));
+    for (int b = 0; b < 3; ++b)
+      CHECK(std::abs(fitted(a, b) / s2 - cov(a, b)) < 0.1 * std::sqrt(cov(a, a) * cov(b, b)));
+  }
+
+  std::vector<long> acc0, it0;
+  for (const auto& st : s.stats()) acc0.push_back(st.accepted), it0.push_back(st.iterations);
+  const std::vector<Chains> x = run_recording(s, steps);
+  double acc = 0, it = 0;
+  for (std::size_t k = 0; k < s.size(); ++k)
+    acc += double(s.stats()[k].accepted - acc0[k]), it += double(s.stats()[k].iterations - it0[k]);
+  const double after = acc / it;
+  INFO("acceptance before refit " << before << ", after " << after);
+  CHECK(before < 0.1);
+  CHECK(after > 0.6);
+  // And the chains still sample the target after the proposal changed under them.
+  for (int j2 = 0; j2 < 3; ++j2) CHECK(std::abs(pooled_mean(x[j2]) - g.mu[j2]) < 4 * mcse(x[j2]));
+}
+
+TEST_CASE("independence: invalid set-ups are refused", "[bayes][independence]") {
+  // Log density -inf for x1 < 0 (outside the support), NaN for x2 > 5 (a failed evaluation).
+  Target t;
+  t.dim = 2;
+  t.log_density = [](const VectorXd& x, const VectorXd&) {
+    if (x[0] < 0) return -std::numeric_limits<double>::infinity();
+    return x[1] > 5 ? std::numeric_limits<double>::quiet_NaN() : -0.5 * x.squaredNorm();
+  };
+  const VectorXd m = vec({1, 1});
+  const MatrixXd eye = MatrixXd::Identity(2, 2);
+  const auto none = copies(2, VectorXd());
+  const auto ok = copies(2, vec({1, 1}));
+  CHECK_NOTHROW(IndependenceSampler(t, {}, m, eye, ok, none, Rng(1)));
+  MatrixXd indefinite(2, 2);
+  indefinite << 1, 2, 2, 1;
+  CHECK_THROWS_AS(IndependenceSampler(t, {}, m, -eye, ok, none, Rng(1)), std::invalid_argument);
+  CHECK_THROWS_AS(IndependenceSampler(t, {}, m, indefinite, ok, none, Rng(1)), std::invalid_argument);
+  CHECK_THROWS_AS(IndependenceSampler(t, {}, m, MatrixXd::Zero(2, 2), ok, none, Rng(1)), std::invalid_argument);
+  // Starts outside the support, or where the density fails.
+  CHECK_THROWS_AS(IndependenceSampler(t, {}, m, eye, {vec({1, 1}), vec({-1, 1})}, none, Rng(1)),
+                  std::invalid_argument);
+  CHECK_THROWS_AS(IndependenceSampler(t, {}, m, eye, {vec({1, 6}), vec({1, 1})}, none, Rng(1)),
+                  std::invalid_argument);
+  // Sizes: proposal mean, covariance, a start, the nuisance count, no chain at all.
+  CHECK_THROWS_AS(IndependenceSampler(t, {}, vec({1}), eye, ok, none, Rng(1)), std::invalid_argument);
+  CHECK_THROWS_AS(IndependenceSampler(t, {}, m, MatrixXd::Identity(3, 3), ok, none, Rng(1)), std::invalid_argument);
+  CHECK_THROWS_AS(IndependenceSampler(t, {}, m, MatrixXd::Identity(2, 3), ok, none, Rng(1)), std::invalid_argument);
+  CHECK_THROWS_AS(IndependenceSampler(t, {}, m, eye, {vec({1, 1}), vec({1, 1, 1})}, none, Rng(1)),
+                  std::invalid_argument);
+  CHECK_THROWS_AS(IndependenceSampler(t, {}, m, eye, ok, copies(3, VectorXd()), Rng(1)), std::invalid_argument);
+  CHECK_THROWS_AS(IndependenceSampler(t, {}, m, eye, {}, {}, Rng(1)), std::invalid_argument);
+  // A nuisance of the wrong size for a target that has one.
+  const NormalInverseGamma nig;
+  const Target tn = nig.target();
+  CHECK_THROWS_AS(IndependenceSampler(tn, {}, vec({1}), MatrixXd::Ones(1, 1), copies(2, vec({1})),
+                                      copies(2, vec({1, 1})), Rng(1)),
+                  std::invalid_argument);
+  CHECK_THROWS_AS(IndependenceSampler(tn, {}, vec({1}), MatrixXd::Ones(1, 1), copies(2, vec({1})),
+                                      copies(2, VectorXd()), Rng(1)),
+                  std::invalid_argument);
+  // Options: df and scale must be positive.
+  CHECK_THROWS_AS(IndependenceSampler(t, {.df = 0.0}, m, eye, ok, none, Rng(1)), std::invalid_argument);
+  CHECK_THROWS_AS(IndependenceSampler(t, {.scale = -1.0}, m, eye, ok, none, Rng(1)), std::invalid_argument);
+}
