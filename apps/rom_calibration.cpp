@@ -82,10 +82,12 @@ std::vector<bayes::ModelParameter> read_rom_parameters(const std::string& path, 
   const nlohmann::json j = read_json_file(path, "parameters file");
   if (!j.is_object() || j.empty())
     throw InputError(fmt::format("{}: expected a JSON object keyed by parameter name, with at least one key", path));
-  const auto& names = rom::vary_parameter_names();
+  std::vector<std::string> names;  // the vehicle parameters (friction and gravity are run settings)
+  for (const auto& n : rom::vary_parameter_names())
+    if (!rom::is_run_setting(n)) names.push_back(n);
   std::vector<bayes::ModelParameter> out;
   for (const auto& [key, spec] : j.items()) {
-    if (std::find(names.begin(), names.end(), key) == names.end() || rom::is_run_setting(key))
+    if (std::find(names.begin(), names.end(), key) == names.end())
       throw InputError(fmt::format("{}: unknown key {}; expected a vehicle parameter: {}", path, excerpt(key),
                                    fmt::join(names, ", ")));
     if (!has_roll(model) && key.rfind("roll_", 0) == 0)

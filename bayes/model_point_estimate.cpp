@@ -200,9 +200,13 @@ PointEstimate estimate_model_point(const ModelProblem& pb, const ModelPointOptio
   PointEstimate est;
   est.x = global_search(pb, o, est.global_evaluations);
   update_noise(pb, est);
+  // Each solve weights the channels by the noise it started with; rounds repeat until the noise
+  // scales (and so the weights) settle: the result is the least-squares point of its own noise.
   for (int round = 0; round < o.polish_rounds; ++round) {
+    const Eigen::VectorXd before = est.noise_var;
     polish(pb, o, est);
     update_noise(pb, est);
+    if (((est.noise_var - before).array().abs() <= 1e-9 * before.array()).all()) break;
   }
   covariance(pb, o, est);
   return est;

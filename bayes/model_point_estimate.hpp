@@ -4,7 +4,7 @@
 //      uniformly inside the priors' bounds, run as batches of `batch` and ranked by the posterior
 //      with the noise variances profiled out, sum_c (N_c/2) log(SSE_c/N_c) - log prior;
 //   2. least squares from the best of them (Ceres, bounded by the priors, residuals divided by each
-//      channel's noise scale, re-estimated between rounds), the Jacobian by central differences of
+//      channel's noise scale, re-estimated between rounds until it settles), the Jacobian by central differences of
 //      the forward model: one batch of 2 dim runs per Jacobian;
 //   3. the Laplace covariance (J^T J)^-1 at the optimum, floored in directions the data leave open,
 //      as in point_estimate.hpp, for the samplers' starts and first proposal.
@@ -19,7 +19,7 @@ struct ModelPointOptions {
   std::uint64_t seed = 1;
   int global_points = 256;  // random points of the global search
   int batch = 256;          // points per forward call in the global search
-  int polish_rounds = 2;
+  int polish_rounds = 6;    // at most; rounds stop once the noise scales change by < 1e-9 relative
   int max_iterations = 50;  // Ceres iterations per round
   // Central-difference step, relative to max(|x|, 1e-3 (upper - lower)): large enough to step over
   // the jumps a fixed-step model with discrete events (gear shifts) has at tiny parameter changes.

@@ -4,7 +4,9 @@
 // Expectations are checked against 4 Monte Carlo standard errors from the multi-chain ESS.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
@@ -121,6 +123,31 @@ double t4_cdf(double t) {
   return 0.5 + 0.5 * u * (1.5 - 0.5 * u * u);
 }
 
+// The stationary acceptance rate of an independence sampler, E min(1, w(y)/w(x)) with w = pi/q,
+// x ~ pi and y ~ q independent (Tierney 1994), by plain Monte Carlo with exact draws of both: the
+// Gaussian target N(mu, cov) and the multivariate t proposal (df, mean m, covariance scale^2 c).
+double stationary_acceptance(const VectorXd& mu, const MatrixXd& cov, const IndependenceOptions& opt, const VectorXd& m,
+                             const MatrixXd& c, int n, std::uint64_t seed) {
+  Rng rng(seed);
+  const Eigen::Index d = mu.size();
+  const MatrixXd lp = cov.llt().matrixL(), lq = (opt.scale * opt.scale * c).llt().matrixL();
+  auto log_w = [&](const VectorXd& x) {
+    const double p = -0.5 * lp.triangularView<Eigen::Lower>().solve(x - mu).squaredNorm();
+    const double q =
+        -0.5 * (opt.df + double(d)) * std::log1p(lq.triangularView<Eigen::Lower>().solve(x - m).squaredNorm() / opt.df);
+    return p - q;
+  };
+  double sum = 0;
+  VectorXd z(d), u(d);
+  for (int i = 0; i < n; ++i) {
+    for (Eigen::Index j = 0; j < d; ++j) z[j] = rng.normal(), u[j] = rng.normal();
+    const double w = rng.gamma(0.5 * opt.df) / (0.5 * opt.df);
+    const VectorXd x = mu + lp * z, y = m + lq * u / std::sqrt(w);
+    sum += std::min(1.0, std::exp(log_w(y) - log_w(x)));
+  }
+  return sum / n;
+}
+
 // The whole state of a sampler, for bit-for-bit comparisons.
 std::vector<double> snapshot(const IndependenceSampler& s) {
   std::vector<double> d;
@@ -146,18 +173,19 @@ TEST_CASE("independence: an imperfect t proposal still samples a correlated 3-D 
   // 4 MCSE) and would show the proposal's spread.
   const VectorXd m0 = g.mu + 0.5 * g.sd;
   const int chains = 16, steps = 2000;
-  IndependenceSampler s(t, IndependenceOptions{}, m0, 2.0 * cov, copies(chains, g.mu),
-                        copies(chains, VectorXd()), Rng(11));
+  IndependenceSampler s(t, IndependenceOptions{}, m0, 2.0 * cov, copies(chains, g.mu), copies(chains, VectorXd()),
+                        Rng(11));
   const std::vector<Chains> x = run_recording(s, steps);
 
   for (int j = 0; j < 3; ++j) {
     const double m = pooled_mean(x[j]), se = mcse(x[j]), ess = ess_basic(x[j]);
     INFO("x" << j << ": mean " << m << ", truth " << g.mu[j] << ", MCSE " << se << ", ESS " << ess);
-    CHECK(ess > 5000);  // nearly independent draws: an independence sampler that barely moves fails here
+    CHECK(ess > 3000);  // nearly independent draws: an independence sampler that barely moves fails here
     CHECK(std::abs(m - g.mu[j]) < 4 * se);
     CHECK(rhat_rank(x[j]) < 1.01);
   }
-  // Covariance entries, each as the expectation of (x_i - mu_i)(x_j - mu_j): within 4 MCSE and 10 %.
+  // Covariance entries, each as the expectation of (x_i - mu_i)(x_j - mu_j): within 4 MCSE, and within
+  // 10 % of sd_i sd_j (10 % of the variances on the diagonal).
   for (int i = 0; i < 3; ++i)
     for (int j = i; j < 3; ++j) {
       Chains p(chains);
@@ -166,12 +194,15 @@ TEST_CASE("independence: an imperfect t proposal still samples a correlated 3-D 
       const double c = pooled_mean(p), se = mcse(p);
       INFO("cov(" << i << "," << j << "): " << c << ", truth " << cov(i, j) << ", MCSE " << se);
       CHECK(std::abs(c - cov(i, j)) < 4 * se);
-      CHECK(std::abs(c - cov(i, j)) < 0.1 * std::abs(cov(i, j)));
+      CHECK(std::abs(c - cov(i, j)) < 0.1 * g.sd[i] * g.sd[j]);
     }
+  // The acceptance rate is the one the kernel must have at stationarity (an error in the proposal's
+  // density or in its draws shows here even where the moments above would hide it).
   const double acc = pooled_acceptance(s);
-  INFO("acceptance " << acc);
-  CHECK(acc > 0.45);
-  CHECK(acc < 0.95);  // not 1: the proposal is not the target
+  const double theory = stationary_acceptance(g.mu, cov, IndependenceOptions{}, m0, 2.0 * cov, 200000, 12);
+  INFO("acceptance " << acc << ", stationary value " << theory);
+  CHECK(std::abs(acc - theory) < 0.02);
+  CHECK(acc > 0.25);
   for (const auto& st : s.stats()) {
     CHECK(st.iterations == steps);
     CHECK(st.failed_evaluations == 0);
@@ -191,7 +222,7 @@ TEST_CASE("independence: one batch call per step, and the same chains as with si
     return single.log_density(x, s2);
   };
   batched.log_density_batch = [&](const std::vector<VectorXd>& xs, const std::vector<VectorXd>& nus,
-                                   std::vector<double>& out) {
+                                  std::vector<double>& out) {
     ++batch_calls;
     sizes_ok = sizes_ok && xs.size() == 8 && nus.size() == 8;
     nuisances_ok = nuisances_ok && nus == expected_nuisances;  // the chains' current nuisances
@@ -246,8 +277,8 @@ TEST_CASE("independence: failed evaluations are rejected and counted, the chain 
   const int chains = 8, steps = 2000;
   IndependenceSampler s(t, IndependenceOptions{}, vec({0, 0}), MatrixXd::Identity(2, 2), copies(chains, vec({0, 0})),
                         copies(chains, VectorXd()), Rng(31));
-  IndependenceSampler sb(tb, IndependenceOptions{}, vec({0, 0}), MatrixXd::Identity(2, 2),
-                         copies(chains, vec({0, 0})), copies(chains, VectorXd()), Rng(31));
+  IndependenceSampler sb(tb, IndependenceOptions{}, vec({0, 0}), MatrixXd::Identity(2, 2), copies(chains, vec({0, 0})),
+                         copies(chains, VectorXd()), Rng(31));
   std::vector<Chains> x(2, Chains(chains));
   bool finite = true, outside = false;
   for (int i = 0; i < steps; ++i) {
@@ -278,8 +309,7 @@ TEST_CASE("independence: failed evaluations are rejected and counted, the chain 
 
   const double phi1 = std::exp(-0.5) / std::sqrt(2 * std::numbers::pi), Phi1 = 0.5 * std::erfc(-1 / std::sqrt(2.0));
   const double m1 = pooled_mean(x[0]), se1 = mcse(x[0]), m2 = pooled_mean(x[1]), se2 = mcse(x[1]);
-  INFO("E x1 " << m1 << " (truth " << -phi1 / Phi1 << ", MCSE " << se1 << "), E x2 " << m2 << " (MCSE " << se2
-               << ")");
+  INFO("E x1 " << m1 << " (truth " << -phi1 / Phi1 << ", MCSE " << se1 << "), E x2 " << m2 << " (MCSE " << se2 << ")");
   CHECK(std::abs(m1 + phi1 / Phi1) < 4 * se1);
   CHECK(std::abs(m2) < 4 * se2);
 }
@@ -297,7 +327,7 @@ TEST_CASE("independence: save and load continue with bit-identical states", "[ba
     s.step();
     pool.insert(pool.end(), s.states().begin(), s.states().end());
   }
-  s.refit(pool);  // the refitted proposal is part of what must be saved
+  s.refit(pool);                              // the refitted proposal is part of what must be saved
   const std::string saved = s.save().dump();  // through text: doubles must round-trip exactly
 
   auto record = [](IndependenceSampler& x) {
@@ -337,10 +367,10 @@ TEST_CASE("independence: refit to draws of the target raises the acceptance of a
   const Target t = g.target();
   const MatrixXd cov = g.cov();
   const int chains = 16, steps = 300;
-  // Proposal 100 times the target's covariance (10 times its sd): nearly every draw lands where the
-  // target is negligible.
-  IndependenceSampler s(t, IndependenceOptions{}, g.mu, 100.0 * cov, copies(chains, g.mu), copies(chains, VectorXd()),
-                        Rng(51));
+  // Proposal 100 times the target's covariance (10 times its sd), centred 2 sd off: nearly every
+  // draw lands where the target is negligible.
+  IndependenceSampler s(t, IndependenceOptions{}, g.mu + 2 * g.sd, 100.0 * cov, copies(chains, g.mu),
+                        copies(chains, VectorXd()), Rng(51));
   for (int i = 0; i < steps; ++i) s.step();
   const double before = pooled_acceptance(s);
 
@@ -368,8 +398,16 @@ TEST_CASE("independence: refit to draws of the target raises the acceptance of a
   const double s2 = IndependenceOptions{}.scale * IndependenceOptions{}.scale;
   for (int a = 0; a < 3; ++a) {
     CHECK(std::abs(mean[a] - g.mu[a]) < 5 * g.sd[a] / std::sqrt(4000.0));
-    for (int b = 0; b < 3; ++b)
-      CHECK(std::abs(fitted(a, b) / s2 - cov(a, b)) < 0.1 * std::sqrt(cov(a, a) * cov(b, b)));
+    for (int b = 0; b < 3; ++b) CHECK(std::abs(fitted(a, b) / s2 - cov(a, b)) < 0.1 * std::sqrt(cov(a, a) * cov(b, b)));
+  }
+
+  // The chains' proposal densities are those of the new proposal, -0.5 (df + d) log(1 + |L^-1 (x - m)|^2 / df):
+  // left at the old ones, the first move after a refit would use the wrong Hastings ratio.
+  const double df = IndependenceOptions{}.df;
+  for (std::size_t k = 0; k < s.size(); ++k) {
+    const VectorXd z = chol.triangularView<Eigen::Lower>().solve(s.states()[k] - mean);
+    CHECK(decode_double(j.at("log_proposals")[k]) ==
+          Approx(-0.5 * (df + 3) * std::log1p(z.squaredNorm() / df)).epsilon(1e-12).margin(1e-14));
   }
 
   std::vector<long> acc0, it0;
@@ -379,9 +417,11 @@ TEST_CASE("independence: refit to draws of the target raises the acceptance of a
   for (std::size_t k = 0; k < s.size(); ++k)
     acc += double(s.stats()[k].accepted - acc0[k]), it += double(s.stats()[k].iterations - it0[k]);
   const double after = acc / it;
-  INFO("acceptance before refit " << before << ", after " << after);
+  const double theory = stationary_acceptance(g.mu, cov, IndependenceOptions{}, mean, fitted / s2, 200000, 53);
+  INFO("acceptance before refit " << before << ", after " << after << " (stationary value " << theory << ")");
   CHECK(before < 0.1);
-  CHECK(after > 0.6);
+  CHECK(after > 0.5);
+  CHECK(std::abs(after - theory) < 0.04);
   // And the chains still sample the target after the proposal changed under them.
   for (int j2 = 0; j2 < 3; ++j2) CHECK(std::abs(pooled_mean(x[j2]) - g.mu[j2]) < 4 * mcse(x[j2]));
 }
@@ -405,10 +445,8 @@ TEST_CASE("independence: invalid set-ups are refused", "[bayes][independence]") 
   CHECK_THROWS_AS(IndependenceSampler(t, {}, m, indefinite, ok, none, Rng(1)), std::invalid_argument);
   CHECK_THROWS_AS(IndependenceSampler(t, {}, m, MatrixXd::Zero(2, 2), ok, none, Rng(1)), std::invalid_argument);
   // Starts outside the support, or where the density fails.
-  CHECK_THROWS_AS(IndependenceSampler(t, {}, m, eye, {vec({1, 1}), vec({-1, 1})}, none, Rng(1)),
-                  std::invalid_argument);
-  CHECK_THROWS_AS(IndependenceSampler(t, {}, m, eye, {vec({1, 6}), vec({1, 1})}, none, Rng(1)),
-                  std::invalid_argument);
+  CHECK_THROWS_AS(IndependenceSampler(t, {}, m, eye, {vec({1, 1}), vec({-1, 1})}, none, Rng(1)), std::invalid_argument);
+  CHECK_THROWS_AS(IndependenceSampler(t, {}, m, eye, {vec({1, 6}), vec({1, 1})}, none, Rng(1)), std::invalid_argument);
   // Sizes: proposal mean, covariance, a start, the nuisance count, no chain at all.
   CHECK_THROWS_AS(IndependenceSampler(t, {}, vec({1}), eye, ok, none, Rng(1)), std::invalid_argument);
   CHECK_THROWS_AS(IndependenceSampler(t, {}, m, MatrixXd::Identity(3, 3), ok, none, Rng(1)), std::invalid_argument);
@@ -420,12 +458,12 @@ TEST_CASE("independence: invalid set-ups are refused", "[bayes][independence]") 
   // A nuisance of the wrong size for a target that has one.
   const NormalInverseGamma nig;
   const Target tn = nig.target();
-  CHECK_THROWS_AS(IndependenceSampler(tn, {}, vec({1}), MatrixXd::Ones(1, 1), copies(2, vec({1})),
-                                      copies(2, vec({1, 1})), Rng(1)),
-                  std::invalid_argument);
-  CHECK_THROWS_AS(IndependenceSampler(tn, {}, vec({1}), MatrixXd::Ones(1, 1), copies(2, vec({1})),
-                                      copies(2, VectorXd()), Rng(1)),
-                  std::invalid_argument);
+  CHECK_THROWS_AS(
+      IndependenceSampler(tn, {}, vec({1}), MatrixXd::Ones(1, 1), copies(2, vec({1})), copies(2, vec({1, 1})), Rng(1)),
+      std::invalid_argument);
+  CHECK_THROWS_AS(
+      IndependenceSampler(tn, {}, vec({1}), MatrixXd::Ones(1, 1), copies(2, vec({1})), copies(2, VectorXd()), Rng(1)),
+      std::invalid_argument);
   // Options: df and scale must be positive.
   CHECK_THROWS_AS(IndependenceSampler(t, {.df = 0.0}, m, eye, ok, none, Rng(1)), std::invalid_argument);
   CHECK_THROWS_AS(IndependenceSampler(t, {.scale = -1.0}, m, eye, ok, none, Rng(1)), std::invalid_argument);
