@@ -19,5 +19,6 @@ Command add_pipeline(CLI::App& app);
 Command add_rom(CLI::App& app);
 Command add_vehicle(CLI::App& app);
 Command add_calibrate_rom(CLI::App& app);
+Command add_validate_rom(CLI::App& app);
 
 }  // namespace terracal::app

@@ -122,6 +122,7 @@ int main(int argc, char** argv) {
   add(terracal::app::add_rom, "rom");
   add(terracal::app::add_vehicle, "vehicle");
   add(terracal::app::add_calibrate_rom, "calibrate-rom");
+  add(terracal::app::add_validate_rom, "validate-rom");
   // Progress and messages go to stderr; stdout carries the summary table only.
   spdlog::set_default_logger(spdlog::stderr_color_mt("terracal"));
   spdlog::set_pattern("[%H:%M:%S] %^%l%$ %v");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -248,14 +249,19 @@ RomCalibrationOutcome run_rom_calibration(const RomCalibrationSettings& s) {
   nlohmann::ordered_json rmse_json;
   if (!f[0].empty() && !f[1].empty()) write_fits(s, refs, which, f[0], f[1], rmse_json);
   j["Posterior"] = bayes::model_posterior_json(pb, res);
+  nlohmann::ordered_json fixed_json = nlohmann::ordered_json::object();
+  for (const auto& [n, v] : fixed) fixed_json[n] = v;
   nlohmann::ordered_json noise;
   for (int c = 0; c < pb.num_channels(); ++c) noise[channels[c].name] = std::sqrt(res.point.noise_var[c]);
   out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   j["Fit"] = {{"model", rom::model_name(s.model)},
-              {"vehicle", s.vehicle},
+              {"vehicle", rom::rom_preset_json(s.vehicle).empty()
+                              ? std::filesystem::absolute(s.vehicle).lexically_normal().string()
+                              : s.vehicle},
+              {"step", s.step},
               {"references", s.references},
               {"point_estimate", "MAP"},
-              {"fixed", fixed.empty() ? nlohmann::ordered_json::object() : nlohmann::ordered_json(fixed)},
+              {"fixed", fixed_json},
               {"noise_sd", noise},
               {"rmse", rmse_json},
               {"sampler", s.sampler == bayes::SamplerKind::kEnsemble ? "ensemble" : "independence"},

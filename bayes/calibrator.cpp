@@ -112,8 +112,8 @@ class Ensemble : public MultiChain {
   EnsembleSampler sampler_;
 };
 
-// Independence chains: the Laplace proposal, refitted to the pooled states halfway through the
-// warm-up and at its end (from its second half); fixed while draws are kept.
+// Independence chains: the Laplace proposal, refitted to the chains' pooled states after each
+// quarter of the warm-up (from that quarter's states); fixed while draws are kept.
 class Independence : public MultiChain {
  public:
   Independence(const Target& target, const std::vector<Eigen::VectorXd>& starts, const Eigen::VectorXd& noise0,
@@ -129,7 +129,8 @@ class Independence : public MultiChain {
       sampler_.step();
       if (adapt) {
         pool.insert(pool.end(), sampler_.states().begin(), sampler_.states().end());
-        if (i + 1 == iterations / 2 || i + 1 == iterations) {
+        const int every = std::max(1, iterations / 4);
+        if ((i + 1) % every == 0 || i + 1 == iterations) {
           sampler_.refit(pool);
           pool.clear();
         }

@@ -19,8 +19,8 @@ struct ModelPointOptions {
   std::uint64_t seed = 1;
   int global_points = 256;  // random points of the global search
   int batch = 256;          // points per forward call in the global search
-  int polish_rounds = 6;    // at most; rounds stop once the noise scales change by < 1e-9 relative
-  int max_iterations = 50;  // Ceres iterations per round
+  int polish_rounds = 4;    // at most; rounds stop once the noise scales change by < 1e-9 relative
+  int max_iterations = 15;  // Ceres iterations per round
   // Central-difference step, relative to max(|x|, 1e-3 (upper - lower)): large enough to step over
   // the jumps a fixed-step model with discrete events (gear shifts) has at tiny parameter changes.
   double relative_step = 1e-2;
