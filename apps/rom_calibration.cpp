@@ -275,7 +275,11 @@ RomCalibrationOutcome run_rom_calibration(const RomCalibrationSettings& s) {
               {"device", s.device == rom::BatchDevice::kCuda ? "cuda" : "cpu"},
               {"wall_seconds", out.wall_seconds}};
   write_text_atomically(s.out + "/rom_params.json", j.dump(2) + "\n");
-  bayes::write_inference_data_h5(s.out + "/posterior.h5", bayes::make_model_inference_data(pb, res, s.seed));
+  // About 320 predictive draws in all, whatever the number of chains (50 per chain of 32 chains made
+  // the HMMWV's four references a 30 MB file).
+  const int predictive = std::max(1, 320 / std::max(res.chains, 1));
+  bayes::write_inference_data_h5(s.out + "/posterior.h5",
+                                 bayes::make_model_inference_data(pb, res, s.seed, predictive));
   return out;
 }
 

@@ -155,20 +155,21 @@ TEST_CASE("rom forward: GPU and CPU batches give the same log-likelihoods within
     p.prior.upper = 5;
   }
   const auto wrap = [](const RomForward& f) {
-    return [&f](const std::vector<Eigen::VectorXd>& xs, std::vector<std::vector<double>>& out) {
+    return [fp = &f](const std::vector<Eigen::VectorXd>& xs, std::vector<std::vector<double>>& out) {
       std::vector<std::vector<double>> p;
       for (const auto& x : xs) p.emplace_back(x.data(), x.data() + x.size());
-      f(p, out);
+      (*fp)(p, out);
     };
   };
   const bayes::ModelProblem on_cpu(ps, obs, wrap(cpu)), on_gpu(ps, obs, wrap(gpu));
   std::vector<Eigen::VectorXd> xs, nv(64, Eigen::VectorXd::Constant(4, 1e-3));
-  for (int i = 0; i < 64; ++i) xs.push_back(Eigen::Vector2d(0.5 + 0.02 * i, 0.6 + 0.015 * i));
+  for (int i = 0; i < 64; ++i) xs.push_back(Eigen::Vector2d(0.8 + 0.01 * i, 0.85 + 0.008 * i));
   std::vector<double> lc, lg;
   on_cpu.target().log_density_batch(xs, nv, lc);
   on_gpu.target().log_density_batch(xs, nv, lg);
   double worst = 0;
   for (int i = 0; i < 64; ++i) {
+    INFO("set " << i << ": " << lc[i] << " (CPU), " << lg[i] << " (GPU)");
     REQUIRE(std::isfinite(lc[i]));
     worst = std::max(worst, std::fabs(lg[i] - lc[i]) / std::fabs(lc[i]));
   }
