@@ -14,6 +14,7 @@
 #include "apps/memory_check.hpp"
 #include "apps/out_dir.hpp"
 #include "apps/report_plots.hpp"
+#include "apps/rom_choices.hpp"
 #include "core/atomic_file.hpp"
 #include "core/device_selftest.hpp"
 #include "core/errors.hpp"
@@ -38,8 +39,6 @@ struct RomArgs {
   std::uint64_t seed = 1;
 };
 
-const std::map<std::string, rom::RomModel> kModels = {
-    {"11dof", rom::RomModel::k11Dof}, {"18dof", rom::RomModel::k18Dof}, {"24dof", rom::RomModel::k24Dof}};
 const std::map<std::string, rom::RomIntegrator> kIntegrators = {{"cvodes", rom::RomIntegrator::kCvodes},
                                                                 {"half-implicit", rom::RomIntegrator::kHalfImplicit}};
 }  // namespace
@@ -75,11 +74,7 @@ int run_batch(const RomArgs& a, const rom::RomVehicle& vehicle, const rom::RomRu
   o.initial_speed = run.initial_speed;
   o.channels = parse_channels(a.channels);
   o.output_rate = o.channels.empty() ? 0.0 : run.output_rate;
-  const CudaDeviceInfo gpu = cuda_device_info();
-  if (a.device == "cuda" && !gpu.available)
-    throw InputError(fmt::format("--device cuda: no CUDA device available ({})", gpu.description));
-  const bool cuda = a.device == "cuda" || (a.device == "auto" && rom::cuda_batch_available() && gpu.available);
-  o.device = cuda ? rom::BatchDevice::kCuda : rom::BatchDevice::kCpu;
+  o.device = batch_device(a.device);
   // Host memory: every vehicle's summary, final state and channel samples (the GPU runs them in
   // chunks), and with --vary its own parameter set.
   const double samples = o.output_rate > 0 ? std::floor(run.end_time * o.output_rate + 0.5) + 1 : 0;
@@ -153,7 +148,7 @@ int run_single(const RomArgs& a, const rom::RomVehicle& vehicle, const rom::RomR
 }
 
 void add_rom_options(CLI::App* sub, RomArgs& a) {
-  add_choice(sub, "--model", a.run.model, kModels, "vehicle model")->required()->default_str("");
+  add_choice(sub, "--model", a.run.model, kRomModels, "vehicle model")->required()->default_str("");
   sub->add_option("--vehicle", a.vehicle, "vehicle file (JSON, ours or LFDM's) or preset: hmmwv, sedan")->required();
   sub->add_option("--tire", a.tire, "TMeasy tire file replacing the vehicle's (needed with an LFDM vehicle file)");
   auto* inputs = sub->add_option("--inputs", a.inputs,

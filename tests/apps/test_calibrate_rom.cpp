@@ -16,6 +16,7 @@
 #include "rom/rom_forward.hpp"
 #include "rom/rom_vehicle_json.hpp"
 #include "tests/apps/cli_runner.hpp"
+#include "tests/apps/rom_references.hpp"
 #include "tests/scratch_dir.hpp"
 
 using namespace terracal;
@@ -25,36 +26,7 @@ namespace {
 
 const char* kSteer = "0 0 0.5 0\n0.6 0.35 0.5 0\n2.5 0.35 0.5 0\n";
 const char* kAccel = "0 0 0.9 0\n1.5 0 0.9 0\n1.8 0 0 0.6\n2.5 0 0 0.6\n";
-constexpr double kNoise[] = {0.03, 0.01, 0.002, 0.1};  // vx, yaw rate, roll, ay
-
-// DIR/<name>/trajectory.csv and inputs.txt: the model's channels for `truth` at 20 Hz, plus seeded
-// noise (the first row exact: it gives the initial speed).
-void write_reference(const std::string& dir, const std::string& name, const char* inputs, rom::RomModel model,
-                     const std::vector<std::string>& params, const std::vector<double>& truth, std::uint64_t seed) {
-  const std::string folder = dir + "/" + name;
-  std::filesystem::create_directories(folder);
-  write(folder + "/inputs.txt", inputs);
-  std::vector<rom::RomReference> refs = {
-      rom::RomReference{.dir = folder, .name = name, .driver = DriverSeries::read(folder + "/inputs.txt")}};
-  rom::RomReference& r = refs[0];
-  r.initial_speed = 6.0;
-  for (int i = 0; i <= 50; ++i) r.time.push_back(0.05 * i);
-  const std::vector<rom::RomChannel> ch = {rom::kRcVx, rom::kRcYawRate, rom::kRcRoll, rom::kRcAy};
-  for (auto c : ch) r.has[c] = true;
-  const rom::RomForward f({rom::load_rom_vehicle("hmmwv"), model, params, ch, &refs, 1e-3, rom::BatchDevice::kCpu});
-  std::vector<std::vector<double>> out;
-  f({truth}, out);
-  REQUIRE(out[0].size() == 4 * r.time.size());
-  Rng rng = Rng::for_stream(seed, name == "steer" ? 1 : 2);
-  std::string csv = "time,vx,yaw_rate,roll,ay\n";
-  for (std::size_t i = 0; i < r.time.size(); ++i) {
-    csv += fmt::format("{:.6f}", r.time[i]);
-    for (std::size_t c = 0; c < ch.size(); ++c)
-      csv += fmt::format(",{:.12g}", out[0][c * r.time.size() + i] + (i == 0 ? 0.0 : kNoise[c] * rng.normal()));
-    csv += "\n";
-  }
-  write(folder + "/trajectory.csv", csv);
-}
+constexpr const double* kNoise = kRomRefNoise;  // vx, yaw rate, roll, ay
 
 }  // namespace
 
@@ -70,8 +42,8 @@ TEST_CASE("calibrate-rom: the 90 % intervals cover known parameters in 80-98 % o
   int covered = 0, intervals = 0;
   for (std::uint64_t seed = 1; seed <= 20; ++seed) {
     const std::string d = dir.str() + fmt::format("/s{}", seed);
-    write_reference(d, "steer", kSteer, rom::RomModel::k11Dof, params, truth, seed);
-    write_reference(d, "accel", kAccel, rom::RomModel::k11Dof, params, truth, seed);
+    write_rom_reference(d, "steer", kSteer, rom::RomModel::k11Dof, params, truth, 2.5, seed, 1);
+    write_rom_reference(d, "accel", kAccel, rom::RomModel::k11Dof, params, truth, 2.5, seed, 2);
     app::RomCalibrationSettings s;
     s.model = rom::RomModel::k11Dof;
     s.vehicle = "hmmwv";

@@ -17,6 +17,7 @@
 #include "rom/rom_forward.hpp"
 #include "rom/rom_vehicle_json.hpp"
 #include "tests/apps/cli_runner.hpp"
+#include "tests/apps/rom_references.hpp"
 #include "tests/scratch_dir.hpp"
 #include "tests/skip.hpp"
 
@@ -28,43 +29,13 @@ namespace {
 const char* kSteer = "0 0 0.5 0\n0.6 0.35 0.5 0\n2.5 0.35 0.5 0\n";
 // The validation manoeuvre: a steer to the right, back to the left, with a throttle change.
 const char* kSlalom = "0 0 0.4 0\n0.5 -0.3 0.4 0\n1.5 -0.3 0.7 0\n2.0 0.3 0.7 0\n3.5 0.3 0.3 0\n4.0 0 0.3 0\n";
-constexpr double kNoise[] = {0.03, 0.01, 0.002, 0.1};  // vx, yaw rate, roll, ay
+constexpr const double* kNoise = kRomRefNoise;  // vx, yaw rate, roll, ay
 const std::vector<std::string> kParams = {"tire_cornering_scale_front", "tire_cornering_scale_rear", "torque_scale"};
 const std::vector<double> kTruth = {0.8, 1.25, 1.15};
 
-// DIR/<name>/trajectory.csv and inputs.txt: the 11-DOF model's channels for kTruth at 20 Hz over
-// `end` s, plus seeded noise (the first row exact: it gives the initial speed). As in
-// test_calibrate_rom.cpp, with a stream per name.
 void write_reference(const std::string& dir, const std::string& name, const char* inputs, double end,
                      std::uint64_t seed, std::uint64_t stream) {
-  const std::string folder = dir + "/" + name;
-  std::filesystem::create_directories(folder);
-  write(folder + "/inputs.txt", inputs);
-  std::vector<rom::RomReference> refs = {rom::RomReference{.dir = folder,
-                                                           .name = name,
-                                                           .driver = DriverSeries::read(folder + "/inputs.txt"),
-                                                           .initial_speed = 6.0,
-                                                           .time = {},
-                                                           .values = {},
-                                                           .has = {}}};
-  rom::RomReference& r = refs[0];
-  for (int i = 0; i <= static_cast<int>(std::lround(end * 20)); ++i) r.time.push_back(0.05 * i);
-  const std::vector<rom::RomChannel> ch = {rom::kRcVx, rom::kRcYawRate, rom::kRcRoll, rom::kRcAy};
-  for (auto c : ch) r.has[c] = true;
-  const rom::RomForward f(
-      {rom::load_rom_vehicle("hmmwv"), rom::RomModel::k11Dof, kParams, ch, &refs, 1e-3, rom::BatchDevice::kCpu});
-  std::vector<std::vector<double>> out;
-  f({kTruth}, out);
-  REQUIRE(out[0].size() == 4 * r.time.size());
-  Rng rng = Rng::for_stream(seed, stream);
-  std::string csv = "time,vx,yaw_rate,roll,ay\n";
-  for (std::size_t i = 0; i < r.time.size(); ++i) {
-    csv += fmt::format("{:.6f}", r.time[i]);
-    for (std::size_t c = 0; c < ch.size(); ++c)
-      csv += fmt::format(",{:.12g}", out[0][c * r.time.size() + i] + (i == 0 ? 0.0 : kNoise[c] * rng.normal()));
-    csv += "\n";
-  }
-  write(folder + "/trajectory.csv", csv);
+  write_rom_reference(dir, name, inputs, rom::RomModel::k11Dof, kParams, kTruth, end, seed, stream);
 }
 
 // The calibration of the first test case, once per process: DIR/cal (rom_params.json, posterior.h5),
