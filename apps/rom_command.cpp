@@ -111,7 +111,7 @@ int run_batch(const RomArgs& a, const rom::RomVehicle& vehicle, const rom::RomRu
       r.vehicles * o.end_time / std::max(r.wall_seconds, 1e-12), a.out);
   return 0;
 }
-// One vehicle: trajectory.csv, run.json and trajectory.png; with a driver file, inputs.txt.
+// One vehicle: trajectory.csv, run.json, trajectory.png and inputs.txt.
 int run_single(const RomArgs& a, const rom::RomVehicle& vehicle, const rom::RomRunOptions& run,
                rom::RomDriver& driver) {
   std::filesystem::create_directories(a.out);
@@ -127,6 +127,20 @@ int run_single(const RomArgs& a, const rom::RomVehicle& vehicle, const rom::RomR
     for (std::size_t i = 0; i < s.times().size(); ++i)
       d += fmt::format("{:.17g} {:.17g} {:.17g} {:.17g}\n", s.times()[i], s.steering()[i], s.throttle()[i],
                        s.braking()[i]);
+    write_text_atomically(a.out + "/inputs.txt", d);
+  } else {  // a manoeuvre's held inputs as steps: a row at each control time and 1 us before the next
+    std::string d =
+        "# driver inputs of terracal rom --maneuver: held from each control time, as steps 1e-6 s wide\n"
+        "# time steering throttle braking\n";
+    const auto row = [&](double t, const DriverInput& in) {
+      d += fmt::format("{:.17g} {:.17g} {:.17g} {:.17g}\n", t, in.steering, in.throttle, in.braking);
+    };
+    const auto& h = r.held_inputs;
+    for (std::size_t i = 0; i < h.size(); ++i) {
+      row(h[i].first, h[i].second);
+      const double next = i + 1 < h.size() ? h[i + 1].first : run.end_time;
+      if (next - 1e-6 > h[i].first) row(next - (i + 1 < h.size() ? 1e-6 : 0.0), h[i].second);
+    }
     write_text_atomically(a.out + "/inputs.txt", d);
   }
   const nlohmann::json j = {{"model", rom::model_name(run.model)},

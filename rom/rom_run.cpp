@@ -64,7 +64,10 @@ void run_half_implicit(const RomVehicle& v, RomDriver& d, const RomRunOptions& o
   RomAux aux;
   for (long k = 0; k < steps; ++k) {
     const double t = k * h;
-    if (k % control_every == 0) in = driver_input<M>(d, t, y);
+    if (k % control_every == 0) {
+      in = driver_input<M>(d, t, y);
+      if (!d.series) r.held_inputs.emplace_back(t, in);
+    }
     if (!half_implicit_step<M>(v, in, gear, y, h, &aux))
       throw RunError(
           fmt::format("rom: the half-implicit scheme diverged at t = {:.4g} s with --step {} s: the step is "
@@ -94,6 +97,7 @@ void run_cvodes(const RomVehicle& v, RomDriver& d, const RomRunOptions& o, RomRu
   };
   CvodesIntegrator cv(problem, y, o.rtol, o.atol);
   r.samples.push_back(sample_at<M>(v, held, gear, 0.0, y));
+  if (!d.series) r.held_inputs.emplace_back(0.0, held);
   // Chunks end at output times and, with a manoeuvre, at control times: the inputs and the gear
   // change only there (the solver restarts when they do).
   const double dt_out = 1.0 / o.output_rate;
@@ -113,6 +117,7 @@ void run_cvodes(const RomVehicle& v, RomDriver& d, const RomRunOptions& o, RomRu
     gear = new_gear;
     if (!d.series) {
       held = driver_input<M>(d, t, y);
+      if (t < o.end_time - 1e-9 * chunk) r.held_inputs.emplace_back(t, held);
       restart = true;
     }
     if (restart) cv.restart(t, y);

@@ -4,6 +4,7 @@
 // or a built-in manoeuvre), sampled at a fixed output rate. The integrators know nothing of the
 // physics: they see a model's right-hand side (the SUNDIALS pattern).
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/vehicle/driver_inputs.hpp"
@@ -42,6 +43,9 @@ struct RomDriver {
 
 struct RomRunResult {
   std::vector<RomSample> samples;
+  // A manoeuvre's inputs: each control time and the inputs held from it until the next (empty with a
+  // driver series).
+  std::vector<std::pair<double, DriverInput>> held_inputs;
   long steps = 0;            // integrator steps
   long rhs_evaluations = 0;  // right-hand-side evaluations
   double wall_seconds = 0;

@@ -7,6 +7,8 @@
 
 #include <catch2/catch.hpp>
 
+#include "core/csv.hpp"
+
 #include "core/device_selftest.hpp"
 #include "core/vehicle/driver_inputs.hpp"
 #include "rom/trajectory_csv.hpp"
@@ -40,8 +42,17 @@ TEST_CASE("terracal rom: a step steer writes trajectory.csv at 100 Hz", "[cli][r
   CHECK(rows == 301);
   CHECK(yaw_rate_end > 0.05);  // positive steering turns left
   CHECK(std::ifstream(dir.str() + "/out/run.json").good());
-  // A manoeuvre's held inputs are not reported by the run: no inputs.txt (docs/formats.md).
-  CHECK_FALSE(std::filesystem::exists(dir.str() + "/out/inputs.txt"));
+  // inputs.txt holds the manoeuvre's held inputs as steps: driven by it, the same run again.
+  const CliResult again =
+      run_cli("rom --model 18dof --vehicle hmmwv --inputs " + dir.str() +
+                  "/out/inputs.txt --initial-speed 15 --end-time 3 --out " + dir.str() + "/again --no-plots",
+              dir.str());
+  REQUIRE(again.exit_code == 0);
+  const terracal::CsvTable a = terracal::CsvTable::read(dir.str() + "/out/trajectory.csv");
+  const terracal::CsvTable b = terracal::CsvTable::read(dir.str() + "/again/trajectory.csv");
+  REQUIRE(a.rows() == b.rows());
+  for (const char* c : {"x", "y", "yaw", "vx", "yaw_rate"})
+    CHECK(b.number(b.rows() - 1, c) == Approx(a.number(a.rows() - 1, c)).margin(1e-4));
 }
 
 TEST_CASE("terracal rom --inputs: inputs.txt gives back the driver file's rows", "[cli][rom]") {
