@@ -189,7 +189,19 @@ TEST_CASE("vary: scales multiply the base's values, cg_to_front keeps the wheelb
   }
   CHECK(vary_parameter_unit("roll_damping_front") == "N m s/rad");
   CHECK(vary_parameter_unit("torque_scale") == "-");
-  CHECK(vary_parameter_names().size() == 17);
+  CHECK(vary_parameter_names().size() == 20);
+  // The per-axle cornering scales act on one axle; rolling_resistance sets every tire's coefficient.
+  RomVehicle v = base;
+  apply_vary_parameter(v, base, "tire_cornering_scale_rear", 0.7);
+  apply_vary_parameter(v, base, "rolling_resistance", 0.03);
+  for (int l = 0; l < 2; ++l) {
+    CHECK(v.tire[0].y[l].df0 == base.tire[0].y[l].df0);
+    CHECK(v.tire[1].y[l].df0 == 0.7 * base.tire[1].y[l].df0);
+  }
+  apply_vary_parameter(v, base, "tire_cornering_scale_front", 1.3);
+  for (int l = 0; l < 2; ++l) CHECK(v.tire[0].y[l].df0 == 1.3 * base.tire[0].y[l].df0);
+  CHECK(v.tire[0].rolling_resistance == 0.03);
+  CHECK(v.tire[1].rolling_resistance == 0.03);
 }
 
 TEST_CASE("vary: bad files are refused naming the key and the value", "[rom_batch_vary]") {
