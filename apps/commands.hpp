@@ -15,6 +15,7 @@ Command add_synthesize(CLI::App& app);
 Command add_crm(CLI::App& app);
 Command add_bevameter(CLI::App& app);
 Command add_wheel(CLI::App& app);
+Command add_wheel_table(CLI::App& app);
 Command add_pipeline(CLI::App& app);
 Command add_rom(CLI::App& app);
 Command add_vehicle(CLI::App& app);

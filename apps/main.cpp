@@ -118,6 +118,7 @@ int main(int argc, char** argv) {
   add(terracal::app::add_crm, "crm");
   add(terracal::app::add_bevameter, "bevameter");
   add(terracal::app::add_wheel, "wheel");
+  add(terracal::app::add_wheel_table, "wheel-table");
   add(terracal::app::add_pipeline, "pipeline");
   add(terracal::app::add_rom, "rom");
   add(terracal::app::add_vehicle, "vehicle");

@@ -55,12 +55,13 @@ RigSoil wheel_soil(const rigs::WheelSpec& wheel, const std::vector<double>& slip
   for (double slip : slips)
     travel = std::max(travel, wheel.angular_velocity * wheel.radius * (1 - slip) * run.duration);
   const double outer = wheel.radius + wheel.grouser_height;
+  const double cross = travel * std::tan(run.slip_angle);
   return {"the wheel",
           0.5 * travel + 2 * outer + o.spacing,
-          2 * rigs::wheel_reach_y(wheel) + o.spacing,
+          0.5 * cross + 2 * rigs::wheel_reach_y(wheel) + o.spacing,
           std::max(0.2, 0.5 * wheel.radius),
           2 * outer * wheel.width,
-          (2 * outer + travel) * wheel.width};
+          (2 * outer + travel) * (wheel.width + cross)};
 }
 
 // Refuses a site that cannot fit in memory, naming the options that size it; `say`: log the estimate.
@@ -305,6 +306,11 @@ std::vector<rigs::WheelResult> run_wheel_sweep(SoilModel solver, const SoilChoic
       spdlog::warn("{} {} (wheel_series.csv has the time series)", soil_model_name(solver), why);
   }
   return out;
+}
+
+std::unique_ptr<TerrainSite> wheel_site(const SoilChoice& soil, const TerrainOptions& o, const rigs::WheelSpec& wheel,
+                                        const std::vector<double>& slips, const rigs::WheelRun& run) {
+  return site_for(soil, o, wheel_soil(wheel, slips, run, o));
 }
 
 }  // namespace terracal::app

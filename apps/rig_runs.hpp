@@ -3,6 +3,7 @@
 // progress lines on long runs, and the curves with their wall times. Shared by `bevameter`, `wheel`
 // and `pipeline`.
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -104,5 +105,10 @@ void warn_about_sweep(const rigs::WheelSpec& wheel, const std::vector<double>& s
 std::vector<rigs::WheelResult> run_wheel_sweep(SoilModel solver, const SoilChoice& soil, const TerrainOptions& o,
                                                const rigs::WheelSpec& wheel, const std::vector<double>& slips,
                                                const rigs::WheelRun& run, std::string* site_description = nullptr);
+
+// The site a slip sweep on soil.solver (crm or scm) runs on: room for every slip of `slips` (and
+// run.slip_angle's travel across). For runs that share one site (wheel-table).
+std::unique_ptr<TerrainSite> wheel_site(const SoilChoice& soil, const TerrainOptions& o, const rigs::WheelSpec& wheel,
+                                        const std::vector<double>& slips, const rigs::WheelRun& run);
 
 }  // namespace terracal::app

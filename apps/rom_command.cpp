@@ -23,6 +23,7 @@
 #include "rom/rom_batch.hpp"
 #include "rom/rom_run.hpp"
 #include "rom/rom_vehicle_json.hpp"
+#include "rom/terrain_table_h5.hpp"
 #include "rom/trajectory_csv.hpp"
 
 namespace terracal::app {
@@ -35,7 +36,7 @@ struct RomArgs {
   double friction = 1.0, gravity = 9.81;
   bool plots = true;
   long batch = 0;
-  std::string vary, device = "auto", channels;
+  std::string vary, device = "auto", channels, terrain_table;
   std::uint64_t seed = 1;
 };
 
@@ -205,6 +206,8 @@ void add_rom_options(CLI::App* sub, RomArgs& a) {
       ->capture_default_str();
   sub->add_option("--channels", a.channels,
                   "batch channels sampled at --output-rate: x,y,yaw,vx,vy,yaw_rate,ax,ay,roll");
+  sub->add_option("--terrain-table", a.terrain_table,
+                  "soft soil: tire forces from this wheel table (terracal wheel-table; effect deformable_terrain)");
   sub->add_option("--out", a.out, "output folder")->required();
 }
 
@@ -212,7 +215,7 @@ void add_rom_options(CLI::App* sub, RomArgs& a) {
 
 Command add_rom(CLI::App& app) {
   auto* sub =
-      app.add_subcommand("rom", "A reduced-order vehicle (11, 18 or 24 DOF) on rigid ground; writes trajectory.csv");
+      app.add_subcommand("rom", "A reduced-order vehicle (11, 18 or 24 DOF) on rigid ground or a wheel table's soil; writes trajectory.csv");
   auto a = std::make_shared<RomArgs>();
   add_rom_options(sub, *a);
   return [a, sub] {
@@ -227,6 +230,7 @@ Command add_rom(CLI::App& app) {
     if (a->inputs.empty() == a->maneuver.empty())
       throw InputError("terracal rom: give the driver as --inputs DRIVER.txt or --maneuver M.json (one of them)");
     rom::RomVehicle vehicle = rom::load_rom_vehicle(a->vehicle, a->tire);
+    if (!a->terrain_table.empty()) rom::attach_terrain_table(vehicle, a->terrain_table);
     vehicle.friction = a->friction;
     vehicle.gravity = a->gravity;
     rom::validate(vehicle, a->vehicle);

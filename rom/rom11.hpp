@@ -88,7 +88,7 @@ struct Rom11 {
       const TmeasyParams& t = v.tire[w];
       j[w] = 2.0 * t.wheel_inertia;
       tau[w] = (driven[w] ? d.wheel_torque : 0.0) - f.w[w].fx * f.w[w].rdyn;
-      double dry = brake;
+      double dry = brake + f.w[w].soil_torque;
       if (v.has(kEffectRollingResistance)) dry += t.rolling_resistance * max_of(f.fz[w], 0.0) * f.w[w].rdyn;
       if (smooth_dry) tau[w] += dry_friction_torque(dry, y[kSpin + w]);
       aux->dry_torque[w] = smooth_dry ? 0.0 : dry;

@@ -33,10 +33,50 @@ struct DeviceArray {
   DeviceArray& operator=(const DeviceArray&) = delete;
 };
 
+// The vehicles as the device sees them: a deformable_terrain table's arrays copied into one device
+// allocation per distinct table (owned by `tables`), the copies' views pointing into it.
+std::vector<RomVehicle> with_device_tables(const std::vector<RomVehicle>& vehicles,
+                                           std::vector<std::unique_ptr<DeviceArray<double>>>& tables) {
+  std::vector<RomVehicle> out = vehicles;
+  std::map<const double*, TerrainTableView> copied;  // keyed by the host table's load axis
+  for (RomVehicle& v : out) {
+    if (!v.terrain.present()) continue;
+    auto [it, fresh] = copied.try_emplace(v.terrain.load);
+    if (fresh) {
+      const TerrainTableView& h = v.terrain;
+      const std::size_t cells = std::size_t(h.n_load) * h.n_slip * h.n_angle;
+      std::vector<double> flat;
+      auto put = [&](const double* p, std::size_t n) {
+        const std::size_t at = flat.size();
+        flat.insert(flat.end(), p, p + n);
+        return at;
+      };
+      const std::size_t offsets[6] = {put(h.load, h.n_load),      put(h.slip, h.n_slip),
+                                      put(h.angle, h.n_angle),    put(h.thrust, cells),
+                                      put(h.resistance, cells),   put(h.lateral, cells)};
+      tables.push_back(std::make_unique<DeviceArray<double>>(flat.data(), flat.size()));
+      const double* base = tables.back()->p;
+      TerrainTableView d = h;
+      d.load = base + offsets[0];
+      d.slip = base + offsets[1];
+      d.angle = base + offsets[2];
+      d.thrust = base + offsets[3];
+      d.resistance = base + offsets[4];
+      d.lateral = base + offsets[5];
+      it->second = d;
+    }
+    v.terrain = it->second;
+  }
+  return out;
+}
+
 template <class M>
 void run_device(const std::vector<RomVehicle>& vehicles, const std::vector<const DriverSeries*>& drivers, long n,
                 const BatchOptions& o, BatchResult& r) {
-  DeviceArray<RomVehicle> d_vehicles(vehicles.data(), vehicles.size());
+  // deformable_terrain tables: each distinct one copied once, the vehicles' views pointed at it.
+  std::vector<std::unique_ptr<DeviceArray<double>>> tables;
+  const std::vector<RomVehicle> on_device = with_device_tables(vehicles, tables);
+  DeviceArray<RomVehicle> d_vehicles(on_device.data(), on_device.size());
   // Each driver's four columns on the device, and the views that point at them.
   std::vector<std::unique_ptr<DeviceArray<double>>> columns;
   std::vector<DriverSeriesView> views;

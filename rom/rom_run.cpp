@@ -21,6 +21,10 @@ const char* model_name(RomModel m) {
 const char* integrator_name(RomIntegrator i) { return i == RomIntegrator::kCvodes ? "cvodes" : "half-implicit"; }
 
 void check_model_effects(const RomVehicle& v, RomModel m) {
+  if (v.has(kEffectDeformableTerrain) && !v.terrain.present())
+    throw InputError(
+        "effect 'deformable_terrain' takes its tire forces from a wheel table: give one (--terrain-table T.h5, "
+        "from terracal wheel-table)");
   if (m == RomModel::k24Dof) {
     if (!(v.spring_rate[0] > 0 && v.spring_rate[1] > 0 && v.pitch_inertia > 0))
       throw InputError(

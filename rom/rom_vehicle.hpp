@@ -5,6 +5,7 @@
 #include "core/host_device.hpp"
 #include "core/vehicle/powertrain.hpp"
 #include "core/vehicle/tmeasy.hpp"
+#include "rom/terrain_table.hpp"
 
 namespace terracal::rom {
 
@@ -16,10 +17,12 @@ enum RomEffect : unsigned {
   kEffectSuspension = 1u << 3,         // vertical travel per corner (24 DOF)
   kEffectAeroDrag = 1u << 4,           // 0.5 rho CdA v|v| against the motion
   kEffectRollingResistance = 1u << 5,  // rr Fz rdyn against each wheel's spin
+  kEffectDeformableTerrain = 1u << 6,  // tire forces from a wheel-on-soil table (rom/terrain_table.hpp)
 };
-inline constexpr const char* kRomEffectNames[] = {"tire_relaxation", "torque_converter", "roll",
-                                                  "suspension",      "aero_drag",        "rolling_resistance"};
-inline constexpr int kRomEffectCount = 6;
+inline constexpr const char* kRomEffectNames[] = {"tire_relaxation",    "torque_converter", "roll",
+                                                  "suspension",         "aero_drag",        "rolling_resistance",
+                                                  "deformable_terrain"};
+inline constexpr int kRomEffectCount = 7;
 
 struct RomVehicle {
   // Chassis (sprung mass) and axles.
@@ -48,6 +51,9 @@ struct RomVehicle {
   double gravity = 9.81;     // [m/s^2], downwards
   double friction = 1.0;     // road friction relative to the tire data's (scales fm and fs)
   unsigned effects = 0;      // RomEffect bits
+  // deformable_terrain: the table the tires take their forces from (attach_terrain_table); its
+  // pointers are host memory, replaced by device copies in a GPU batch.
+  TerrainTableView terrain;
 
   TERRACAL_HD double wheelbase() const { return cg_to_front + cg_to_rear; }
   TERRACAL_HD double total_mass() const { return mass + unsprung_mass[0] + unsprung_mass[1]; }

@@ -15,7 +15,16 @@ struct WheelContact {
   double fx = 0, fy = 0;    // force on the wheel at the contact, wheel frame [N]
   double dxe = 0, dye = 0;  // tread deflection rates (relaxed form) [m/s]
   double rdyn = 0;          // dynamic rolling radius [m]
+  double soil_torque = 0;   // deformable_terrain: the motion resistance's torque against the spin [N m]
 };
+
+// deformable_terrain: the table's stiffnesses in place of TMeasy's (k), and the torque of the soil's
+// motion resistance at the dynamic radius, for `count` identical tires under fz_one each.
+TERRACAL_HD_INLINE double soil_contact(const RomVehicle& v, double fz_one, const TmeasySlips& s, double rdyn,
+                                       double count, TmeasyStiffness* k) {
+  if (!v.has(kEffectDeformableTerrain) || fz_one <= 0.0) return 0.0;
+  return count * rdyn * soil_stiffness(v.terrain, fz_one, s.sx, s.sy, &k->kx, &k->ky);
+}
 
 TERRACAL_HD_INLINE WheelContact wheel_contact(const RomVehicle& v, const TmeasyParams& tire, double fz, double vx,
                                               double vy, double omega, double xe, double ye, double count) {
@@ -29,7 +38,8 @@ TERRACAL_HD_INLINE WheelContact wheel_contact(const RomVehicle& v, const TmeasyP
     return w;
   }
   const TmeasySlips s = tmeasy_slips(vx, vy, omega, st.rdyn);
-  const TmeasyStiffness k = tmeasy_steady_stiffness(st, s.sx, s.sy, fz_one);
+  TmeasyStiffness k = tmeasy_steady_stiffness(st, s.sx, s.sy, fz_one);
+  w.soil_torque = soil_contact(v, fz_one, s, st.rdyn, count, &k);
   if (v.has(kEffectTireRelaxation)) {
     const TmeasyRelaxed r = tmeasy_relaxed(tire, k, s, vx, vy, omega, st.rdyn, xe, ye);
     w.fx = count * r.fx;

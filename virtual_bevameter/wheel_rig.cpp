@@ -58,6 +58,7 @@ void validate(const WheelRun& r) {
   terracal::check_range(WheelRanges::kAverageFrom, r.average_from, "wheel run average_from");
   check_range("wheel run samples", r.samples, 2, 1e7, "");
   check_range("wheel run load_ramp", r.load_ramp, 0, r.duration, "s (at most the duration)");
+  terracal::check_range(WheelRanges::kSlipAngle, r.slip_angle, "wheel run slip_angle");
 }
 
 namespace {
@@ -78,14 +79,17 @@ WheelResult run_wheel(const TerrainSite& site, const WheelSpec& wheel, double sl
   const double g = norm(site.gravity());
   const double speed = wheel.angular_velocity * wheel.radius * (1 - slip);
   const double travel = speed * run.duration;
+  const double cross_speed = speed * std::tan(run.slip_angle);
+  const double cross_travel = cross_speed * run.duration;
   const double outer = wheel.radius + wheel.grouser_height;
 
   RigidBody w;
-  w.name = fmt::format("wheel at slip {}", slip);
+  w.name = run.slip_angle > 0 ? fmt::format("wheel at slip {}, slip angle {} rad", slip, run.slip_angle)
+                              : fmt::format("wheel at slip {}", slip);
   w.shape = wheel_shape(wheel.radius, wheel.width, wheel.grouser_count, wheel.grouser_height, wheel.grouser_thickness);
   const Vec3<double> c = site.centre();
   // Start so that the run is centred on the site: the wheel ends as far past the centre as it began before it.
-  w.position = {c.x - 0.5 * travel, c.y, site.surface_height() + outer};
+  w.position = {c.x - 0.5 * travel, c.y - 0.5 * cross_travel, site.surface_height() + outer};
   w.mass = wheel.mass;
   w.load_ramp = run.load_ramp;
   const double iy = 0.5 * wheel.mass * wheel.radius * wheel.radius;
@@ -93,7 +97,7 @@ WheelResult run_wheel(const TerrainSite& site, const WheelSpec& wheel, double sl
   w.inertia = {ix, iy, ix};
   w.motion.free = {false, false, true,
                    false, false, false};  // the axle sinks under the load; the carriage holds the rest
-  w.motion.linear_velocity = {speed, 0, 0};
+  w.motion.linear_velocity = {speed, cross_speed, 0};
   w.motion.angular_velocity = {0, wheel.angular_velocity,
                                0};                   // about +y: the contact point moves back, the wheel rolls +x
   check_fits(site, w, outer, wheel_reach_y(wheel));  // it starts travel/2 before the centre and ends travel/2 past it
@@ -105,6 +109,7 @@ WheelResult run_wheel(const TerrainSite& site, const WheelSpec& wheel, double sl
   const long every = std::max(1L, steps / run.samples);
   WheelResult r;
   r.slip = slip;
+  r.slip_angle = run.slip_angle;
   r.load = wheel.mass * g;
   std::vector<WheelSample> steady;
   // The steadiness counts every step of the averaging window, not only the stored samples: a hop
@@ -126,7 +131,7 @@ WheelResult run_wheel(const TerrainSite& site, const WheelSpec& wheel, double sl
     const BodyWrench& f = terrain->wrenches()[0];
     const WheelSample x{
         terrain->time(), b.position.x, f.force.x, -f.torque.y, site.surface_height() - (b.position.z - outer),
-        f.force.z};
+        f.force.z, f.force.y};
     if (!(std::isfinite(x.dbp) && std::isfinite(x.torque) && std::isfinite(x.sinkage)))
       throw RunError(
           fmt::format("{} on {}: non-finite state at t = {:.4g} s (step {} of {} s): the step is too large for this "
@@ -139,6 +144,7 @@ WheelResult run_wheel(const TerrainSite& site, const WheelSpec& wheel, double sl
   mean_sd(steady, &WheelSample::dbp, r.dbp, r.dbp_sd);
   mean_sd(steady, &WheelSample::torque, r.torque, r.torque_sd);
   mean_sd(steady, &WheelSample::sinkage, r.sinkage, r.sinkage_sd);
+  mean_sd(steady, &WheelSample::lateral, r.lateral, r.lateral_sd);
   if (window_steps > 0) {
     const double n = double(window_steps), mean = vertical_sum / n;
     r.vertical_sd = std::sqrt(std::max(0.0, vertical_sum2 / n - mean * mean));

@@ -1,6 +1,7 @@
 #pragma once
 // Single-wheel rig: a rigid wheel under a dead load (its mass; free to sink)
-// turning at omega while its carriage moves at v = omega r (1 - s). Drawbar pull, driving torque and
+// turning at omega while its carriage moves at v = omega r (1 - s) along the wheel's heading and,
+// at a slip angle alpha, v tan(alpha) across it. Drawbar pull, driving torque, lateral force and
 // sinkage against time, their steady means over the last part of the run, and slip sweeps (the rows
 // of wheel.csv, docs/formats.md).
 #include <string>
@@ -34,6 +35,8 @@ struct WheelRanges {
   static constexpr Range kSlip{-1, 1, true, true};  // s < 0 is skid
   static constexpr Range kDuration{1e-3, 1e5, false, false, "s"};
   static constexpr Range kAverageFrom{0, 0.95};  // a fraction of the duration
+  // The carriage's velocity across the wheel's heading over that along it is tan(slip angle).
+  static constexpr Range kSlipAngle{0, 0.7853981633974483, false, false, "rad"};
 };
 
 struct WheelRun {
@@ -43,17 +46,22 @@ struct WheelRun {
   // [s] The load grows linearly from zero over this time, as a vehicle's settling puts it on a wheel;
   // 0: all at once (the wheel overshoots its static sinkage and the soil keeps the deeper rut).
   double load_ramp = 0;
+  // [rad] The carriage also moves across the wheel (+y, to its left) at v tan(slip_angle), where v
+  // is its speed along the heading: the wheel frame's slips are then s and -(1 - s) tan(slip_angle),
+  // as a vehicle's tire sees them (core/vehicle/tmeasy.hpp).
+  double slip_angle = 0;
 };
 void validate(const WheelRun& r);
 
 struct WheelSample {
   double t = 0, x = 0, dbp = 0, torque = 0, sinkage = 0, vertical = 0;
+  double lateral = 0;  // the soil's force across the wheel (+y, its left) [N]
 };
 
 struct WheelResult {
-  double slip = 0, load = 0;
-  double dbp = 0, torque = 0, sinkage = 0;  // steady means
-  double dbp_sd = 0, torque_sd = 0, sinkage_sd = 0;
+  double slip = 0, load = 0, slip_angle = 0;
+  double dbp = 0, torque = 0, sinkage = 0, lateral = 0;  // steady means
+  double dbp_sd = 0, torque_sd = 0, sinkage_sd = 0, lateral_sd = 0;
   // Over every step of the same window: the scatter of the soil's vertical force, and the fraction
   // of steps in which the soil carries less than 5 % of the load (the wheel is off the ground).
   double vertical_sd = 0, airborne_fraction = 0;

@@ -9,7 +9,7 @@ TEST_CASE("bad input, command line: unknown commands and options", "[cli][bad_in
       {"unknown command",
        {},
        "frobnicate",
-       {"terracal: unknown command 'frobnicate'; expected one of calibrate, demo, synthesize, crm, bevameter, wheel, "
+       {"terracal: unknown command 'frobnicate'; expected one of calibrate, demo, synthesize, crm, bevameter, wheel, wheel-table, "
         "pipeline"}},
       {"misspelt command", {}, "calibrte --plate x.csv", {"unknown command 'calibrte' (did you mean 'calibrate'?)"}},
       {"no command", {}, "", {"terracal: a command is required; expected one of calibrate, demo,"}},
