@@ -144,7 +144,7 @@ int run_single(const RomArgs& a, const rom::RomVehicle& vehicle, const rom::RomR
     }
     write_text_atomically(a.out + "/inputs.txt", d);
   }
-  const nlohmann::json j = {{"model", rom::model_name(run.model)},
+  nlohmann::json j = {{"model", rom::model_name(run.model)},
                             {"integrator", rom::integrator_name(run.integrator)},
                             {"vehicle", a.vehicle},
                             {"end_time", run.end_time},
@@ -152,6 +152,7 @@ int run_single(const RomArgs& a, const rom::RomVehicle& vehicle, const rom::RomR
                             {"rhs_evaluations", r.rhs_evaluations},
                             {"wall_seconds", r.wall_seconds},
                             {"real_time_factor", run.end_time / std::max(r.wall_seconds, 1e-12)}};
+  if (!a.terrain_table.empty()) j["terrain_table"] = a.terrain_table;
   write_text_atomically(a.out + "/run.json", j.dump(2) + "\n");
   if (a.plots)
     plot_trajectory(

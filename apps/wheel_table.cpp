@@ -38,9 +38,9 @@ void check_wheel_table(const SoilChoice& soil, const TerrainOptions& o, const ri
   check_increasing(plan.angles, "--slip-angles");
   for (double l : plan.loads) check_range(Range{0, 1e7, true, false, "N"}, l, "--loads");
   if (plan.slips.back() <= 0)
-    throw InputError(fmt::format("--slips: needs a slip above zero (largest {}): the table's thrust is scaled "
-                                 "from the first one",
-                                 plan.slips.back()));
+    throw InputError(fmt::format("--slips: needs a slip above zero (largest {})", plan.slips.back()));
+  if (std::find(plan.slips.begin(), plan.slips.end(), 0.0) == plan.slips.end())
+    throw InputError("--slips: needs 0 (the thrust and resistance of a wheel rolling without slip)");
   if (plan.angles.size() > 1 && plan.angles.front() != 0)
     throw InputError(fmt::format("--slip-angles: with several angles the first must be 0 (got {})", plan.angles[0]));
   for (double a : plan.angles) check_range(rigs::WheelRanges::kSlipAngle, a, "--slip-angles");

@@ -44,7 +44,8 @@ TERRACAL_HD_INLINE FourWheelForces four_wheel_contacts(const RomVehicle& v, doub
   for (int w = 0; w < 4; ++w) sl[w] = tmeasy_slips(vw[w].x, vw[w].y, y[M::kSpin + w], st[w].rdyn);
   TmeasyStiffness k[4];
   for (int w = 0; w < 4; ++w) k[w] = tmeasy_steady_stiffness(st[w], sl[w].sx, sl[w].sy, fz[w]);
-  for (int w = 0; w < 4; ++w) f.w[w].soil_torque = soil_contact(v, fz[w], sl[w], st[w].rdyn, 1.0, &k[w]);
+  SoilContact soil[4];
+  for (int w = 0; w < 4; ++w) soil[w] = soil_contact(v, fz[w], sl[w], vw[w].x, 1.0, &k[w]);
   for (int w = 0; w < 4; ++w) {
     const int axle = w / 2;
     const TmeasyParams& tire = v.tire[axle];
@@ -64,7 +65,9 @@ TERRACAL_HD_INLINE FourWheelForces four_wheel_contacts(const RomVehicle& v, doub
       c.fx = k[w].kx * sl[w].sx;
       c.fy = k[w].ky * sl[w].sy;
     }
-    const Planar fc = to_chassis_frame(c.fx, c.fy, axle == 0 ? cd : 1.0, axle == 0 ? sd : 0.0);
+    c.fx += soil[w].thrust0;
+    c.resist = soil[w].resist;
+    const Planar fc = to_chassis_frame(c.fx + c.resist, c.fy, axle == 0 ? cd : 1.0, axle == 0 ? sd : 0.0);
     f.fx += fc.x;
     f.fy += fc.y;
     f.fx_axle[axle] += fc.x;
@@ -108,7 +111,7 @@ TERRACAL_HD_INLINE void four_wheel_spins(const RomVehicle& v, const DriverInput&
     const TmeasyParams& t = v.tire[w / 2];
     j[w] = t.wheel_inertia;
     tau[w] = (driven[w] ? d.wheel_torque : 0.0) - f.w[w].fx * f.w[w].rdyn;
-    double dry = brake + f.w[w].soil_torque;
+    double dry = brake;
     if (v.has(kEffectRollingResistance)) dry += t.rolling_resistance * max_of(f.fz[w], 0.0) * f.w[w].rdyn;
     if (smooth_dry) tau[w] += dry_friction_torque(dry, y[M::kSpin + w]);
     aux->dry_torque[w] = smooth_dry ? 0.0 : dry;

@@ -43,7 +43,7 @@ struct Rom11 {
       const double c = w == 0 ? cd : 1.0, s = w == 0 ? sd : 0.0;
       const Planar vw = to_wheel_frame(y[kVx], y[kVy] + y[kYawRate] * px, c, s);
       f.w[w] = wheel_contact(v, v.tire[w], f.fz[w], vw.x, vw.y, y[kSpin + w], y[kXe + w], y[kYe + w], 2.0);
-      const Planar fc = to_chassis_frame(f.w[w].fx, f.w[w].fy, c, s);
+      const Planar fc = to_chassis_frame(f.w[w].fx + f.w[w].resist, f.w[w].fy, c, s);
       f.fx += fc.x;
       f.fy += fc.y;
       f.mz += px * fc.y;
@@ -88,7 +88,7 @@ struct Rom11 {
       const TmeasyParams& t = v.tire[w];
       j[w] = 2.0 * t.wheel_inertia;
       tau[w] = (driven[w] ? d.wheel_torque : 0.0) - f.w[w].fx * f.w[w].rdyn;
-      double dry = brake + f.w[w].soil_torque;
+      double dry = brake;
       if (v.has(kEffectRollingResistance)) dry += t.rolling_resistance * max_of(f.fz[w], 0.0) * f.w[w].rdyn;
       if (smooth_dry) tau[w] += dry_friction_torque(dry, y[kSpin + w]);
       aux->dry_torque[w] = smooth_dry ? 0.0 : dry;

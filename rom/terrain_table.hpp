@@ -5,12 +5,13 @@
 // holds plain pointers, into host memory (rom/terrain_table_h5.hpp owns them) or into one device
 // allocation (rom_batch_cuda.cu).
 //
-// The table stores, per unit load, the gross thrust H = T / r (the torque the drive needs, over
-// the table wheel's radius), the motion resistance R = H - DP (compaction and bulldozing: what
-// separates the thrust from the drawbar pull) and the lateral force. The models apply H as the
-// tire's longitudinal force and R r as a resisting torque on the wheel's spin, the dry-friction
-// bound that rolling resistance and brakes use: a wheel at rest under load is held, never pushed,
-// and a rolling wheel pays R through its slip.
+// The table stores, per unit load, the gross thrust H = T / r (the torque that turns the wheel, over
+// the table wheel's radius: a rigid wheel's normal stresses pass through its axle, so T is the
+// shear's moment) and the motion resistance R = H - DP (compaction and bulldozing: what separates
+// the thrust from the drawbar pull). A model turns its wheel against H r and pushes its chassis
+// with H - R = DP, as the rig's wheel does. H at zero slip (the rut's shear on a rolling wheel) and
+// R belong to a wheel that rolls: both fade in with the contact's speed (soil_contact_ramp), so a
+// wheel at rest is neither pushed nor dragged.
 #include <cmath>
 
 #include "core/host_device.hpp"
@@ -71,62 +72,70 @@ TERRACAL_HD_INLINE double table_value(const TerrainTableView& tb, const double* 
 }
 
 struct SoilTireForces {
-  double fx = 0;          // gross thrust on the wheel, wheel frame [N]
-  double fy = 0;          // lateral force [N] (only where the table has slip angles)
-  double resistance = 0;  // motion resistance R >= 0 [N], applied as R r against the spin
+  double slip_thrust = 0;  // H(s) - H(0): the thrust the slip adds, zero at zero slip [N]
+  double thrust0 = 0;      // H(0): the thrust of a rolling wheel without slip [N]
+  double fy = 0;           // lateral force [N] (only where the table has slip angles)
+  double resistance = 0;   // motion resistance R >= 0 [N]
 };
 
 // The forces on one wheel under load fz at TMeasy's slips (sx, sy) (core/vehicle/tmeasy.hpp: the
 // rig's s is sx, and tan(alpha) = -sy / (1 - sx)). Conventions, in docs/rom.md:
-// - the thrust is taken as zero at zero slip and linear up to the table's first slip either side,
-//   so a wheel without slip (at standstill too) gets no push; the lateral force likewise up to the
-//   first slip angle above zero;
-// - a table without negative slips mirrors its positive ones (H(-s) = -H(s), same resistance);
-// - slip angles mirror (Fy(-alpha) = -Fy(alpha)); loads, slips and angles beyond the table take its
-//   nearest entry, forces stay proportional to the load.
+// - a table without negative slips mirrors its positive ones for braking: the slip's thrust changes
+//   sign (H(-s) - H(0) = -(H(s) - H(0))), the resistance stays;
+// - the lateral force mirrors with the angle and is linear in it up to the first angle above zero;
+// - loads, slips and angles beyond the table take its nearest entry, per unit load.
 TERRACAL_HD_INLINE SoilTireForces soil_tire_forces(const TerrainTableView& tb, double fz, double sx, double sy) {
   SoilTireForces f;
   if (!(fz > 0)) return f;
   const bool mirror = tb.slip[0] >= 0;
   const double u = mirror ? fabs(sx) : sx;  // the slip looked up
   const double sign = mirror && sx < 0 ? -1.0 : 1.0;
-  // The table's slip nearest zero on u's side (the reader asks for one above zero).
-  int k = 0;
-  if (u >= 0) {
-    while (k < tb.n_slip - 1 && tb.slip[k] <= 0) ++k;
-  } else {
-    k = tb.n_slip - 1;
-    while (k > 0 && tb.slip[k] >= 0) --k;
-  }
-  const double s_near = tb.slip[k];
-  const bool linear = fabs(u) < fabs(s_near) && (u < 0) == (s_near < 0);
   const double tan_a = -sy / fmax(1.0 - sx, 1e-3);
-  const TableSpot l = table_spot(tb.load, tb.n_load, fz);
-  // Likewise the lateral force is linear in the angle up to the table's first angle above zero.
   const double alpha = atan(fabs(tan_a));
   const bool small_angle = tb.has_lateral() && alpha < tb.angle[1];
-  const TableSpot g = table_spot(tb.angle, tb.n_angle, small_angle ? tb.angle[1] : alpha);
+  const TableSpot l = table_spot(tb.load, tb.n_load, fz);
+  const TableSpot g = table_spot(tb.angle, tb.n_angle, alpha);
   const TableSpot s = table_spot(tb.slip, tb.n_slip, u);
-  const double thrust = linear ? table_value(tb, tb.thrust, l, table_spot(tb.slip, tb.n_slip, s_near), g) * u / s_near
-                               : table_value(tb, tb.thrust, l, s, g);
-  f.fx = fz * sign * thrust;
-  const TableSpot g_true = small_angle ? table_spot(tb.angle, tb.n_angle, alpha) : g;
-  f.resistance = fz * fmax(table_value(tb, tb.resistance, l, s, g_true), 0.0);
-  if (tb.has_lateral())
-    f.fy = (tan_a < 0 ? -1.0 : 1.0) * fz * table_value(tb, tb.lateral, l, s, g) * (small_angle ? alpha / tb.angle[1] : 1.0);
+  const double h0 = table_value(tb, tb.thrust, l, table_spot(tb.slip, tb.n_slip, 0.0), g);
+  f.thrust0 = fz * h0;
+  f.slip_thrust = fz * sign * (table_value(tb, tb.thrust, l, s, g) - h0);
+  f.resistance = fz * fmax(table_value(tb, tb.resistance, l, s, g), 0.0);
+  if (tb.has_lateral()) {
+    const TableSpot g1 = small_angle ? table_spot(tb.angle, tb.n_angle, tb.angle[1]) : g;
+    f.fy = (tan_a < 0 ? -1.0 : 1.0) * fz * table_value(tb, tb.lateral, l, s, g1) *
+           (small_angle ? alpha / tb.angle[1] : 1.0);
+  }
   return f;
 }
 
-// The table's forces as TMeasy's steady stiffnesses (force over slip), so that the steady and the
-// relaxed tire forms use them unchanged: kx, and ky where the table has slip angles (else TMeasy's
-// lateral curve stays). Returns the motion resistance [N].
-TERRACAL_HD_INLINE double soil_stiffness(const TerrainTableView& tb, double fz, double sx, double sy, double* kx,
-                                         double* ky) {
+// The contact speed [m/s] over which the zero-slip thrust and the resistance fade in: at rest the
+// soil neither pushes nor drags; the half-implicit step stays stable (R / speed is a damping the
+// chassis resolves at 1e-3 s).
+inline constexpr double kSoilContactSpeed = 0.1;
+TERRACAL_HD_INLINE double soil_contact_ramp(double vx) {
+  const double r = vx / kSoilContactSpeed;
+  return r > 1 ? 1.0 : r < -1 ? -1.0 : r;
+}
+
+// What a model takes from the table for one tire: the slip's thrust as TMeasy's steady stiffness
+// (force over slip: the steady and the relaxed forms use it unchanged), ky where the table has slip
+// angles (else TMeasy's lateral curve stays), and the zero-slip thrust and the resistance at the
+// contact's speed vx along the wheel.
+struct SoilContact {
+  double thrust0 = 0;  // on the wheel and the chassis, along the wheel [N]
+  double resist = 0;   // on the chassis only, along the wheel (against the travel) [N]
+};
+TERRACAL_HD_INLINE SoilContact soil_stiffness(const TerrainTableView& tb, double fz, double sx, double sy, double vx,
+                                              double* kx, double* ky) {
   const double sx_eff = fabs(sx) > 1e-9 ? sx : 1e-9, sy_eff = fabs(sy) > 1e-9 ? sy : 1e-9;
   const SoilTireForces f = soil_tire_forces(tb, fz, sx_eff, sy_eff);
-  *kx = f.fx / sx_eff;
+  *kx = f.slip_thrust / sx_eff;
   if (tb.has_lateral()) *ky = f.fy / sy_eff;
-  return f.resistance;
+  const double ramp = soil_contact_ramp(vx);
+  SoilContact c;
+  c.thrust0 = f.thrust0 * ramp;
+  c.resist = -f.resistance * ramp;
+  return c;
 }
 
 }  // namespace terracal::rom

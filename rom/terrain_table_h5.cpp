@@ -3,6 +3,7 @@
 #include <hdf5.h>
 #include <hdf5_hl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -39,6 +40,9 @@ void validate(const TerrainTable& t, const std::string& where) {
   check_axis(where + ": slip_angle_rad", t.angle, 0, 0.7853981633974483, false);
   if (t.slip.back() <= 0)
     throw InputError(fmt::format("{}: slip: needs a slip above zero (largest {})", where, t.slip.back()));
+  if (std::find(t.slip.begin(), t.slip.end(), 0.0) == t.slip.end())
+    throw InputError(fmt::format("{}: slip: needs slip 0 (the thrust and resistance of a wheel rolling without slip)",
+                                 where));
   if (t.angle.size() > 1 && t.angle[0] != 0)
     throw InputError(fmt::format("{}: slip_angle_rad: with several slip angles the first must be 0 (got {})", where,
                                  t.angle[0]));

@@ -15,15 +15,21 @@ struct WheelContact {
   double fx = 0, fy = 0;    // force on the wheel at the contact, wheel frame [N]
   double dxe = 0, dye = 0;  // tread deflection rates (relaxed form) [m/s]
   double rdyn = 0;          // dynamic rolling radius [m]
-  double soil_torque = 0;   // deformable_terrain: the motion resistance's torque against the spin [N m]
+  // deformable_terrain: the soil's resistance on the chassis (along the wheel, not on its spin) [N];
+  // fx then includes the table's thrust, which alone turns the wheel.
+  double resist = 0;
 };
 
-// deformable_terrain: the table's stiffnesses in place of TMeasy's (k), and the torque of the soil's
-// motion resistance at the dynamic radius, for `count` identical tires under fz_one each.
-TERRACAL_HD_INLINE double soil_contact(const RomVehicle& v, double fz_one, const TmeasySlips& s, double rdyn,
-                                       double count, TmeasyStiffness* k) {
-  if (!v.has(kEffectDeformableTerrain) || fz_one <= 0.0) return 0.0;
-  return count * rdyn * soil_stiffness(v.terrain, fz_one, s.sx, s.sy, &k->kx, &k->ky);
+// deformable_terrain: the table's slip stiffnesses in place of TMeasy's (k), for `count` identical
+// tires under fz_one each at contact speed vx (rom/terrain_table.hpp).
+TERRACAL_HD_INLINE SoilContact soil_contact(const RomVehicle& v, double fz_one, const TmeasySlips& s, double vx,
+                                            double count, TmeasyStiffness* k) {
+  SoilContact c;
+  if (!v.has(kEffectDeformableTerrain) || fz_one <= 0.0) return c;
+  c = soil_stiffness(v.terrain, fz_one, s.sx, s.sy, vx, &k->kx, &k->ky);
+  c.thrust0 *= count;
+  c.resist *= count;
+  return c;
 }
 
 TERRACAL_HD_INLINE WheelContact wheel_contact(const RomVehicle& v, const TmeasyParams& tire, double fz, double vx,
@@ -39,7 +45,8 @@ TERRACAL_HD_INLINE WheelContact wheel_contact(const RomVehicle& v, const TmeasyP
   }
   const TmeasySlips s = tmeasy_slips(vx, vy, omega, st.rdyn);
   TmeasyStiffness k = tmeasy_steady_stiffness(st, s.sx, s.sy, fz_one);
-  w.soil_torque = soil_contact(v, fz_one, s, st.rdyn, count, &k);
+  const SoilContact soil = soil_contact(v, fz_one, s, vx, count, &k);
+  w.resist = soil.resist;
   if (v.has(kEffectTireRelaxation)) {
     const TmeasyRelaxed r = tmeasy_relaxed(tire, k, s, vx, vy, omega, st.rdyn, xe, ye);
     w.fx = count * r.fx;
@@ -50,6 +57,7 @@ TERRACAL_HD_INLINE WheelContact wheel_contact(const RomVehicle& v, const TmeasyP
     w.fx = count * k.kx * s.sx;
     w.fy = count * k.ky * s.sy;
   }
+  w.fx += soil.thrust0;
   return w;
 }
 

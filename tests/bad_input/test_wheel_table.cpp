@@ -26,6 +26,7 @@ TEST_CASE("bad input, wheel-table: the grid and the output", "[cli][bad_input]")
       table("--loads 0,1000 --out {out}/t.h5", {"--loads: value 0 in the list '0,1000' is outside (0, 10000000] N"}),
       table("--loads 1000 --slips 0.2,0.1 --out {out}/t.h5", {"--slips: values must increase; 0.1 follows 0.2"}),
       table("--loads 1000 --slips -0.2,0 --out {out}/t.h5", {"--slips: needs a slip above zero (largest 0)"}),
+      table("--loads 1000 --slips 0.1,0.2 --out {out}/t.h5", {"--slips: needs 0"}),
       table("--loads 1000 --slip-angles 0.1,0.2 --out {out}/t.h5",
             {"--slip-angles: with several angles the first must be 0 (got 0.1)"}),
       table("--loads 1000 --slip-angles 0,1 --out {out}/t.h5", {"--slip-angles: value 1 in the list '0,1' is outside"}),

@@ -1,6 +1,6 @@
 #pragma once
 // Wheel tables made from formulas, for the deformable_terrain tests that need no SCM runs: a
-// Janosi-like thrust H/Fz = mu (1 - exp(-s / s0)), a resistance R/Fz = r0 + r1 s and a lateral
+// Janosi-like thrust H/Fz = h0 + mu (1 - exp(-s / s0)), a resistance R/Fz = r0 + r1 s and a lateral
 // force Fy/Fz = -mu_y (1 - exp(-alpha / a0)), tabulated as the rig's DBP, torque and lateral force.
 #include <cmath>
 #include <vector>
@@ -10,8 +10,8 @@
 namespace terracal::rom::testing {
 
 struct TableFormula {
-  double mu = 0.7, s0 = 0.05, r0 = 0.05, r1 = 0.1, mu_y = 0.6, a0 = 0.05, radius = 0.47;
-  double thrust(double s) const { return mu * (1 - std::exp(-s / s0)); }
+  double h0 = 0, mu = 0.7, s0 = 0.05, r0 = 0.05, r1 = 0.1, mu_y = 0.6, a0 = 0.05, radius = 0.47;
+  double thrust(double s) const { return h0 + mu * (1 - std::exp(-s / s0)); }
   double resistance(double s) const { return r0 + r1 * s; }
   double lateral(double a) const { return -mu_y * (1 - std::exp(-a / a0)); }
 };

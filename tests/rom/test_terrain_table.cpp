@@ -11,6 +11,7 @@
 
 #include "core/errors.hpp"
 #include "rom/rom_batch.hpp"
+#include "rom/wheel_contact.hpp"
 #include "tests/rom/rom_test_vehicles.hpp"
 #include "tests/rom/terrain_tables.hpp"
 #include "tests/scratch_dir.hpp"
@@ -28,30 +29,34 @@ double sy_of(double s, double alpha) { return -(1 - s) * std::tan(alpha); }
 
 TEST_CASE("terrain table: lookups equal the formulas at the grid, interpolate between, mirror and clamp",
           "[rom][terrain]") {
-  const TableFormula f;
+  TableFormula f;
+  f.h0 = 0.12;  // a rolling wheel's thrust without slip, as SCM's rut gives it
   const TerrainTable t = formula_table(f);
   const TerrainTableView v = t.view();
+  auto thrust = [&](double fz, double sx, double sy = 0) {
+    const SoilTireForces r = soil_tire_forces(v, fz, sx, sy);
+    return r.thrust0 + r.slip_thrust;
+  };
   // At grid points the formula itself, forces proportional to the load.
   for (double fz : {2000.0, 4000.0})
     for (double s : {0.05, 0.2, 0.4}) {
       const SoilTireForces r = soil_tire_forces(v, fz, s, 0.0);
-      CHECK(r.fx == Approx(fz * f.thrust(s)).epsilon(1e-12));
+      CHECK(r.thrust0 == Approx(fz * f.h0).epsilon(1e-12));
+      CHECK(thrust(fz, s) == Approx(fz * f.thrust(s)).epsilon(1e-12));
       CHECK(r.resistance == Approx(fz * f.resistance(s)).epsilon(1e-12));
       CHECK(std::fabs(r.fy) < 1e-9 * fz);
     }
-  // Linear between grid slips, and between loads (per unit load).
-  CHECK(soil_tire_forces(v, 4000, 0.3, 0).fx == Approx(2000 * (f.thrust(0.2) + f.thrust(0.4))).epsilon(1e-12));
-  CHECK(soil_tire_forces(v, 3000, 0.2, 0).fx == Approx(3000 * f.thrust(0.2)).epsilon(1e-12));
-  // Zero at zero slip, linear through zero up to the first slip: no push at standstill.
-  CHECK(soil_tire_forces(v, 4000, 0.0, 0.0).fx == 0.0);
-  CHECK(soil_tire_forces(v, 4000, 0.01, 0).fx == Approx(0.5 * 4000 * f.thrust(0.02)).epsilon(1e-12));
-  // Without negative slips the table mirrors: braking thrust is minus the driving one.
-  CHECK(soil_tire_forces(v, 4000, -0.2, 0).fx == Approx(-4000 * f.thrust(0.2)).epsilon(1e-12));
+  // Linear between grid slips, and between loads (per unit load); the slip's part is zero at zero.
+  CHECK(thrust(4000, 0.3) == Approx(2000 * (f.thrust(0.2) + f.thrust(0.4))).epsilon(1e-12));
+  CHECK(thrust(3000, 0.2) == Approx(3000 * f.thrust(0.2)).epsilon(1e-12));
+  CHECK(soil_tire_forces(v, 4000, 0.0, 0.0).slip_thrust == 0.0);
+  // Without negative slips the table mirrors: the slip's thrust changes sign, the resistance stays.
+  CHECK(soil_tire_forces(v, 4000, -0.2, 0).slip_thrust == Approx(-4000 * (f.thrust(0.2) - f.h0)).epsilon(1e-12));
   CHECK(soil_tire_forces(v, 4000, -0.2, 0).resistance == Approx(4000 * f.resistance(0.2)).epsilon(1e-12));
   // Beyond the ends: the nearest entry per unit load (loads 500 and 20,000; slip 0.95).
-  CHECK(soil_tire_forces(v, 500, 0.2, 0).fx == Approx(500 * f.thrust(0.2)).epsilon(1e-12));
-  CHECK(soil_tire_forces(v, 20000, 0.2, 0).fx == Approx(20000 * f.thrust(0.2)).epsilon(1e-12));
-  CHECK(soil_tire_forces(v, 4000, 0.95, 0).fx == Approx(4000 * f.thrust(0.8)).epsilon(1e-12));
+  CHECK(thrust(500, 0.2) == Approx(500 * f.thrust(0.2)).epsilon(1e-12));
+  CHECK(thrust(20000, 0.2) == Approx(20000 * f.thrust(0.2)).epsilon(1e-12));
+  CHECK(thrust(4000, 0.95) == Approx(4000 * f.thrust(0.8)).epsilon(1e-12));
   // Lateral: against the sideways velocity, the formula at the grid angles, linear below the first.
   for (double a : {0.1, 0.2}) {
     CHECK(soil_tire_forces(v, 4000, 0.2, sy_of(0.2, a)).fy == Approx(4000 * f.lateral(a)).epsilon(1e-9));
@@ -60,23 +65,36 @@ TEST_CASE("terrain table: lookups equal the formulas at the grid, interpolate be
   CHECK(soil_tire_forces(v, 4000, 0.0, sy_of(0.0, 0.025)).fy == Approx(0.5 * 4000 * f.lateral(0.05)).epsilon(1e-3));
   // No load, no force.
   const SoilTireForces off = soil_tire_forces(v, 0, 0.2, 0.1);
-  CHECK(off.fx == 0);
+  CHECK(off.slip_thrust == 0);
+  CHECK(off.thrust0 == 0);
   CHECK(off.fy == 0);
   CHECK(off.resistance == 0);
 }
 
-TEST_CASE("terrain table: a table with negative slips uses them instead of mirroring", "[rom][terrain]") {
+// A rolling tire on the table is the rig's wheel: its force on the chassis is the drawbar pull,
+// the force that turns it (times the radius, the torque) is the thrust; at rest neither the
+// zero-slip thrust nor the resistance acts.
+TEST_CASE("deformable_terrain: a rolling tire pushes the chassis with DP and loads its spin with T / r",
+          "[rom][terrain]") {
   TableFormula f;
-  TerrainTable t = formula_table(f, {4000}, {-0.4, -0.1, 0, 0.1, 0.4}, {0});
-  // Braking side made twice as strong as the mirror would give.
-  for (std::size_t s = 0; s < 2; ++s) {
-    t.torque[s] = -2 * 4000 * f.thrust(-t.slip[s]) * f.radius;
-    t.dbp[s] = t.torque[s] / f.radius - 4000 * f.resistance(0);
+  f.h0 = 0.12;
+  const TerrainTable t = formula_table(f);
+  RomVehicle v = hmmwv();
+  v.effects = (v.effects | kEffectDeformableTerrain) & ~kEffectTireRelaxation;
+  v.terrain = t.view();
+  const double fz = 4000, vx = 5;
+  const double rdyn = wheel_contact(v, v.tire[0], fz, vx, 0, 10, 0, 0, 1.0).rdyn;  // set by the load alone
+  for (double s : {0.05, 0.2, 0.4}) {
+    // The spin at which TMeasy's slip (rdyn omega - vx) / (rdyn omega + vN) is the grid's s.
+    const double omega = (vx + s * kTmeasySlipVelocity) / (rdyn * (1 - s));
+    const WheelContact w = wheel_contact(v, v.tire[0], fz, vx, 0, omega, 0, 0, 1.0);
+    INFO("slip " << s);
+    CHECK(w.fx == Approx(fz * f.thrust(s)).epsilon(1e-9));
+    CHECK(w.fx + w.resist == Approx(fz * (f.thrust(s) - f.resistance(s))).epsilon(1e-9));
   }
-  finish_coefficients(t);
-  CHECK(soil_tire_forces(t.view(), 4000, -0.4, 0).fx == Approx(-2 * 4000 * f.thrust(0.4)).epsilon(1e-12));
-  CHECK(soil_tire_forces(t.view(), 4000, -0.05, 0).fx == Approx(-4000 * f.thrust(0.1)).epsilon(1e-12));
-  CHECK_FALSE(t.view().has_lateral());
+  const WheelContact rest = wheel_contact(v, v.tire[0], fz, 0, 0, 0, 0, 0, 1.0);
+  CHECK(rest.fx == 0);
+  CHECK(rest.resist == 0);
 }
 
 TEST_CASE("terrain table: the HDF5 file reads back; a broken one is refused naming what is wrong", "[rom][terrain]") {
@@ -130,7 +148,9 @@ TEST_CASE("deformable_terrain: needs a table; on a soft table the HMMWV accelera
   const DriverSeries go = constant_inputs(0, 0.5, 0);
   CHECK_THROWS_WITH(run(v, go, options(RomModel::k18Dof, 1, 0)), Contains("deformable_terrain") &&
                                                                       Contains("--terrain-table"));
-  const TerrainTable t = formula_table();
+  TableFormula f;
+  f.h0 = 0.12;  // a rolling wheel's thrust without slip: it must not push a vehicle at rest
+  const TerrainTable t = formula_table(f);
   v.terrain = t.view();
   for (RomModel m : {RomModel::k11Dof, RomModel::k18Dof}) {
     INFO(model_name(m));
