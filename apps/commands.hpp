@@ -21,5 +21,6 @@ Command add_rom(CLI::App& app);
 Command add_vehicle(CLI::App& app);
 Command add_calibrate_rom(CLI::App& app);
 Command add_validate_rom(CLI::App& app);
+Command add_pipeline_rom(CLI::App& app);
 
 }  // namespace terracal::app

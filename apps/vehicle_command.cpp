@@ -17,14 +17,13 @@
 #include "apps/out_dir.hpp"
 #include "apps/report_plots.hpp"
 #include "apps/terrain_options.hpp"
+#include "apps/vehicle_outputs.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
-#include "highfi/vehicle/steering_kinematics.hpp"
 #include "highfi/vehicle/vehicle_run.hpp"
 #include "highfi/vehicle/vehicle_vtu.hpp"
 #include "lowfi/scm_soil.hpp"
 #include "lowfi/scm_terrain.hpp"
-#include "rom/trajectory_csv.hpp"
 
 namespace terracal::app {
 namespace {
@@ -34,65 +33,6 @@ struct VehicleArgs {
   bool plots = true, vtu = false;
   std::vector<std::string> scm_effects = {lowfi::ScmDamping::kName};
 };
-
-void write_outputs(const VehicleArgs& a, const vehicle::VehicleRunResult& r) {
-  std::vector<rom::RomSample> rows;
-  for (const auto& s : r.samples)
-    rows.push_back({s.time, s.x, s.y, s.z, s.yaw, s.roll, s.pitch, s.vx, s.vy, s.yaw_rate, s.roll_rate, s.ax, s.ay,
-                    s.engine_speed_rpm, s.gear});
-  rom::write_trajectory_csv(a.out + "/trajectory.csv", rows);
-  std::string w = "time,wheel,fz_N,fx_N,fy_N,slip_x,slip_y,deflection_m,sinkage_m\n";
-  for (const auto& s : r.wheels)
-    w += fmt::format("{:.6g},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", s.time, s.wheel, s.contact.fz,
-                     s.contact.fx, s.contact.fy, s.contact.sx, s.contact.sy, s.contact.deflection, s.contact.sinkage);
-  write_text_atomically(a.out + "/wheels.csv", w);
-  // The inputs applied, as a driver file (DriverSeries::read gives them back exactly).
-  std::string source = a.inputs.empty() ? a.maneuver : a.inputs;
-  std::replace_if(
-      source.begin(), source.end(), [](char c) { return c == '\n' || c == '\r'; }, '?');  // one line
-  std::string d = a.inputs.empty() ? fmt::format(
-                                         "# driver inputs of terracal vehicle --maneuver {}: at every control time "
-                                         "and the end, linear between rows\n",
-                                         source)
-                                   : fmt::format("# driver inputs of terracal vehicle: the rows of {}\n", source);
-  d += "# time steering throttle braking\n";
-  for (const auto& k : r.inputs)
-    d += fmt::format("{:.17g} {:.17g} {:.17g} {:.17g}\n", k.time, k.input.steering, k.input.throttle, k.input.braking);
-  write_text_atomically(a.out + "/inputs.txt", d);
-  nlohmann::json j = {{"model", "full multibody vehicle"},
-                      {"integrator", "IDAS (GGL index 2)"},
-                      {"vehicle", a.vehicle},
-                      {"terrain", a.terrain},
-                      {"end_time", a.run.end_time},
-                      {"rtol", a.run.rtol},
-                      {"steps", r.steps},
-                      {"residuals", r.residuals},
-                      {"max_constraint_violation", r.max_constraint_violation},
-                      {"wall_seconds", r.wall_seconds},
-                      {"real_time_factor", a.run.end_time / std::max(r.wall_seconds, 1e-12)}};
-  if (a.run.soil) {
-    std::vector<std::string> effects;  // those on, in the registry's order
-    a.run.scm.effects.named.for_each_named([&](auto tag) { effects.push_back(decltype(tag)::type::kName); });
-    j["scm"] = {{"soil", a.scm}, {"grid", a.run.scm.grid}, {"time_step", a.run.scm.time_step}, {"effects", effects}};
-  }
-  if (a.vtu)
-    j["vtu"] = {{"collection", "vtu/vehicle.pvd"},
-                {"rate_hz", a.run.vtu_rate},
-                {"snapshots", r.vtu_snapshots},
-                {"bodies", r.vtu_bodies},
-                {"names", vehicle::kVehicleVtuNames}};
-  write_text_atomically(a.out + "/run.json", j.dump(2) + "\n");
-}
-
-// What the manoeuvres need of the vehicle: the wheelbase, the road-wheel angle at full steering (the
-// mean of the two steered wheels' at full lock to the left, kinematic) and the track.
-ManeuverVehicle maneuver_vehicle(const vehicle::FullVehicleSpec& spec) {
-  if (!spec.has_steering) throw InputError("--maneuver: the vehicle has no steering; drive it with --inputs");
-  const vehicle::SteerAngles lock =
-      vehicle::steering_kinematics(spec, {vehicle::steering_position(spec, 1.0)})[0];  // full left
-  const double track = 2 * std::abs(spec.axles.front().suspension.spindle.com.y());
-  return {spec.axles.front().location.x() - spec.axles.back().location.x(), 0.5 * (lock.left + lock.right), track};
-}
 
 void add_options(CLI::App* sub, VehicleArgs& a) {
   sub->add_option("--vehicle", a.vehicle, "full vehicle file (JSON) or preset: hmmwv")->required();
@@ -187,7 +127,9 @@ Command add_vehicle(CLI::App& app) {
                  a->run.soil ? fmt::format("SCM soil {} (grid {} m)", a->scm, a->run.scm.grid) : "rigid ground",
                  a->run.end_time, a->run.settle_time);
     const vehicle::VehicleRunResult r = vehicle::run_full_vehicle(spec, series.get(), maneuver.get(), a->run);
-    write_outputs(*a, r);
+    write_vehicle_outputs(a->out, {a->vehicle, a->terrain, a->scm, a->inputs.empty() ? a->maneuver : a->inputs,
+                                   !a->inputs.empty(), a->vtu},
+                          a->run, r);
     if (a->plots) plot_trajectory(a->out, fmt::format("{} full vehicle (IDAS)", a->vehicle));
     fmt::print(
         "vehicle (full, IDAS): {:.3g} s simulated in {:.3g} s wall ({:.2g}x real time, settling included); "
