@@ -1,6 +1,7 @@
 #include "apps/rom_pipeline_report.hpp"
 
 #include <cmath>
+#include <filesystem>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -67,32 +68,42 @@ void write_csv(const std::string& path, const std::vector<AccuracyCostRow>& rows
   write_text_atomically(path, csv);
 }
 
-// Yaw-rate error against wall time per simulated second, one point per model and manoeuvre (the
-// full vehicle, the reference, stands at zero error on its own line).
+// Yaw-rate error against wall time per simulated second, one point per model and manoeuvre; the
+// full vehicle, the reference, at zero error. Drawn in a work folder, then committed.
 void plot(const std::string& dir, const std::vector<AccuracyCostRow>& rows) {
   std::string data;
   for (const auto& r : rows)
     if (r.solver != "full vehicle" && std::isfinite(r.yaw_rate_rmse))
-      data += fmt::format("\"{} {}\" {:.9g} {:.9g}\n", r.maneuver, r.solver, r.wall_per_simulated_second,
+      data += fmt::format("\"{}: {}\" {:.9g} {:.9g}\n", r.maneuver, r.solver, r.wall_per_simulated_second,
                           r.yaw_rate_rmse);
-  std::string full;
+  data += "\n\n";
   for (const auto& r : rows)
-    if (r.solver == "full vehicle") full += fmt::format("{:.9g} ", r.wall_per_simulated_second);
-  write_text_atomically(dir + "/accuracy_cost.dat", data);
-  std::string script = fmt::format(
-      "set terminal pngcairo noenhanced size 1000,640 font 'Sans,11'\n"
-      "set output 'accuracy_cost.png'\nset logscale x\nset grid\nset key outside right\n"
-      "set xlabel 'wall time per simulated second [s] (one core)'\nset ylabel 'yaw-rate RMSE against the full "
-      "vehicle [rad/s]'\nset title 'ROMs against the full vehicle on the validation manoeuvres'\n"
-      "set offsets graph 0.05, graph 0.05, graph 0.05, 0\n");
-  for (const std::string& w : {full})
-    if (!w.empty()) script += fmt::format("full = '{}'\n", w);
-  script +=
-      "plot 'accuracy_cost.dat' using 2:3:(0):(0) with points pt 7 ps 1.5 title 'ROM runs', "
-      "'' using 2:3:1 with labels offset 1,0.6 left font ',8' notitle";
-  if (!full.empty()) script += ", for [w in full] '+' using (real(w)):(0) every ::0::0 with points pt 5 ps 2 title 'full vehicle (reference)'";
-  script += "\n";
-  run_gnuplot(script, dir);
+    if (r.solver == "full vehicle")
+      data += fmt::format("\"{}: full vehicle\" {:.9g} 0\n", r.maneuver, r.wall_per_simulated_second);
+  const std::string work = dir + "/.accuracy_cost_plot";
+  std::filesystem::create_directories(work);
+  write_text_atomically(work + "/accuracy_cost.dat", data);
+  const std::string script =
+      "set terminal pngcairo noenhanced size 1100,640 font 'Sans,11'\n"
+      "set output 'accuracy_cost.png'\nset logscale x\nset grid\nset key top center\n"
+      "set xlabel 'wall time per simulated second [s] (one core)'\n"
+      "set ylabel 'yaw-rate RMSE against the full vehicle [rad/s]'\n"
+      "set title 'Each model against the full vehicle on the validation manoeuvres'\n"
+      "set offsets graph 0.02, graph 0.2, graph 0.1, graph 0.02\nset format x '%g'\n"
+      "plot 'accuracy_cost.dat' index 0 using 2:3 with points pt 7 ps 1.5 title 'ROMs (preset and calibrated)', "
+      "'' index 0 using 2:3:1 with labels offset 1,0 left font ',8' notitle, "
+      "'' index 1 using 2:3 with points pt 5 ps 2 title 'full vehicle (the reference)', "
+      "'' index 1 using 2:3:1 with labels offset -1,1 right font ',8' notitle\n";
+  try {
+    run_gnuplot(script, work);
+    commit_file(work + "/accuracy_cost.png", dir + "/accuracy_cost.png");
+  } catch (...) {
+    std::error_code ec;
+    std::filesystem::remove_all(work, ec);
+    throw;
+  }
+  std::error_code ec;
+  std::filesystem::remove_all(work, ec);
 }
 
 }  // namespace
