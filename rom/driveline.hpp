@@ -50,10 +50,8 @@ TERRACAL_HD_INLINE void spin_accelerations(int n, const bool* driven, const doub
 // The gear a vehicle rolling with the driven wheels' mean spin starts in (the lowest whose crank
 // speed is below its upshift speed), and the crank speed that goes with it.
 TERRACAL_HD_INLINE int initial_gear(const RomVehicle& v, double mean_spin, double* crank) {
-  const PowertrainParams& p = v.powertrain;
-  int gear = 0;
-  while (gear + 1 < p.gears && mean_spin / p.gear_ratio[gear] > p.upshift_speed[gear]) ++gear;
-  *crank = mean_spin / p.gear_ratio[gear];
+  const int gear = starting_gear(v.powertrain, mean_spin);
+  *crank = mean_spin / v.powertrain.gear_ratio[gear];
   return gear;
 }
 

@@ -73,6 +73,15 @@ TERRACAL_HD_INLINE int shift_gear(const PowertrainParams& p, int gear, double in
   return gear;
 }
 
+// The gear a vehicle already rolling starts in, from its driven wheels' mean spin: the lowest whose
+// gearbox input (spin / ratio) is below that gear's upshift speed, as if it had shifted up on the way.
+// Shared by the reduced-order and the full vehicles, so that both start a manoeuvre at speed alike.
+TERRACAL_HD_INLINE int starting_gear(const PowertrainParams& p, double wheel_spin) {
+  int gear = 0;
+  while (gear + 1 < p.gears && wheel_spin / p.gear_ratio[gear] > p.upshift_speed[gear]) ++gear;
+  return gear;
+}
+
 // Which wheels the open differentials drive (FL, FR, RL, RR order for four wheels; front, rear axle
 // for two).
 TERRACAL_HD_INLINE bool is_driven(Drive d, bool front) {

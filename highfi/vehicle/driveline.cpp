@@ -68,11 +68,15 @@ Driveline build_driveline(mb::MbSystem& s, const PowertrainParams& p, const Driv
   return d;
 }
 
+void set_gear(mb::MbSystem& s, const PowertrainParams& p, Driveline& d, int gear) {
+  d.gear = gear;
+  s.linkages[std::size_t(d.gearbox)] = mb::gear("gearbox", d.turbine, d.driveshaft, p.gear_ratio[gear]);
+}
+
 bool update_gear(mb::MbSystem& s, const PowertrainParams& p, Driveline& d) {
   const int gear = shift_gear(p, d.gear, s.shafts[std::size_t(d.turbine)].speed);
   if (gear == d.gear) return false;
-  d.gear = gear;
-  s.linkages[std::size_t(d.gearbox)] = mb::gear("gearbox", d.turbine, d.driveshaft, p.gear_ratio[gear]);
+  set_gear(s, p, d, gear);
   return true;
 }
 

@@ -40,6 +40,8 @@ Driveline build_driveline(mb::MbSystem& s, const PowertrainParams& p, const Driv
 
 // Shifts by the gearbox input's speed (core/vehicle/powertrain.hpp, shift_gear); true when the gear
 // changed (the caller then restarts its integrator from the new constraint).
+// Puts the gearbox in `gear` (its coupling's ratio), the shafts' speeds left as they are.
+void set_gear(mb::MbSystem& s, const PowertrainParams& p, Driveline& d, int gear);
 bool update_gear(mb::MbSystem& s, const PowertrainParams& p, Driveline& d);
 
 }  // namespace terracal::vehicle

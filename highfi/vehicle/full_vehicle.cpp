@@ -157,6 +157,10 @@ FullVehicle::FullVehicle(const FullVehicleSpec& spec, const Vec3& origin, double
   }
 }
 
+void FullVehicle::set_gear(int gear) {
+  if (spec_.has_powertrain) vehicle::set_gear(*system_, spec_.powertrain, driveline_, gear);
+}
+
 bool FullVehicle::update_gear() {
   return spec_.has_powertrain && vehicle::update_gear(*system_, spec_.powertrain, driveline_);
 }

@@ -69,6 +69,8 @@ class FullVehicle {
   const Driveline& driveline() const { return driveline_; }
   // Shifts gear by the gearbox input's speed; true when it changed (restart the integrator then).
   bool update_gear();
+  // Puts the gearbox in `gear` (set_forward_speed: a vehicle that starts rolling).
+  void set_gear(int gear);
   const PitmanArm& steering() const { return steering_; }  // with the Pitman-arm template
   const RackPinion& rack() const { return rack_; }         // with the rack-and-pinion template
   // The body the steered axle's tie rods end on: the Pitman arm's link or the rack.

@@ -68,8 +68,9 @@ struct VehicleRunResult {
   std::vector<std::string> vtu_bodies;  // with snapshots: the names that their cell array `body` indexes
 };
 
-// Every body moving forward (+x) at `speed`, wheels rolling at speed / unloaded radius, the driveline's
-// shafts turning with them (then restart the integrator from this state).
+// Every body moving forward (+x) at `speed`, wheels rolling at speed / unloaded radius, the gearbox in
+// the gear the speed calls for (starting_gear) and the driveline's shafts turning with the wheels (then
+// restart the integrator from this state).
 void set_forward_speed(FullVehicle& v, double speed);
 
 // Exactly one of series and maneuver is non-null.
