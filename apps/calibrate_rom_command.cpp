@@ -64,6 +64,10 @@ Command add_calibrate_rom(CLI::App& app) {
   sub->add_option("--device", a->device, "where the batches run: cpu, cuda or auto")
       ->check(CLI::IsMember({"cpu", "cuda", "auto"}))
       ->capture_default_str();
+  const std::map<std::string, bool> noises{{"correlated", true}, {"white", false}};
+  add_choice(sub, "--noise", s.correlated_noise, noises,
+             "residuals correlated along a run (each channel counts as N / tau rows, tau from the least-squares "
+             "fit) or white (every row independent)");
   sub->add_flag("!--no-plots", s.plots, "skip the PNG plots");
   return [a] {
     const OutDir out = prepare_out_dir("--out", a->s.out);

@@ -61,12 +61,19 @@ double rmse(const std::vector<double>& a, const std::vector<double>& b, std::siz
   return std::sqrt(s / double(n));
 }
 
+// A tire scale's default prior: 0.2 to 5, but not below the smallest scale whose tire passes its
+// checks (a tire curve that would start convex): a prior reaching into refused vehicles puts a cliff
+// of failed runs inside the support, where least squares stops and proposals are wasted.
+bayes::ModelParameter tire_scale(const rom::RomVehicle& b, const std::string& name) {
+  return uniform(b, name, std::max(0.2, 1.001 * rom::smallest_valid_value(b, name)), 5);
+}
+
 }  // namespace
 
 std::vector<bayes::ModelParameter> default_rom_parameters(rom::RomModel model, const rom::RomVehicle& b) {
-  std::vector<bayes::ModelParameter> p = {uniform(b, "tire_cornering_scale_front", 0.2, 5),
-                                          uniform(b, "tire_cornering_scale_rear", 0.2, 5),
-                                          uniform(b, "tire_longitudinal_scale", 0.2, 5)};
+  std::vector<bayes::ModelParameter> p = {tire_scale(b, "tire_cornering_scale_front"),
+                                          tire_scale(b, "tire_cornering_scale_rear"),
+                                          tire_scale(b, "tire_longitudinal_scale")};
   if (has_roll(model))
     for (const char* n : {"roll_stiffness_front", "roll_stiffness_rear", "roll_damping_front", "roll_damping_rear"})
       p.push_back(uniform(b, n, 0.25 * base_value(b, n), 4 * base_value(b, n)));
@@ -100,6 +107,11 @@ std::vector<bayes::ModelParameter> read_rom_parameters(const std::string& path, 
       fixed.emplace_back(key, p.prior.value);
       continue;
     }
+    if (const double lowest = rom::smallest_valid_value(base, key); p.prior.lower < lowest)
+      spdlog::warn("{}: key '{}': values below {:.4g} make tires that fail their checks (df0 < 2 fm / sm); the "
+                   "prior's lower bound {} lets runs there fail, which slows the fit (give a lower bound of "
+                   "at least {:.4g})",
+                   path, key, lowest, p.prior.lower, 1.001 * lowest);
     if (!(p.prior.lower <= p.initial && p.initial <= p.prior.upper))
       p.initial = 0.5 * (p.prior.lower + p.prior.upper);  // the preset's value is outside: start in the middle
     out.push_back(p);
@@ -198,7 +210,7 @@ RomCalibrationOutcome run_rom_calibration(const RomCalibrationSettings& s) {
     for (const auto& x : xs) ps.emplace_back(x.data(), x.data() + x.size());
     forward(ps, f);
   };
-  const bayes::ModelProblem pb(params, channels, batch);
+  bayes::ModelProblem pb(params, channels, batch);
   std::vector<std::string> channel_names;
   for (const auto& c : channels) channel_names.push_back(c.name);
   spdlog::info("calibrate-rom: {} parameters ({}); channels {}; {} references", pb.dim(),
@@ -211,6 +223,13 @@ RomCalibrationOutcome run_rom_calibration(const RomCalibrationSettings& s) {
     at += fmt::format("{}{} = {:.4g} +- {:.2g}", j ? ", " : "", out.parameters[j], res.point.x[j],
                       std::sqrt(res.point.covariance(j, j)));
   spdlog::info("calibrate-rom: point estimate after {} runs: {} ({})", pb.runs(), at, res.point.ceres_report);
+  if (s.correlated_noise) {
+    pb.set_correlation_times(pb.correlation_times(res.point.x));
+    std::string taus;
+    for (int c = 0; c < pb.num_channels(); ++c)
+      taus += fmt::format("{}{} {:.3g}", c ? ", " : "", channels[c].name, pb.correlation_time(c));
+    spdlog::info("calibrate-rom: residual correlation times (rows per independent one): {}", taus);
+  }
   res.names = out.parameters;
   res.num_params = pb.dim();
   for (const auto& c : channels) res.names.push_back("sigma2_" + c.name);
@@ -224,11 +243,13 @@ RomCalibrationOutcome run_rom_calibration(const RomCalibrationSettings& s) {
   o.block = s.sampler == bayes::SamplerKind::kEnsemble ? 200 : 25;
   o.max_draws = s.max_draws;
   o.progress = [&](const bayes::CalibrationProgress& p) {
+    if (p.stage == "adapted") spdlog::info("calibrate-rom: proposal adapted to the posterior: {}", p.message);
     if (p.stage == "sampling")
       spdlog::info("calibrate-rom: {} draws per walker, max R-hat {:.4f}, min bulk ESS {:.0f} ({} runs so far)",
                    p.draws_per_chain, p.max_rhat, p.min_ess, pb.runs());
   };
   bayes::sample_posterior(pb.target(), o, res);
+  spdlog::info("calibrate-rom: {} (acceptance rate {:.3g})", res.termination, res.acceptance_rate);
   out.runs = pb.runs();
   out.failed_runs = pb.failed_runs();
   out.forward_seconds = forward.stats().wall_seconds;
@@ -251,8 +272,11 @@ RomCalibrationOutcome run_rom_calibration(const RomCalibrationSettings& s) {
   j["Posterior"] = bayes::model_posterior_json(pb, res);
   nlohmann::ordered_json fixed_json = nlohmann::ordered_json::object();
   for (const auto& [n, v] : fixed) fixed_json[n] = v;
-  nlohmann::ordered_json noise;
-  for (int c = 0; c < pb.num_channels(); ++c) noise[channels[c].name] = std::sqrt(res.point.noise_var[c]);
+  nlohmann::ordered_json noise, tau;
+  for (int c = 0; c < pb.num_channels(); ++c) {
+    noise[channels[c].name] = std::sqrt(res.point.noise_var[c]);
+    tau[channels[c].name] = pb.correlation_time(c);
+  }
   out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   j["Fit"] = {{"model", rom::model_name(s.model)},
               {"vehicle", rom::rom_preset_json(s.vehicle).empty()
@@ -263,6 +287,8 @@ RomCalibrationOutcome run_rom_calibration(const RomCalibrationSettings& s) {
               {"point_estimate", "MAP"},
               {"fixed", fixed_json},
               {"noise_sd", noise},
+              {"noise_model", s.correlated_noise ? "correlated" : "white"},
+              {"correlation_time", tau},
               {"rmse", rmse_json},
               {"sampler", s.sampler == bayes::SamplerKind::kEnsemble ? "ensemble" : "independence"},
               {"chains", res.chains},

@@ -31,6 +31,9 @@ struct RomCalibrationSettings {
   double step = 1e-3;  // the ROM's half-implicit step [s]
   rom::BatchDevice device = rom::BatchDevice::kCpu;
   bool plots = true;
+  // Residuals correlated along a run: each channel counts as N / tau independent rows, tau from the
+  // residuals at the least-squares point (bayes/model_problem.hpp); false: every row independent.
+  bool correlated_noise = true;
 };
 
 // The parameters to fit, with priors: the vehicle parameters a reference run informs (docs/rom.md,

@@ -11,9 +11,11 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "bayes/box_transform.hpp"
 #include "bayes/dram.hpp"
 #include "bayes/ensemble.hpp"
 #include "bayes/independence.hpp"
+#include "bayes/proposal_adaptation.hpp"
 #include "bayes/safe_eval.hpp"
 #include "core/checkpoint_file.hpp"
 #include "core/errors.hpp"
@@ -116,10 +118,14 @@ class Ensemble : public MultiChain {
 // quarter of the warm-up (from that quarter's states); fixed while draws are kept.
 class Independence : public MultiChain {
  public:
+  // With a box, the target, starts and proposal are in its unbounded coordinates; draws are
+  // recorded in the original ones (and their log density without the Jacobian).
   Independence(const Target& target, const std::vector<Eigen::VectorXd>& starts, const Eigen::VectorXd& noise0,
-               const PointEstimate& est, std::uint64_t seed)
-      : sampler_(target, IndependenceOptions{}, est.x, est.covariance, starts,
-                 std::vector<Eigen::VectorXd>(starts.size(), noise0), Rng::for_stream(seed, 98)) {}
+               const Eigen::VectorXd& mean, const Eigen::MatrixXd& covariance, std::uint64_t seed,
+               const BoxTransform* box, bool local_moves)
+      : sampler_(target, IndependenceOptions{.local_moves = local_moves}, mean, covariance, starts,
+                 std::vector<Eigen::VectorXd>(starts.size(), noise0), Rng::for_stream(seed, 98)),
+        box_(box) {}
   int chains() const override { return static_cast<int>(sampler_.size()); }
   void advance(int iterations, bool adapt, std::vector<ChainRecord>* record) override {
     std::vector<Eigen::VectorXd> pool;
@@ -136,9 +142,12 @@ class Independence : public MultiChain {
         }
       }
       if (record)
-        for (std::size_t k = 0; k < sampler_.size(); ++k)
-          record_state((*record)[k], sampler_.states()[k], sampler_.nuisances()[k], sampler_.log_densities()[k],
+        for (std::size_t k = 0; k < sampler_.size(); ++k) {
+          const Eigen::VectorXd& u = sampler_.states()[k];
+          const double lp = sampler_.log_density(k) - (box_ ? box_->log_jacobian(u) : 0.0);
+          record_state((*record)[k], box_ ? box_->to_x(u) : u, sampler_.nuisances()[k], lp,
                        sampler_.stats()[k].accepted > before[k]);
+        }
     }
   }
   long failed_evaluations() const override {
@@ -151,6 +160,7 @@ class Independence : public MultiChain {
 
  private:
   IndependenceSampler sampler_;
+  const BoxTransform* box_;
 };
 
 // Starting points dispersed around the MAP: MAP + 2 L z (L the Cholesky factor of the Laplace
@@ -344,12 +354,54 @@ void sample_posterior(const Target& target, const CalibrationOptions& opt, Calib
                     "covariance is singular): the posterior there is set by the priors and sampling may not "
                     "converge; fix a parameter or give an informative prior",
                     res.point.unconstrained_directions));
-  const auto starts = dispersed_starts(target, res.point, count, opt.seed, res.notes);
+  // Independence chains run in the box's unbounded coordinates where the target has one, and start
+  // from, and propose with, the proposal adapted to the posterior by importance sampling (the
+  // Laplace approximation where adaptation is off or fails).
+  std::unique_ptr<BoxTransform> box;
+  Target unbounded;
+  const Target* sampled = &target;
+  PointEstimate proposal = res.point;
+  if (opt.sampler == SamplerKind::kIndependence && target.lower.size() == dim && target.upper.size() == dim) {
+    box = std::make_unique<BoxTransform>(target.lower, target.upper);
+    unbounded = in_unbounded_coordinates(target, *box);
+    sampled = &unbounded;
+    proposal.x = box->to_u(res.point.x);
+    proposal.covariance = box->covariance_to_u(proposal.x, res.point.covariance);
+    // A coordinate that the Laplace approximation leaves wider than its whole box (a logistic over the
+    // box has variance pi^2 / 3) starts at that width instead.
+    for (int j = 0; j < dim; ++j)
+      if (const double v = proposal.covariance(j, j); v > 4.0) {
+        const double f = std::sqrt(4.0 / v);
+        proposal.covariance.row(j) *= f;
+        proposal.covariance.col(j) *= f;
+      }
+  }
+  if (opt.sampler == SamplerKind::kIndependence && opt.adaptation_rounds > 0) {
+    Rng rng = Rng::for_stream(opt.seed, 97);
+    ProposalAdaptationOptions ao;
+    ao.max_rounds = opt.adaptation_rounds;
+    ao.points = std::max(ao.points, 2 * dim + 2);
+    const AdaptedProposal a =
+        adapt_proposal(*sampled, proposal.x, proposal.covariance, res.point.noise_var, ao, rng);
+    proposal.x = a.mean;
+    proposal.covariance = a.covariance;
+    if (!a.reached_posterior)
+      res.notes.push_back(
+          fmt::format("the independence proposal did not reach the posterior in {} rounds of importance sampling "
+                      "(last tempering exponent {:.3g}): chains may move rarely and converge slowly",
+                      a.rounds, a.beta));
+    if (opt.progress)
+      opt.progress({"adapted", 0, 0, 0,
+                    fmt::format("{} rounds, {} runs, tempering exponent {:.3g}, ESS {:.0f} of {}", a.rounds,
+                                a.evaluations, a.beta, a.ess, ao.points)});
+  }
+  const auto starts = dispersed_starts(*sampled, proposal, count, opt.seed, res.notes);
   auto make_sampler = [&]() -> std::unique_ptr<MultiChain> {
     if (opt.sampler == SamplerKind::kDram)
       return std::make_unique<DramChains>(target, starts, res.point.noise_var, res.point.covariance, opt.seed);
     if (opt.sampler == SamplerKind::kIndependence)
-      return std::make_unique<Independence>(target, starts, res.point.noise_var, res.point, opt.seed);
+      return std::make_unique<Independence>(*sampled, starts, res.point.noise_var, proposal.x, proposal.covariance,
+                                            opt.seed, box.get(), opt.local_moves);
     return std::make_unique<Ensemble>(target, starts, res.point.noise_var, opt.seed);
   };
   std::unique_ptr<MultiChain> sampler = make_sampler();

@@ -26,8 +26,8 @@ namespace terracal::bayes {
 enum class SamplerKind { kDram, kEnsemble, kIndependence };
 
 struct CalibrationProgress {
-  // "resumed" or "restarted" (a checkpoint was found; `message` says what of it), then "warm-up"
-  // and "sampling" (after each block).
+  // "adapted" (the independence proposal; `message` says how), "resumed" or "restarted" (a
+  // checkpoint was found; `message` says what of it), then "warm-up" and "sampling" (after each block).
   std::string stage;
   long draws_per_chain = 0;
   double max_rhat = 0, min_ess = 0;
@@ -46,6 +46,10 @@ struct CalibrationOptions {
   std::string checkpoint_path;  // empty: no checkpoint
   std::string fingerprint;      // identifies data + options; a checkpoint with another is reported and ignored
   int global_evaluations = 20000;
+  // Independence sampler: rounds of importance sampling that move the proposal from the Laplace
+  // approximation onto the posterior before the chains start (proposal_adaptation.hpp); 0: none.
+  int adaptation_rounds = 12;
+  bool local_moves = true;  // independence sampler: a random-walk move after each independence move
   std::function<void(const CalibrationProgress&)> progress;  // called after warm-up and each block
 };
 

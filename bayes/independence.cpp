@@ -26,7 +26,15 @@ IndependenceSampler::IndependenceSampler(const Target& target, const Independenc
   for (std::size_t k = 0; k < x_.size(); ++k) {
     if (x_[k].size() != target.dim || nuisance_[k].size() != target.nuisance_dim)
       throw std::invalid_argument("IndependenceSampler: state or nuisance size does not match the target");
-    logp_.push_back(initial_log_density(target, x_[k], nuisance_[k]));
+    if (collapsed()) {
+      std::vector<double> lm;
+      target.log_marginal_batch({x_[k]}, lm);
+      if (lm.size() != 1 || !std::isfinite(lm[0]))
+        throw std::invalid_argument("IndependenceSampler: the start's log density is not finite");
+      logp_.push_back(lm[0]);
+    } else {
+      logp_.push_back(initial_log_density(target, x_[k], nuisance_[k]));
+    }
     logq_.push_back(log_q(x_[k]));
   }
   stats_.resize(x_.size());
@@ -54,14 +62,17 @@ Eigen::VectorXd IndependenceSampler::draw() {
   return mean_ + chol_ * z / std::sqrt(w);
 }
 
-void IndependenceSampler::step() {
-  const std::size_t n = x_.size();
-  std::vector<Eigen::VectorXd> ys(n);
-  for (auto& y : ys) y = draw();
-  std::vector<double> lps(n);
-  if (target_->log_density_batch) {
+// The log densities the moves accept on, of one proposal per chain, as one batch where the target
+// has one; failures counted per chain.
+void IndependenceSampler::evaluate(const std::vector<Eigen::VectorXd>& ys, std::vector<double>& lps) {
+  const std::size_t n = ys.size();
+  lps.assign(n, 0.0);
+  if (target_->log_marginal_batch || target_->log_density_batch) {
     try {
-      target_->log_density_batch(ys, nuisance_, lps);
+      if (collapsed())
+        target_->log_marginal_batch(ys, lps);
+      else
+        target_->log_density_batch(ys, nuisance_, lps);
     } catch (const std::exception&) {
       lps.assign(n, std::numeric_limits<double>::quiet_NaN());
     }
@@ -70,6 +81,15 @@ void IndependenceSampler::step() {
   } else {
     for (std::size_t k = 0; k < n; ++k) lps[k] = safe_log_density(*target_, ys[k], nuisance_[k], stats_[k]);
   }
+}
+
+void IndependenceSampler::step() {
+  const std::size_t n = x_.size();
+  std::vector<Eigen::VectorXd> ys(n);
+  for (auto& y : ys) y = draw();
+  std::vector<double> lps(n);
+  evaluate(ys, lps);
+  std::vector<char> moved(n, 0);
   for (std::size_t k = 0; k < n; ++k) {
     ++stats_[k].iterations;
     const double lq = log_q(ys[k]);
@@ -78,13 +98,35 @@ void IndependenceSampler::step() {
     x_[k] = std::move(ys[k]);
     logp_[k] = lps[k];
     logq_[k] = lq;
-    ++stats_[k].accepted;
+    moved[k] = 1;
   }
+  if (opt_.local_moves) {
+    // The local move: x + (2.38 / sqrt(d)) L z, symmetric, so the ratio is pi(y) / pi(x).
+    const double step = 2.38 / std::sqrt(double(mean_.size())) / opt_.scale;
+    for (std::size_t k = 0; k < n; ++k) {
+      Eigen::VectorXd z(mean_.size());
+      for (Eigen::Index j = 0; j < z.size(); ++j) z[j] = rng_.normal();
+      ys[k] = x_[k] + step * (chol_ * z);
+    }
+    evaluate(ys, lps);
+    for (std::size_t k = 0; k < n; ++k) {
+      if (!accept(log_density_ratio(lps[k], logp_[k]), rng_)) continue;
+      x_[k] = std::move(ys[k]);
+      logp_[k] = lps[k];
+      logq_[k] = log_q(x_[k]);
+      moved[k] = 1;
+    }
+  }
+  for (std::size_t k = 0; k < n; ++k) stats_[k].accepted += moved[k];
   if (target_->nuisance_dim > 0)
     for (std::size_t k = 0; k < n; ++k) {
       target_->gibbs(x_[k], nuisance_[k], rng_);
-      logp_[k] = safe_log_density(*target_, x_[k], nuisance_[k], stats_[k]);
+      if (!collapsed()) logp_[k] = safe_log_density(*target_, x_[k], nuisance_[k], stats_[k]);
     }
+}
+
+double IndependenceSampler::log_density(std::size_t k) const {
+  return collapsed() ? target_->log_density(x_[k], nuisance_[k]) : logp_[k];
 }
 
 void IndependenceSampler::refit(const std::vector<Eigen::VectorXd>& draws) {

@@ -5,6 +5,11 @@
 // one batch of forward runs (Target::log_density_batch: threads, or one GPU launch), and a
 // proposal close to the posterior gives nearly independent draws: few runs per effective draw.
 //
+// Where the target integrates its nuisance out (Target::log_marginal_batch), the moves accept on that
+// marginal density and the nuisance is then drawn from its conditional: an exact sampler of the joint
+// (p(x, n) = p(x) p(n | x)) whose x-moves do not depend on the nuisance's current draw, which with few
+// effective observations per channel varies by factors and would otherwise narrow the acceptance.
+//
 // The proposal starts as the Laplace approximation (MAP, least-squares covariance) and, after
 // warm-up, is refitted once to the pooled warm-up draws (mean and covariance); it is fixed while
 // draws are kept, so the kept chains are plain Metropolis-Hastings chains with an exact target. The
@@ -23,6 +28,10 @@ namespace terracal::bayes {
 struct IndependenceOptions {
   double df = 4.0;     // degrees of freedom of the t proposal
   double scale = 1.3;  // proposal covariance = scale^2 * the fitted covariance
+  // After each independence move, a random-walk move x + (2.38 / sqrt(d)) L z with L the fitted
+  // covariance's Cholesky factor (a second batch of runs): a chain that the independence move leaves
+  // stuck where the posterior outweighs the proposal (its tails, a curved ridge) still moves.
+  bool local_moves = false;
 };
 
 class IndependenceSampler {
@@ -40,7 +49,12 @@ class IndependenceSampler {
   void refit(const std::vector<Eigen::VectorXd>& draws);
   const std::vector<Eigen::VectorXd>& states() const { return x_; }
   const std::vector<Eigen::VectorXd>& nuisances() const { return nuisance_; }
+  // The log density the moves accept on: the marginal where the target is collapsed, else the
+  // density given the chain's nuisance.
   const std::vector<double>& log_densities() const { return logp_; }
+  // Chain k's log density given its nuisance (a cached run for simulation-backed targets).
+  double log_density(std::size_t k) const;
+  bool collapsed() const { return static_cast<bool>(target_->log_marginal_batch); }
   const std::vector<ChainStats>& stats() const { return stats_; }
   std::size_t size() const { return x_.size(); }
   nlohmann::json save() const;
@@ -49,6 +63,7 @@ class IndependenceSampler {
  private:
   void set_proposal(const Eigen::VectorXd& mean, const Eigen::MatrixXd& covariance);
   double log_q(const Eigen::VectorXd& x) const;  // the proposal's log density, up to a constant
+  void evaluate(const std::vector<Eigen::VectorXd>& ys, std::vector<double>& lps);
   Eigen::VectorXd draw();
 
   const Target* target_;

@@ -1,5 +1,6 @@
 #include "bayes/model_problem.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -38,6 +39,36 @@ ModelProblem::ModelProblem(std::vector<ModelParameter> parameters, std::vector<M
     offset_.push_back(rows_);
     rows_ += c.size();
   }
+  tau_ = Eigen::VectorXd::Ones(num_channels());
+}
+
+Eigen::VectorXd ModelProblem::correlation_times(const Eigen::VectorXd& x) const {
+  const auto f = predict({x});
+  if (f[0].empty()) throw RunError("calibration: the run at the least-squares point failed");
+  Eigen::VectorXd tau(num_channels());
+  for (int c = 0; c < num_channels(); ++c) {
+    const ModelChannel& ch = channels_[c];
+    double lag0 = 0, lag1 = 0;
+    for (std::size_t i = 0; i < ch.size(); ++i) {
+      const double r = ch.y[i] - f[0][offset_[c] + i];
+      lag0 += r * r;
+      if (i + 1 < ch.size() && ch.curve[i + 1] == ch.curve[i])
+        lag1 += r * (ch.y[i + 1] - f[0][offset_[c] + i + 1]);
+    }
+    const double rho = lag0 > 0 ? std::clamp(lag1 / lag0, 0.0, 1.0) : 0.0;
+    const double most = std::max(1.0, static_cast<double>(ch.size()) / 10.0);
+    tau[c] = rho < 1 ? std::clamp((1 + rho) / (1 - rho), 1.0, most) : most;
+  }
+  return tau;
+}
+
+void ModelProblem::set_correlation_times(const Eigen::VectorXd& tau) {
+  if (tau.size() != num_channels()) throw InputError("calibration: one correlation time per channel");
+  for (int c = 0; c < num_channels(); ++c)
+    if (!(std::isfinite(tau[c]) && tau[c] >= 1))
+      throw InputError(fmt::format("calibration: channel {}: correlation time {} must be finite and >= 1",
+                                   channels_[c].name, tau[c]));
+  tau_ = tau;
 }
 
 double ModelProblem::log_prior(const Eigen::VectorXd& x) const {
@@ -126,9 +157,8 @@ double ModelProblem::log_posterior(const Eigen::VectorXd& x, const Eigen::Vector
   if (!sse.allFinite()) return kNaN;  // the run failed: the sampler counts it and rejects
   double ll = lp;
   for (int c = 0; c < num_channels(); ++c) {
-    const double n = static_cast<double>(channels_[c].size());
-    // The Jeffreys prior on s^2 contributes -log s^2.
-    ll += -0.5 * sse[c] / noise_var[c] - (0.5 * n + 1.0) * std::log(noise_var[c]);
+    // The likelihood to the power 1 / tau; the Jeffreys prior on s^2 contributes -log s^2.
+    ll += (-0.5 * sse[c] / noise_var[c]) / tau_[c] - (0.5 * effective_rows(c) + 1.0) * std::log(noise_var[c]);
   }
   return ll;
 }
@@ -137,6 +167,12 @@ Target ModelProblem::target() const {
   Target t;
   t.dim = dim();
   t.nuisance_dim = num_channels();
+  t.lower.resize(dim());
+  t.upper.resize(dim());
+  for (int j = 0; j < dim(); ++j) {
+    t.lower[j] = parameters_[j].prior.lower;
+    t.upper[j] = parameters_[j].prior.upper;
+  }
   t.log_density = [this](const Eigen::VectorXd& x, const Eigen::VectorXd& nv) {
     if (!std::isfinite(log_prior(x))) return kNegInf;
     return log_posterior(x, sse({x})[0], nv);
@@ -148,10 +184,22 @@ Target ModelProblem::target() const {
     for (std::size_t i = 0; i < xs.size(); ++i)
       out[i] = std::isfinite(log_prior(xs[i])) ? log_posterior(xs[i], s[i], nvs[i]) : kNegInf;
   };
+  // With the Jeffreys prior 1/s^2, integrating s_c^2 out of N(y | f, s_c^2)^(1/tau_c) leaves
+  // SSE_c^(-N_c / (2 tau_c)).
+  t.log_marginal_batch = [this](const std::vector<Eigen::VectorXd>& xs, std::vector<double>& out) {
+    const auto s = sse(xs);
+    out.resize(xs.size());
+    for (std::size_t i = 0; i < xs.size(); ++i) {
+      out[i] = log_prior(xs[i]);
+      if (!std::isfinite(out[i])) continue;
+      for (int c = 0; c < num_channels(); ++c)
+        out[i] -= 0.5 * effective_rows(c) * std::log(s[i][c]);
+    }
+  };
   t.gibbs = [this](const Eigen::VectorXd& x, Eigen::VectorXd& nv, Rng& rng) {
     const Eigen::VectorXd s = sse({x})[0];
-    for (int c = 0; c < num_channels(); ++c)  // s^2 | theta ~ InvGamma(N/2, SSE/2)
-      nv[c] = 0.5 * s[c] / rng.gamma(0.5 * static_cast<double>(channels_[c].size()));
+    for (int c = 0; c < num_channels(); ++c)  // s^2 | theta ~ InvGamma(N/(2 tau), SSE/(2 tau))
+      nv[c] = 0.5 * s[c] / tau_[c] / rng.gamma(0.5 * effective_rows(c));
   };
   return t;
 }

@@ -9,6 +9,14 @@
 // absolute noise in the channel's unit; s_c^2 has the Jeffreys prior 1/s^2, so given theta it is
 // inverse-gamma(N_c/2, SSE_c/2): a conjugate Gibbs step, as for SCM (calibration_problem.hpp).
 //
+// Correlated residuals. A model that cannot reproduce its reference leaves residuals that vary
+// slowly along a run (at 100 samples per second, neighbouring rows miss by nearly the same amount),
+// and counting each row as an independent observation makes the posterior far too narrow. With
+// set_correlation_times, channel c counts as N_c / tau_c independent rows: its likelihood is raised
+// to the power 1 / tau_c (s_c^2 | theta ~ inverse-gamma(N_c / (2 tau_c), SSE_c / (2 tau_c))), where
+// tau_c = (1 + rho) / (1 - rho) is the integrated correlation time of an AR(1) process with the
+// residuals' lag-one correlation rho (correlation_times). tau_c = 1 is the white-noise model.
+//
 // Failures. A run that fails (diverges, throws, returns a non-finite value) makes its point's log
 // density NaN: samplers reject it and count it; the point estimate treats it as infinitely bad.
 #include <atomic>
@@ -68,6 +76,15 @@ class ModelProblem {
   Eigen::VectorXd sse_of(const std::vector<double>& prediction) const;
   // log p(theta, s^2 | y) up to a constant, from a point's SSE.
   double log_posterior(const Eigen::VectorXd& x, const Eigen::VectorXd& sse, const Eigen::VectorXd& noise_var) const;
+  // Each channel's residual correlation time at x (one run): (1 + rho) / (1 - rho), rho the lag-one
+  // correlation of the residuals within each reference, pooled; at least 1 and at most N_c / 10
+  // (so that every channel keeps ten independent rows). Throws RunError when the run fails.
+  Eigen::VectorXd correlation_times(const Eigen::VectorXd& x) const;
+  // Counts channel c as N_c / tau[c] rows from now on (default: every tau 1). Throws InputError for
+  // a tau below 1 or non-finite.
+  void set_correlation_times(const Eigen::VectorXd& tau);
+  double effective_rows(int c) const { return static_cast<double>(channels_[c].size()) / tau_[c]; }
+  double correlation_time(int c) const { return tau_[c]; }
   // The sampler's view: x = the parameters, nuisance = the noise variances with their Gibbs step;
   // log_density_batch evaluates a batch in one forward call.
   Target target() const;
@@ -81,6 +98,7 @@ class ModelProblem {
   BatchForward forward_;
   std::size_t rows_ = 0;
   std::vector<std::size_t> offset_;  // first row of each channel in a prediction vector
+  Eigen::VectorXd tau_;              // each channel's residual correlation time (1: white noise)
   mutable std::mutex cache_mutex_;
   mutable std::map<std::vector<double>, Eigen::VectorXd> cache_;
   mutable std::atomic<long> runs_{0}, failed_runs_{0};

@@ -14,6 +14,9 @@ namespace terracal::bayes {
 struct Target {
   int dim = 0;
   int nuisance_dim = 0;  // 0: no nuisance, `gibbs` is never called
+  // Optional: the support's box (each bound finite; empty: unbounded or not known). The independence
+  // sampler then proposes in unbounded coordinates (box_transform.hpp).
+  Eigen::VectorXd lower, upper;
   // log density of x given the nuisance, up to a constant. -inf means outside the support.
   // NaN, +inf or an exception is a failed evaluation: the proposal is rejected and counted,
   // and the chain goes on (a forward model that breaks never aborts a run).
@@ -27,6 +30,10 @@ struct Target {
   std::function<void(const std::vector<Eigen::VectorXd>& xs, const std::vector<Eigen::VectorXd>& nuisances,
                      std::vector<double>& out)>
       log_density_batch;
+  // Optional: log of the density of each x with the nuisance integrated out over its prior, up to a
+  // constant (failures as for log_density). Proposal adaptation (proposal_adaptation.hpp) weighs
+  // points by it; without it, by the density given a fixed nuisance.
+  std::function<void(const std::vector<Eigen::VectorXd>& xs, std::vector<double>& out)> log_marginal_batch;
 };
 
 // Counters a chain keeps; saved in checkpoints.

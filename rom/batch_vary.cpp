@@ -406,4 +406,19 @@ VaryDraws draw_vehicles(const RomVehicle& base, const VarySpec& spec, long n, st
       src, bad, n, seed, drawn, whole_failure));
 }
 
+double smallest_valid_value(const RomVehicle& base, const std::string& name) {
+  const bool longitudinal = name == "tire_longitudinal_scale";
+  const bool front = name == "tire_cornering_scale" || name == "tire_cornering_scale_front" || longitudinal;
+  const bool rear = name == "tire_cornering_scale" || name == "tire_cornering_scale_rear" || longitudinal;
+  double lowest = 0;
+  for (int a = 0; a < 2; ++a) {
+    if (!(a == 0 ? front : rear)) continue;
+    for (int l = 0; l < 2; ++l) {
+      const TmeasyCurve& c = longitudinal ? base.tire[a].x[l] : base.tire[a].y[l];
+      if (c.df0 > 0 && c.sm > 0) lowest = std::max(lowest, 2.0 * c.fm / (c.sm * c.df0));
+    }
+  }
+  return lowest;
+}
+
 }  // namespace terracal::rom

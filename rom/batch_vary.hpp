@@ -102,4 +102,9 @@ VaryDraws draw_vehicles(const RomVehicle& base, const VarySpec& spec, long n, st
 // applies per vehicle. Throws InputError for an unknown name.
 void apply_vary_parameter(RomVehicle& v, const RomVehicle& base, const std::string& name, double value);
 
+// The smallest value of a tire scale (tire_cornering_scale[_front|_rear], tire_longitudinal_scale)
+// that leaves every curve it scales valid (df0 >= 2 fm / sm, the tire check): below it the vehicle
+// fails its checks. 0 for any other parameter.
+double smallest_valid_value(const RomVehicle& base, const std::string& name);
+
 }  // namespace terracal::rom
