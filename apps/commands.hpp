@@ -22,5 +22,6 @@ Command add_vehicle(CLI::App& app);
 Command add_calibrate_rom(CLI::App& app);
 Command add_validate_rom(CLI::App& app);
 Command add_pipeline_rom(CLI::App& app);
+Command add_campaign(CLI::App& app);
 
 }  // namespace terracal::app

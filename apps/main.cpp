@@ -125,6 +125,7 @@ int main(int argc, char** argv) {
   add(terracal::app::add_calibrate_rom, "calibrate-rom");
   add(terracal::app::add_validate_rom, "validate-rom");
   add(terracal::app::add_pipeline_rom, "pipeline-rom");
+  add(terracal::app::add_campaign, "campaign");
   // Progress and messages go to stderr; stdout carries the summary table only.
   spdlog::set_default_logger(spdlog::stderr_color_mt("terracal"));
   spdlog::set_pattern("[%H:%M:%S] %^%l%$ %v");

@@ -1,0 +1,140 @@
+#include "apps/campaign_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <nlohmann/json.hpp>
+
+#include "apps/campaign_db.hpp"
+#include "apps/campaign_spec.hpp"
+#include "core/atomic_file.hpp"
+
+namespace terracal::app {
+namespace fs = std::filesystem;
+namespace {
+
+// wheel.csv's columns by name, one vector per column (empty when the file is missing or unreadable).
+std::map<std::string, std::vector<double>> read_columns(const fs::path& csv) {
+  std::map<std::string, std::vector<double>> out;
+  std::ifstream in(csv);
+  std::string line;
+  if (!std::getline(in, line)) return out;
+  std::vector<std::string> names;
+  std::stringstream hs(line);
+  for (std::string n; std::getline(hs, n, ',');) names.push_back(n);
+  while (std::getline(in, line)) {
+    std::stringstream ls(line);
+    std::size_t c = 0;
+    for (std::string v; std::getline(ls, v, ',') && c < names.size(); ++c) {
+      try {
+        out[names[c]].push_back(std::stod(v));
+      } catch (const std::exception&) {
+        out[names[c]].push_back(NAN);
+      }
+    }
+  }
+  return out;
+}
+
+// RMSE of a against b in percent of b's largest magnitude (not its range: SCM's sinkage hardly changes
+// with slip, and a range near zero would blow small differences up).
+double rmse_percent(const std::vector<double>& a, const std::vector<double>& b) {
+  if (a.size() != b.size() || b.empty()) return NAN;
+  double s = 0, top = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    s += (a[i] - b[i]) * (a[i] - b[i]);
+    top = std::max(top, std::fabs(b[i]));
+  }
+  return top > 0 ? 100.0 * std::sqrt(s / double(a.size())) / top : NAN;
+}
+
+std::string percent(double v) { return std::isfinite(v) ? fmt::format("{:.1f} %", v) : "–"; }
+
+}  // namespace
+
+void write_campaign_report(const std::string& dir, const CampaignSpec& spec, const std::vector<CampaignJob>& jobs,
+                           const CampaignDb& db) {
+  std::map<std::string, JobRow> row;
+  for (auto& r : db.rows()) row[r.key] = r;
+  int done = 0, failed = 0;
+  std::map<std::string, std::pair<int, double>> per_stage;
+  std::string table = "| stage | job | state | wall [s] | error |\n|---|---|---|---|---|\n";
+  for (const auto& j : jobs) {
+    const JobRow& r = row[j.key];
+    done += r.state == "done";
+    failed += r.state == "failed";
+    if (r.state == "done") {
+      per_stage[j.stage].first += 1;
+      per_stage[j.stage].second += r.wall_seconds;
+    }
+    table += fmt::format("| {} | {} | {} | {:.3g} | {} |\n", j.stage, j.label, r.state, r.wall_seconds, r.error);
+  }
+  std::string md = fmt::format("# Campaign {}\n\n{} soils × {} gravities × {} wheels; stages {}. {} of {} jobs done, "
+                               "{} failed.\n\n",
+                               spec.name, spec.soils.size(), spec.gravities.size(), spec.wheels.size(),
+                               fmt::join(spec.stages, ", "), done, jobs.size(), failed);
+  md += "## Wall time per stage\n\n| stage | jobs done | total [s] | per job [s] |\n|---|---|---|---|\n";
+  for (const auto& st : kCampaignStages)
+    if (per_stage.count(st))
+      md += fmt::format("| {} | {} | {:.3g} | {:.3g} |\n", st, per_stage[st].first, per_stage[st].second,
+                        per_stage[st].second / per_stage[st].first);
+
+  // Calibrated parameters: median and 90 % interval per soil and gravity.
+  std::string params;
+  std::vector<std::string> names;
+  for (const auto& j : jobs) {
+    if (j.stage != "calibrate" || row[j.key].state != "done") continue;
+    std::ifstream in(fs::path(dir) / j.dir / "scm_params.json");
+    nlohmann::ordered_json p;
+    try {
+      in >> p;
+    } catch (const std::exception&) {
+      continue;
+    }
+    const auto& post = p.value("Posterior", nlohmann::ordered_json::object());
+    if (names.empty())
+      for (const auto& [k, v] : post.items())
+        if (v.is_object() && v.contains("q50") && k.rfind("sigma2", 0) != 0) names.push_back(k);
+    params += "| " + j.label;
+    for (const auto& n : names)
+      params += post.contains(n) ? fmt::format(" | {:.4g} ({:.3g} – {:.3g})", post[n].value("q50", NAN),
+                                               post[n].value("q05", NAN), post[n].value("q95", NAN))
+                                 : " | –";
+    params += " |\n";
+  }
+  if (!params.empty()) {
+    md += "\n## Calibrated SCM parameters: median (90 % interval)\n\n| soil, gravity |";
+    for (const auto& n : names) md += " " + n + " |";
+    md += "\n|---|";
+    for (std::size_t i = 0; i < names.size(); ++i) md += "---|";
+    md += "\n" + params;
+  }
+
+  // The calibrated set's wheel against the reference soil's, per entry.
+  std::string wheel;
+  for (const auto& j : jobs) {
+    if (j.stage != "wheel" || row[j.key].state != "done") continue;
+    const auto ref = std::find_if(jobs.begin(), jobs.end(),
+                                  [&](const CampaignJob& r) { return r.stage == "wheel_reference" && r.label == j.label; });
+    if (ref == jobs.end() || row[ref->key].state != "done") continue;
+    auto a = read_columns(fs::path(dir) / j.dir / "wheel.csv");
+    auto b = read_columns(fs::path(dir) / ref->dir / "wheel.csv");
+    wheel += fmt::format("| {} | {} | {} | {} |\n", j.label, percent(rmse_percent(a["dbp_N"], b["dbp_N"])),
+                         percent(rmse_percent(a["torque_Nm"], b["torque_Nm"])),
+                         percent(rmse_percent(a["sinkage_m"], b["sinkage_m"])));
+  }
+  if (!wheel.empty())
+    md += "\n## Single wheel: the calibrated set against the reference soil\n\nRMSE over the slips, in % of the "
+          "reference's largest value.\n\n| entry | drawbar pull | torque | sinkage |\n|---|---|---|---|\n" +
+          wheel;
+  md += "\n## Jobs\n\n" + table;
+  write_text_atomically(dir + "/report.md", md);
+}
+
+}  // namespace terracal::app

@@ -1,0 +1,320 @@
+#include "apps/campaign_spec.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "apps/commands.hpp"
+#include "core/checksum.hpp"
+#include "core/errors.hpp"
+#include "core/json_file.hpp"
+#include "core/text_check.hpp"
+#include "terracal_version.hpp"
+
+namespace terracal::app {
+namespace fs = std::filesystem;
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+// The command each stage runs and the options the campaign sets itself (not allowed in "options").
+const std::map<std::string, std::string> kStageCommand = {
+    {"bevameter", "bevameter"}, {"calibrate", "calibrate"}, {"wheel", "wheel"}, {"wheel_reference", "wheel"}};
+const std::set<std::string> kCampaignSets = {"out", "scm", "soil", "solver", "terrain", "plate", "shear",
+                                             "wheel", "gravity", "test", "help"};
+
+// Registers a stage's command on `app`; the returned function owns what its options write into.
+Command command_of(CLI::App& app, const std::string& command) {
+  if (command == "bevameter") return add_bevameter(app);
+  if (command == "calibrate") return add_calibrate(app);
+  return add_wheel(app);
+}
+
+std::string text_of(const Json& v) {
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_number_integer()) return fmt::format("{}", v.get<long long>());
+  if (v.is_number()) return fmt::format("{}", v.get<double>());
+  return v.dump();
+}
+
+// A file named in the spec: relative to the spec's folder, made absolute; it must exist.
+std::string spec_file(const std::string& spec, const std::string& key, const Json& v) {
+  if (!v.is_string() || v.get<std::string>().empty())
+    throw InputError(fmt::format("{}: key '{}': expected a file name (string), found {}", spec, key, excerpt(v.dump())));
+  fs::path p(v.get<std::string>());
+  if (p.is_relative()) p = fs::path(spec).parent_path() / p;
+  if (!fs::is_regular_file(p))
+    throw InputError(fmt::format("{}: key '{}': file '{}' not found", spec, key, p.string()));
+  return fs::absolute(p).lexically_normal().string();
+}
+
+void refuse_unknown(const std::string& spec, const std::string& where, const Json& o, const std::set<std::string>& ok) {
+  for (const auto& [k, v] : o.items())
+    if (!ok.count(k))
+      throw InputError(fmt::format("{}: unknown key '{}{}'; expected one of {}", spec, where, k, fmt::join(ok, ", ")));
+}
+
+std::string name_of(const std::string& spec, const std::string& key, const Json& o, std::set<std::string>& seen) {
+  if (!o.contains("name") || !o["name"].is_string() || o["name"].get<std::string>().empty())
+    throw InputError(fmt::format("{}: key '{}.name': expected a non-empty string", spec, key));
+  const std::string n = o["name"].get<std::string>();
+  if (n.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") != std::string::npos)
+    throw InputError(fmt::format("{}: key '{}.name': '{}' may hold letters, digits, '_', '-' and '.' only "
+                                 "(it names folders)",
+                                 spec, key, n));
+  if (!seen.insert(n).second) throw InputError(fmt::format("{}: key '{}.name': '{}' appears twice", spec, key, n));
+  return n;
+}
+
+// Every option of a stage is one its command takes, with a value the option accepts: checked by the
+// command's own CLI definition (its ranges and choices), so a bad value stops the campaign before any job.
+void check_stage_options(const std::string& spec, const std::string& stage, const Json& opts) {
+  CLI::App app;
+  const std::string command = kStageCommand.at(stage);
+  const Command keep = command_of(app, command);  // owns the variables the options write into
+  CLI::App* sub = app.get_subcommand(command);
+  for (const auto& [k, v] : opts.items()) {
+    const std::string key = fmt::format("options.{}.{}", stage, k);
+    if (kCampaignSets.count(k))
+      throw InputError(fmt::format("{}: key '{}': the campaign sets --{} itself", spec, key, k));
+    CLI::Option* o = sub->get_option_no_throw("--" + k);
+    if (!o) throw InputError(fmt::format("{}: key '{}': 'terracal {}' has no option --{}", spec, key, command, k));
+    if (o->get_expected_max() == 0) {  // a flag
+      if (!v.is_boolean())
+        throw InputError(fmt::format("{}: key '{}': --{} is a flag; expected true or false, found {}", spec, key, k,
+                                     excerpt(v.dump())));
+      continue;
+    }
+    std::vector<std::string> values;
+    if (v.is_array() && o->get_expected_max() > 1) {
+      for (const auto& e : v) values.push_back(text_of(e));
+    } else if (v.is_array()) {
+      std::string joined;
+      for (const auto& e : v) joined += (joined.empty() ? "" : ",") + text_of(e);
+      values.push_back(joined);
+    } else if (v.is_string() || v.is_number()) {
+      values.push_back(text_of(v));
+    } else {
+      throw InputError(fmt::format("{}: key '{}': expected a number, a string or a list, found {}", spec, key,
+                                   excerpt(v.dump())));
+    }
+    try {
+      o->add_result(values);
+      o->run_callback();
+    } catch (const CLI::Error& e) {
+      throw InputError(fmt::format("{}: key '{}': value {} refused by terracal {} --{}: {}", spec, key,
+                                   excerpt(v.dump()), command, k, e.what()));
+    }
+  }
+}
+
+}  // namespace
+
+CampaignSpec read_campaign_spec(const std::string& path) {
+  const Json j = Json::parse(read_json_file(path, "campaign spec").dump());
+  if (!j.is_object()) throw InputError(fmt::format("{}: expected a JSON object", path));
+  refuse_unknown(path, "", j, {"name", "soils", "gravities", "wheels", "stages", "options"});
+  CampaignSpec s;
+  s.name = j.value("name", fs::path(path).stem().string());
+  for (const char* k : {"soils", "gravities", "wheels"})
+    if (!j.contains(k) || !j[k].is_array() || j[k].empty())
+      throw InputError(fmt::format("{}: key '{}': expected a non-empty list", path, k));
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < j["soils"].size(); ++i) {
+    const Json& o = j["soils"][i];
+    const std::string key = fmt::format("soils[{}]", i);
+    if (!o.is_object()) throw InputError(fmt::format("{}: key '{}': expected an object", path, key));
+    refuse_unknown(path, key + ".", o, {"name", "scm", "crm"});
+    CampaignSoil soil{name_of(path, key, o, names), "", ""};
+    if (o.contains("scm") == o.contains("crm"))
+      throw InputError(fmt::format("{}: key '{}': give exactly one of 'scm' (an SCM set) and 'crm' (a CRM material)",
+                                   path, key));
+    (o.contains("scm") ? soil.scm : soil.crm) = spec_file(path, key + (o.contains("scm") ? ".scm" : ".crm"),
+                                                          o.contains("scm") ? o["scm"] : o["crm"]);
+    s.soils.push_back(soil);
+  }
+  for (std::size_t i = 0; i < j["gravities"].size(); ++i) {
+    const Json& g = j["gravities"][i];
+    if (!g.is_number() || !(g.get<double>() >= 0.01 && g.get<double>() <= 30))
+      throw InputError(fmt::format("{}: key 'gravities[{}]': value {} is not a gravity in [0.01, 30] m/s^2", path, i,
+                                   excerpt(g.dump())));
+    if (std::count(s.gravities.begin(), s.gravities.end(), g.get<double>()))
+      throw InputError(fmt::format("{}: key 'gravities[{}]': {} appears twice", path, i, g.get<double>()));
+    s.gravities.push_back(g.get<double>());
+  }
+  names.clear();
+  for (std::size_t i = 0; i < j["wheels"].size(); ++i) {
+    const Json& o = j["wheels"][i];
+    const std::string key = fmt::format("wheels[{}]", i);
+    if (!o.is_object()) throw InputError(fmt::format("{}: key '{}': expected an object", path, key));
+    refuse_unknown(path, key + ".", o, {"name", "wheel"});
+    const std::string n = name_of(path, key, o, names);
+    s.wheels.push_back({n, spec_file(path, key + ".wheel", o.value("wheel", Json()))});
+  }
+  std::set<std::string> asked;
+  if (j.contains("stages")) {
+    if (!j["stages"].is_array() || j["stages"].empty())
+      throw InputError(fmt::format("{}: key 'stages': expected a non-empty list of {}", path, fmt::join(kCampaignStages, ", ")));
+    for (const auto& st : j["stages"]) {
+      if (!st.is_string() || !kStageCommand.count(st.get<std::string>()))
+        throw InputError(fmt::format("{}: key 'stages': unknown stage {}; expected {}", path, excerpt(st.dump()),
+                                     fmt::join(kCampaignStages, ", ")));
+      asked.insert(st.get<std::string>());
+    }
+  } else {
+    asked.insert(kCampaignStages.begin(), kCampaignStages.end());
+  }
+  if (asked.count("calibrate") && !asked.count("bevameter"))
+    throw InputError(fmt::format("{}: key 'stages': 'calibrate' needs 'bevameter'", path));
+  if (asked.count("wheel") && !asked.count("calibrate"))
+    throw InputError(fmt::format("{}: key 'stages': 'wheel' (the calibrated set) needs 'calibrate'", path));
+  for (const auto& st : kCampaignStages)
+    if (asked.count(st)) s.stages.push_back(st);
+  for (const auto& soil : s.soils)
+    if (!soil.crm.empty() && (s.gravities.size() != 1 || std::fabs(s.gravities[0] - 9.81) > 1e-12))
+      throw InputError(fmt::format("{}: key 'gravities': soil '{}' is a CRM material, whose rigs run at 9.81 m/s^2 "
+                                   "only; give CRM soils in a campaign of gravities [9.81]",
+                                   path, soil.name));
+  if (j.contains("options")) {
+    if (!j["options"].is_object()) throw InputError(fmt::format("{}: key 'options': expected an object", path));
+    for (const auto& [st, o] : j["options"].items()) {
+      if (!kStageCommand.count(st) || st == "wheel_reference")
+        throw InputError(fmt::format("{}: key 'options.{}': expected bevameter, calibrate or wheel (the wheel's "
+                                     "options serve both wheel stages)",
+                                     path, st));
+      if (!o.is_object()) throw InputError(fmt::format("{}: key 'options.{}': expected an object", path, st));
+      check_stage_options(path, st, o);
+      s.options[st] = o;
+    }
+  }
+  return s;
+}
+
+namespace {
+
+std::string file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+void add_options(const CampaignSpec& s, const std::string& stage, std::vector<std::string>& args) {
+  const auto it = s.options.find(stage);
+  if (it == s.options.end()) return;
+  CLI::App app;
+  const std::string command = kStageCommand.at(stage);
+  const Command keep = command_of(app, command);
+  const CLI::App* sub = app.get_subcommand(command);
+  for (const auto& [k, v] : it->second.items()) {
+    const CLI::Option* o = sub->get_option("--" + k);
+    if (o->get_expected_max() == 0) {
+      if (v.get<bool>()) args.push_back("--" + k);
+      continue;
+    }
+    args.push_back("--" + k);
+    if (v.is_array() && o->get_expected_max() > 1) {
+      for (const auto& e : v) args.push_back(text_of(e));
+    } else if (v.is_array()) {
+      std::string joined;
+      for (const auto& e : v) joined += (joined.empty() ? "" : ",") + text_of(e);
+      args.push_back(joined);
+    } else {
+      args.push_back(text_of(v));
+    }
+  }
+}
+
+// The key: the stage, its arguments, the bytes of every file they name (outputs of other jobs by
+// those jobs' keys instead) and the program version, through two FNV-1a streams.
+std::string job_key(const CampaignJob& job, const std::vector<CampaignJob>& jobs, const std::vector<std::string>& files) {
+  Fnv1a64 a, b;
+  b.add("terracal campaign job");
+  auto add = [&](const std::string& t) {
+    a.add(t);
+    a.add("\n", 1);
+    b.add(t);
+    b.add("\n", 1);
+  };
+  add(TERRACAL_VERSION);
+  add(job.stage);
+  for (const auto& x : job.args) add(x);
+  for (const auto& f : files) add(file_bytes(f));
+  for (int n : job.needs) add(jobs[n].key);
+  return a.hex() + b.hex();
+}
+
+std::string gravity_label(double g) { return fmt::format("g{}", g); }
+
+}  // namespace
+
+std::vector<CampaignJob> campaign_jobs(const CampaignSpec& s) {
+  std::vector<CampaignJob> jobs;
+  auto has = [&](const std::string& st) { return std::count(s.stages.begin(), s.stages.end(), st) > 0; };
+  auto push = [&](CampaignJob j, const std::vector<std::string>& files) {
+    j.key = job_key(j, jobs, files);
+    j.dir = fmt::format("jobs/{}/{}-{}", j.stage, j.label, j.key.substr(0, 8));
+    jobs.push_back(std::move(j));
+    return static_cast<int>(jobs.size()) - 1;
+  };
+  // Placeholders for other jobs' outputs: replaced by their folders when a job runs.
+  int group = 0;
+  for (const auto& soil : s.soils)
+    for (double g : s.gravities) {
+      const std::string base = soil.name + "_" + gravity_label(g);
+      const std::string gz = fmt::format("{}", -g);
+      const bool shear = s.options.count("bevameter") && s.options.at("bevameter").contains("shear-loads");
+      int bev = -1, cal = -1;
+      if (has("bevameter")) {
+        CampaignJob j{"", "bevameter", base, "", "bevameter", {}, {}, group};
+        j.args = soil.scm.empty() ? std::vector<std::string>{"--solver", "crm", "--soil", soil.crm}
+                                  : std::vector<std::string>{"--solver", "scm", "--scm", soil.scm, "--gravity", "0", "0", gz};
+        j.args.insert(j.args.end(), {"--test", shear ? "all" : "plate"});
+        add_options(s, "bevameter", j.args);
+        bev = push(j, {soil.scm.empty() ? soil.crm : soil.scm});
+      }
+      if (has("calibrate")) {
+        CampaignJob j{"", "calibrate", base, "", "calibrate", {"--plate", "@0/plate.csv"}, {bev}, group};
+        if (shear) j.args.insert(j.args.end(), {"--shear", "@0/shear.csv"});
+        add_options(s, "calibrate", j.args);
+        cal = push(j, {});
+      }
+      for (const auto& w : s.wheels) {
+        const std::string label = base + "_" + w.name;
+        if (has("wheel")) {
+          CampaignJob j{"", "wheel", label, "", "wheel",
+                        {"--terrain", "scm", "--scm", "@0/scm_params.json", "--wheel", w.file, "--gravity", "0", "0", gz},
+                        {cal}, group};
+          add_options(s, "wheel", j.args);
+          push(j, {w.file});
+        }
+        if (has("wheel_reference")) {
+          CampaignJob j{"", "wheel_reference", label, "", "wheel", {}, {}, group};
+          j.args = soil.scm.empty()
+                       ? std::vector<std::string>{"--terrain", "crm", "--soil", soil.crm, "--wheel", w.file}
+                       : std::vector<std::string>{"--terrain", "scm", "--scm", soil.scm, "--wheel", w.file, "--gravity", "0", "0", gz};
+          add_options(s, "wheel", j.args);
+          push(j, {w.file, soil.scm.empty() ? soil.crm : soil.scm});
+        }
+      }
+      ++group;
+    }
+  return jobs;
+}
+
+std::vector<std::string> job_command_line(const CampaignJob& job, const std::string& out_dir) {
+  std::vector<std::string> a{job.command};
+  for (const auto& x : job.args) a.push_back(x);
+  a.push_back("--out");
+  a.push_back(out_dir);
+  return a;
+}
+
+}  // namespace terracal::app
