@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "apps/campaign_mpi.hpp"
 #include "apps/campaign_run.hpp"
 #include "apps/commands.hpp"
 #include "apps/out_dir.hpp"
@@ -46,8 +47,12 @@ Command add_campaign(CLI::App& app) {
     if (a->s.spec.empty()) throw InputError("campaign: SPEC.json is required (or --status DIR)");
     if (a->s.out.empty()) throw InputError("campaign: --out is required");
     if (!a->shard.empty()) parse_shard(a->shard, a->s);
-    const OutDir out = prepare_out_dir("--out", a->s.out);
+    // Under MPI only rank 0 checks and makes the folder (the ranks' probes would race); the workers get
+    // no job before it exists.
+    std::unique_ptr<OutDir> out;
+    if (mpi_world().rank == 0) out = std::make_unique<OutDir>("--out", a->s.out);
     const CampaignOutcome o = run_campaign(a->s);
+    if (mpi_world().rank != 0) return o.failed > 0 ? 1 : 0;  // rank 0 speaks for the campaign
     fmt::print("campaign: {} jobs: {} done ({} run now), {} failed, {} waiting on a failed job; {:.3g} s; report: "
                "{}/report.md\n",
                o.jobs, o.done, o.ran, o.failed, o.blocked, o.wall_seconds, a->s.out);

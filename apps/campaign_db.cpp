@@ -49,7 +49,7 @@ CampaignDb::CampaignDb(const std::string& path) : path_(path) {
   exec("PRAGMA journal_mode=WAL");
   exec("PRAGMA synchronous=FULL");
   exec("CREATE TABLE IF NOT EXISTS jobs (seq INTEGER PRIMARY KEY AUTOINCREMENT, key TEXT UNIQUE NOT NULL, "
-       "stage TEXT, label TEXT, dir TEXT, state TEXT, error TEXT, wall_seconds REAL, updated TEXT)");
+       "stage TEXT, label TEXT, dir TEXT, state TEXT, error TEXT, wall_seconds REAL, updated TEXT, worker TEXT)");
 }
 
 CampaignDb::~CampaignDb() { sqlite3_close(db_); }
@@ -74,12 +74,12 @@ void CampaignDb::add(const std::string& key, const std::string& stage, const std
 }
 
 void CampaignDb::set_state(const std::string& key, const std::string& state, const std::string& error,
-                           double wall_seconds) {
+                           double wall_seconds, const std::string& worker) {
   Statement s(db_,
-              "UPDATE jobs SET state = ?, error = ?, wall_seconds = ?, "
+              "UPDATE jobs SET state = ?, error = ?, wall_seconds = ?, worker = ?, "
               "updated = strftime('%Y-%m-%dT%H:%M:%SZ','now') WHERE key = ?",
               path_);
-  s.bind(1, state).bind(2, error).bind(3, wall_seconds).bind(4, key);
+  s.bind(1, state).bind(2, error).bind(3, wall_seconds).bind(4, worker).bind(5, key);
   if (s.step() != SQLITE_DONE) throw RunError(fmt::format("{}: {}", path_, sqlite3_errmsg(db_)));
 }
 
@@ -90,11 +90,12 @@ std::string CampaignDb::state(const std::string& key) const {
 }
 
 std::vector<JobRow> CampaignDb::rows() const {
-  Statement s(db_, "SELECT key, stage, label, dir, state, error, wall_seconds, updated FROM jobs ORDER BY seq",
+  Statement s(db_,
+              "SELECT key, stage, label, dir, state, error, worker, wall_seconds, updated FROM jobs ORDER BY seq",
               path_);
   std::vector<JobRow> out;
   while (s.step() == SQLITE_ROW)
-    out.push_back({s.text(0), s.text(1), s.text(2), s.text(3), s.text(4), s.text(5), s.real(6), s.text(7)});
+    out.push_back({s.text(0), s.text(1), s.text(2), s.text(3), s.text(4), s.text(5), s.text(6), s.real(7), s.text(8)});
   return out;
 }
 

@@ -11,6 +11,7 @@ namespace terracal::app {
 
 struct JobRow {
   std::string key, stage, label, dir, state, error;
+  std::string worker;  // who ran it last: "local", or "rank 2 (GPU 1)" under MPI
   double wall_seconds = 0;
   std::string updated;  // UTC, ISO 8601
 };
@@ -26,7 +27,7 @@ class CampaignDb {
   // Adds the job as queued unless its key is known.
   void add(const std::string& key, const std::string& stage, const std::string& label, const std::string& dir);
   void set_state(const std::string& key, const std::string& state, const std::string& error = "",
-                 double wall_seconds = 0);
+                 double wall_seconds = 0, const std::string& worker = "");
   std::string state(const std::string& key) const;  // "" for an unknown key
   std::vector<JobRow> rows() const;                 // in the order they were added
 

@@ -12,12 +12,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <vector>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "apps/campaign_db.hpp"
+#include "apps/campaign_mpi.hpp"
 #include "apps/campaign_report.hpp"
 #include "apps/campaign_spec.hpp"
 #include "core/atomic_file.hpp"
@@ -48,7 +50,7 @@ std::string last_line(const std::string& path) {
 // Runs `terracal ARGS` (this program) with stdout and stderr into `log`; returns its exit status
 // (128 + signal when a signal ended it). The job dies with the campaign's process (PR_SET_PDEATHSIG):
 // a killed campaign leaves no job running on, which a restart would race for the job's folder.
-int run_child(const std::vector<std::string>& args, const std::string& log) {
+int run_child(const std::vector<std::string>& args, const std::string& log, int gpu) {
   std::vector<std::string> copy = args;
   std::vector<char*> argv;
   std::string self = "terracal";
@@ -61,11 +63,12 @@ int run_child(const std::vector<std::string>& args, const std::string& log) {
   if (pid == 0) {  // the child: only async-signal-safe calls until exec
     prctl(PR_SET_PDEATHSIG, SIGKILL);
     if (getppid() != parent) _exit(137);  // the campaign died before the line above
-    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
     if (fd < 0) _exit(126);
     dup2(fd, 1);
     dup2(fd, 2);
     close(fd);
+    if (gpu >= 0) setenv("CUDA_VISIBLE_DEVICES", std::to_string(gpu).c_str(), 1);  // the rank's own GPU
     execv("/proc/self/exe", argv.data());
     _exit(127);
   }
@@ -75,26 +78,54 @@ int run_child(const std::vector<std::string>& args, const std::string& log) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
 }
 
-std::string eta_text(double seconds) {
-  const long s = static_cast<long>(seconds + 0.5);
-  return s >= 3600 ? fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60) : fmt::format("{}:{:02}", s / 60, s % 60);
-}
 
 }  // namespace
+
+JobOutcome run_campaign_job(const CampaignJob& job, const std::vector<CampaignJob>& jobs, const std::string& out,
+                            const std::string& worker, int gpu) {
+  const fs::path final_dir = fs::path(out) / job.dir;
+  const fs::path tmp = final_dir.string() + ".tmp";
+  fs::remove_all(tmp);  // a run cut off before its rename
+  fs::remove_all(final_dir);
+  fs::create_directories(tmp.parent_path());
+  const std::string log = final_dir.string() + ".log";
+  write_text_atomically(log, fmt::format("campaign job {} {} on {}\n", job.stage, job.label, worker));
+  const auto t0 = std::chrono::steady_clock::now();
+  const int rc = run_child(resolved_args(job, jobs, out, tmp.string()), log, gpu);
+  JobOutcome o{rc, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), ""};
+  if (rc == 0 && fs::is_directory(tmp)) {
+    fs::rename(tmp, final_dir);
+    fs::rename(log, final_dir / "log.txt");
+  } else {
+    if (o.rc == 0) o.rc = 1;  // exit 0 without an output folder
+    fs::remove_all(tmp);
+    o.error = fmt::format("exit {}: {}", rc, last_line(log));
+  }
+  return o;
+}
+
+std::unique_ptr<CampaignDb> open_campaign(const CampaignSettings& s, const std::vector<CampaignJob>& jobs) {
+  fs::create_directories(s.out);
+  std::ifstream in(s.spec);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  write_text_atomically(s.out + "/spec.json", text);
+  auto db = std::make_unique<CampaignDb>(s.out + "/campaign.sqlite");
+  for (const auto& j : jobs) db->add(j.key, j.stage, j.label, j.dir);
+  return db;
+}
+
+std::string eta_text(double seconds) {
+  const long t = static_cast<long>(seconds + 0.5);
+  return t >= 3600 ? fmt::format("{}:{:02}:{:02}", t / 3600, t / 60 % 60, t % 60) : fmt::format("{}:{:02}", t / 60, t % 60);
+}
 
 CampaignOutcome run_campaign(const CampaignSettings& s) {
   const auto start = std::chrono::steady_clock::now();
   const CampaignSpec spec = read_campaign_spec(s.spec);  // refuses a bad spec before anything is made
   const std::vector<CampaignJob> jobs = campaign_jobs(spec);
-  fs::create_directories(s.out);
-  {
-    std::ifstream in(s.spec);
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    write_text_atomically(s.out + "/spec.json", text);
-  }
-  CampaignDb db(s.out + "/campaign.sqlite");
-  for (const auto& j : jobs) db.add(j.key, j.stage, j.label, j.dir);
-
+  if (const MpiWorld w = mpi_world(); w.size > 1) return run_campaign_mpi(s, spec, jobs, w);
+  const std::unique_ptr<CampaignDb> book = open_campaign(s, jobs);
+  CampaignDb& db = *book;
   CampaignOutcome o;
   std::vector<char> mine(jobs.size());
   for (std::size_t i = 0; i < jobs.size(); ++i) {
@@ -106,10 +137,9 @@ CampaignOutcome run_campaign(const CampaignSettings& s) {
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     if (!mine[i]) continue;
     const CampaignJob& job = jobs[i];
-    const fs::path final_dir = fs::path(s.out) / job.dir;
     const std::string state = db.state(job.key);
     --left;
-    if (state == "done" && fs::is_directory(final_dir)) {
+    if (state == "done" && fs::is_directory(fs::path(s.out) / job.dir)) {
       ++o.done;
       continue;
     }
@@ -123,30 +153,14 @@ CampaignOutcome run_campaign(const CampaignSettings& s) {
       ++o.blocked;
       continue;
     }
-    const fs::path tmp = final_dir.string() + ".tmp";
-    fs::remove_all(tmp);  // a run cut off before its rename
-    fs::remove_all(final_dir);
-    fs::create_directories(tmp.parent_path());
-    const std::string log = final_dir.string() + ".log";
-    db.set_state(job.key, "running");
+    db.set_state(job.key, "running", "", 0, "local");
     spdlog::info("campaign: {} {} ({} of {} in this shard)", job.stage, job.label, o.jobs - left, o.jobs);
-    const auto t0 = std::chrono::steady_clock::now();
-    const int rc = run_child(resolved_args(job, jobs, s.out, tmp.string()), log);
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    ran_seconds += wall;
+    const JobOutcome r = run_campaign_job(job, jobs, s.out, "local", -1);
+    ran_seconds += r.wall_seconds;
     ++o.ran;
-    if (rc == 0 && fs::is_directory(tmp)) {
-      fs::rename(tmp, final_dir);
-      fs::rename(log, final_dir / "log.txt");
-      db.set_state(job.key, "done", "", wall);
-      ++o.done;
-    } else {
-      fs::remove_all(tmp);
-      const std::string why = fmt::format("exit {}: {}", rc, last_line(log));
-      db.set_state(job.key, "failed", why, wall);
-      ++o.failed;
-      spdlog::warn("campaign: {} {} failed ({}); log: {}", job.stage, job.label, why, log);
-    }
+    db.set_state(job.key, r.rc == 0 ? "done" : "failed", r.error, r.wall_seconds, "local");
+    (r.rc == 0 ? o.done : o.failed) += 1;
+    if (r.rc != 0) spdlog::warn("campaign: {} {} failed ({})", job.stage, job.label, r.error);
     spdlog::info("campaign: {} of {} done, {} failed; about {} left", o.done, o.jobs, o.failed,
                  eta_text(ran_seconds / o.ran * left));
   }
@@ -159,10 +173,12 @@ std::string campaign_status(const std::string& dir) {
   if (!fs::is_regular_file(fs::path(dir) / "campaign.sqlite"))
     throw InputError(fmt::format("--status {}: no campaign.sqlite there; expected a campaign's --out folder", dir));
   CampaignDb db(dir + "/campaign.sqlite");
-  std::string t = fmt::format("{:<16} {:<28} {:<8} {:>9}  {}\n", "stage", "job", "state", "wall [s]", "error");
+  std::string t =
+      fmt::format("{:<16} {:<28} {:<8} {:>9}  {:<16} {}\n", "stage", "job", "state", "wall [s]", "ran on", "error");
   int done = 0, failed = 0, n = 0;
   for (const auto& r : db.rows()) {
-    t += fmt::format("{:<16} {:<28} {:<8} {:>9.3g}  {}\n", r.stage, r.label, r.state, r.wall_seconds, r.error);
+    t += fmt::format("{:<16} {:<28} {:<8} {:>9.3g}  {:<16} {}\n", r.stage, r.label, r.state, r.wall_seconds, r.worker,
+                     r.error);
     done += r.state == "done";
     failed += r.state == "failed";
     ++n;

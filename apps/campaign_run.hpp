@@ -3,7 +3,9 @@
 // own process, its state in DIR/campaign.sqlite (campaign_db.hpp). A job writes into a temporary
 // folder that is renamed to its final name once the command succeeded, so a finished job's folder is
 // complete; a job found "running" when a campaign starts was cut off (a killed process) and runs again.
+#include <memory>
 #include <string>
+#include <vector>
 
 namespace terracal::app {
 
@@ -23,6 +25,22 @@ struct CampaignOutcome {
 };
 
 CampaignOutcome run_campaign(const CampaignSettings& s);
+
+// What the serial campaign and the MPI one share.
+struct CampaignJob;
+class CampaignDb;
+struct JobOutcome {
+  int rc = 0;  // the command's exit status (128 + signal)
+  double wall_seconds = 0;
+  std::string error;  // "exit 2: <the command's last line>" for a failed job
+};
+// Runs one job (its needs done) into its folder: a temporary one, renamed once the command succeeded;
+// `worker` is written at the top of its log; gpu >= 0 sets the job's CUDA_VISIBLE_DEVICES.
+JobOutcome run_campaign_job(const CampaignJob& job, const std::vector<CampaignJob>& jobs, const std::string& out,
+                            const std::string& worker, int gpu);
+// Makes the folder, copies the spec into it and opens the database with every job added.
+std::unique_ptr<CampaignDb> open_campaign(const CampaignSettings& s, const std::vector<CampaignJob>& jobs);
+std::string eta_text(double seconds);
 
 // The table of every job's state (`terracal campaign --status DIR`); throws InputError when DIR holds
 // no campaign.

@@ -13,8 +13,9 @@ CudaDeviceInfo cuda_device_info() {
     return {false, fmt::format("no CUDA device ({})", err == cudaSuccess ? "none found" : cudaGetErrorString(err))};
   cudaDeviceProp prop{};
   TERRACAL_CUDA_CHECK(cudaGetDeviceProperties(&prop, 0));
-  return {true, fmt::format("{} (sm_{}{}, {:.1f} GiB)", prop.name, prop.major, prop.minor,
-                            prop.totalGlobalMem / 1073741824.0)};
+  return {true,
+          fmt::format("{} (sm_{}{}, {:.1f} GiB)", prop.name, prop.major, prop.minor, prop.totalGlobalMem / 1073741824.0),
+          count};
 }
 
 namespace {

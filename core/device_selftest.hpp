@@ -19,6 +19,7 @@ struct Axpy {
 struct CudaDeviceInfo {
   bool available = false;
   std::string description;  // device name and compute capability, or why there is none
+  int count = 0;            // devices present
 };
 
 // Whether this build has CUDA and a device is present.

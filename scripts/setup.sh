@@ -7,7 +7,7 @@ packages=(
   build-essential cmake pkg-config
   libeigen3-dev libceres-dev libnlopt-dev libnlopt-cxx-dev libgsl-dev libhdf5-dev
   catch2 nlohmann-json3-dev libcli11-dev libfmt-dev libspdlog-dev
-  libsundials-dev libsqlite3-dev
+  libsundials-dev libsqlite3-dev libopenmpi-dev openmpi-bin
   gnuplot-nox
 )
 

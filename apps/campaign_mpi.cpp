@@ -1,0 +1,201 @@
+#include "apps/campaign_mpi.hpp"
+
+#include <chrono>
+#include <cstdlib>
+#include <deque>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "apps/campaign_db.hpp"
+#include "apps/campaign_report.hpp"
+#include "core/device_selftest.hpp"
+
+#ifdef TERRACAL_HAVE_MPI
+#include <mpi.h>
+#endif
+
+namespace terracal::app {
+namespace fs = std::filesystem;
+
+#ifndef TERRACAL_HAVE_MPI
+
+MpiWorld mpi_world() { return {}; }
+
+CampaignOutcome run_campaign_mpi(const CampaignSettings&, const CampaignSpec&, const std::vector<CampaignJob>&,
+                                 const MpiWorld&) {
+  throw std::logic_error("run_campaign_mpi: this build has no MPI");
+}
+
+#else
+
+namespace {
+
+bool started_by_mpirun() {
+  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"})
+    if (std::getenv(v)) return true;
+  return false;
+}
+
+int env_int(const char* name, int fallback) {
+  const char* v = std::getenv(name);
+  return v ? std::atoi(v) : fallback;
+}
+
+constexpr int kTagToScheduler = 1, kTagToWorker = 2;
+
+// A job's place in rank 0's plan.
+enum class Plan { kOther, kPending, kRunning, kDone, kFailed, kBlocked };
+
+// Rank 0: hands the next job whose needs are done to whichever worker asks, records every change in
+// the database, and stops the workers once nothing is left that can run.
+CampaignOutcome schedule(const CampaignSettings& s, const CampaignSpec& spec, const std::vector<CampaignJob>& jobs,
+                         int size) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::unique_ptr<CampaignDb> book = open_campaign(s, jobs);
+  CampaignDb& db = *book;
+  CampaignOutcome o;
+  std::vector<Plan> plan(jobs.size(), Plan::kOther);
+  auto block_dependents = [&](std::size_t failed) {
+    for (std::size_t i = failed + 1; i < jobs.size(); ++i)
+      for (int n : jobs[i].needs)
+        if (n >= 0 && static_cast<std::size_t>(n) < i &&
+            (plan[n] == Plan::kFailed || plan[n] == Plan::kBlocked) && plan[i] == Plan::kPending)
+          plan[i] = Plan::kBlocked;
+  };
+  for (std::size_t i = 0; i < jobs.size(); ++i) {
+    if (jobs[i].group % s.shards != s.shard) continue;
+    ++o.jobs;
+    const std::string st = db.state(jobs[i].key);
+    plan[i] = st == "done" && fs::is_directory(fs::path(s.out) / jobs[i].dir) ? Plan::kDone
+              : st == "failed" && !s.retry_failed                            ? Plan::kFailed
+                                                                             : Plan::kPending;
+  }
+  for (std::size_t i = 0; i < jobs.size(); ++i)
+    if (plan[i] == Plan::kFailed) block_dependents(i);
+  auto next_ready = [&]() -> int {
+    for (std::size_t i = 0; i < jobs.size(); ++i) {
+      if (plan[i] != Plan::kPending) continue;
+      bool ready = true;
+      for (int n : jobs[i].needs) ready = ready && plan[n] == Plan::kDone;
+      if (ready) return static_cast<int>(i);
+    }
+    return -1;
+  };
+  std::deque<int> idle;
+  std::vector<std::string> names(size);
+  int running = 0, live = size - 1;
+  double ran_seconds = 0;
+  while (live > 0) {
+    double msg[4];  // job (-1: ready), exit status, wall time, the worker's GPU (-1: CPU)
+    MPI_Status status;
+    MPI_Recv(msg, 4, MPI_DOUBLE, MPI_ANY_SOURCE, kTagToScheduler, MPI_COMM_WORLD, &status);
+    const int worker = status.MPI_SOURCE;
+    const std::string where = msg[3] >= 0 ? fmt::format("rank {} (GPU {})", worker, static_cast<int>(msg[3]))
+                                          : fmt::format("rank {} (CPU)", worker);
+    names[worker] = where;
+    if (msg[0] >= 0) {  // a result
+      const auto j = static_cast<std::size_t>(msg[0]);
+      const int rc = static_cast<int>(msg[1]);
+      --running;
+      ++o.ran;
+      ran_seconds += msg[2];
+      plan[j] = rc == 0 ? Plan::kDone : Plan::kFailed;
+      std::string error;
+      if (rc != 0) {
+        std::ifstream log(fs::path(s.out) / (jobs[j].dir + ".log"));
+        std::string line, last;
+        while (std::getline(log, line))
+          if (!line.empty()) last = line;
+        error = fmt::format("exit {}: {}", rc, last);
+        block_dependents(j);
+        spdlog::warn("campaign: {} {} failed on rank {} ({})", jobs[j].stage, jobs[j].label, worker, error);
+      }
+      db.set_state(jobs[j].key, rc == 0 ? "done" : "failed", error, msg[2], where);
+      int left = 0;
+      for (Plan p : plan) left += p == Plan::kPending;
+      spdlog::info("campaign: {} {} {} on {}; {} to run, {} running; about {} to go", jobs[j].stage, jobs[j].label,
+                   rc == 0 ? "done" : "failed", where, left, running,
+                   eta_text(ran_seconds / o.ran * left / std::max(1, size - 1)));
+    }
+    idle.push_back(worker);
+    while (!idle.empty()) {
+      const int j = next_ready();
+      if (j < 0) break;
+      plan[j] = Plan::kRunning;
+      db.set_state(jobs[j].key, "running", "", 0, names[idle.front()]);
+      MPI_Send(&j, 1, MPI_INT, idle.front(), kTagToWorker, MPI_COMM_WORLD);
+      idle.pop_front();
+      ++running;
+    }
+    if (running == 0 && next_ready() < 0) {  // nothing runs and nothing can: stop the workers
+      const int stop = -1;
+      for (int w : idle) MPI_Send(&stop, 1, MPI_INT, w, kTagToWorker, MPI_COMM_WORLD);
+      live -= static_cast<int>(idle.size());
+      idle.clear();
+    }
+  }
+  for (Plan p : plan) {
+    o.done += p == Plan::kDone;
+    o.failed += p == Plan::kFailed;
+    o.blocked += p == Plan::kBlocked;
+  }
+  o.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  write_campaign_report(s.out, spec, jobs, db);
+  return o;
+}
+
+// Ranks 1..K-1: ask, run, report, until told to stop.
+CampaignOutcome work(const CampaignSettings& s, const std::vector<CampaignJob>& jobs, const MpiWorld& w) {
+  const CudaDeviceInfo gpus = cuda_device_info();
+  const int gpu = gpus.count > 0 ? w.local_rank % gpus.count : -1;
+  const std::string me = gpu >= 0 ? fmt::format("rank {} (GPU {})", w.rank, gpu) : fmt::format("rank {} (CPU)", w.rank);
+  CampaignOutcome o;
+  double msg[4] = {-1, 0, 0, static_cast<double>(gpu)};
+  for (;;) {
+    MPI_Send(msg, 4, MPI_DOUBLE, 0, kTagToScheduler, MPI_COMM_WORLD);
+    int j = -1;
+    MPI_Recv(&j, 1, MPI_INT, 0, kTagToWorker, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    if (j < 0) break;
+    const JobOutcome r = run_campaign_job(jobs[j], jobs, s.out, me, gpu);
+    ++o.jobs;
+    ++o.ran;
+    (r.rc == 0 ? o.done : o.failed) += 1;
+    msg[0] = j;
+    msg[1] = r.rc;
+    msg[2] = r.wall_seconds;
+  }
+  return o;
+}
+
+}  // namespace
+
+MpiWorld mpi_world() {
+  static MpiWorld world = [] {
+    MpiWorld w;
+    if (!started_by_mpirun()) return w;
+    int provided = 0;
+    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+    std::atexit([] { MPI_Finalize(); });
+    MPI_Comm_rank(MPI_COMM_WORLD, &w.rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &w.size);
+    w.local_rank = env_int("OMPI_COMM_WORLD_LOCAL_RANK", env_int("MPI_LOCALRANKID", w.rank));
+    return w;
+  }();
+  return world;
+}
+
+CampaignOutcome run_campaign_mpi(const CampaignSettings& s, const CampaignSpec& spec,
+                                 const std::vector<CampaignJob>& jobs, const MpiWorld& w) {
+  if (w.rank == 0) return schedule(s, spec, jobs, w.size);
+  // Workers wait until rank 0 has made the folder and the database.
+  return work(s, jobs, w);
+}
+
+#endif
+
+}  // namespace terracal::app

@@ -1,0 +1,143 @@
+// `mpirun -n K terracal campaign`: rank 0 schedules, the other ranks run jobs; the results are those
+// of a single-process campaign to the byte, and a rank killed mid-job loses only the jobs in flight.
+#include <catch2/catch.hpp>
+
+#include <chrono>
+#include <filesystem>
+#include <regex>
+#include <string>
+#include <thread>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "../skip.hpp"
+#include "cli_runner.hpp"
+
+using namespace terracal::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kWheel = R"({"radius": 0.47, "width": 0.25, "mass": 108, "angular_velocity": 1.0})";
+
+// The demo's dry sand and the same with a friction angle of 32 degrees, at two gravities, one wheel.
+void write_campaign(const std::string& dir) {
+  write(dir + "/wheel.json", kWheel);
+  auto j = nlohmann::json::parse(read_file(demo_data("truth.json")));
+  j["Soil parameters"]["Mohr friction limit"] = 32;
+  write(dir + "/sand2.json", j.dump(2));
+  write(dir + "/spec.json", R"({"soils": [{"name": "sand", "scm": ")" + demo_data("truth.json") +
+                                R"("}, {"name": "sand2", "scm": "sand2.json"}], "gravities": [9.81, 3.71], "wheels": [{"name": "w", "wheel": "wheel.json"}], "options": {"bevameter": {"shear-loads": [245, 490, 736], "no-plots": true}, "calibrate": {"min-ess": 200, "no-plots": true}, "wheel": {"slips": [0.1, 0.4], "duration": 1, "no-plots": true}}})");
+}
+
+std::string mpirun(int ranks) {
+  return fmt::format("mpirun --allow-run-as-root --oversubscribe -n {} {}", ranks, TERRACAL_EXE);
+}
+
+bool have_mpi() {
+#ifdef TERRACAL_HAVE_MPI
+  return std::system("command -v mpirun > /dev/null 2>&1") == 0;
+#else
+  return false;
+#endif
+}
+
+// Every result file of campaign `a` equals campaign `b`'s: CSV to the byte, calibrations in their
+// parameters and posterior (their "Fit" block names the campaign's own paths).
+void check_same_results(const fs::path& a, const fs::path& b) {
+  int compared = 0;
+  for (const auto& e : fs::recursive_directory_iterator(a / "jobs")) {
+    const fs::path rel = fs::relative(e.path(), a);
+    const std::string name = e.path().filename().string();
+    if (e.path().extension() == ".csv") {
+      INFO(rel.string());
+      CHECK(read_file(e.path().string()) == read_file((b / rel).string()));
+      ++compared;
+    } else if (name == "scm_params.json") {
+      const auto ja = nlohmann::json::parse(read_file(e.path().string()));
+      const auto jb = nlohmann::json::parse(read_file((b / rel).string()));
+      INFO(rel.string());
+      CHECK(ja["Soil parameters"] == jb["Soil parameters"]);
+      CHECK(ja["Posterior"] == jb["Posterior"]);
+      ++compared;
+    }
+  }
+  CHECK(compared >= 4 * 2 + 4 + 8);  // plate and shear, scm_params.json, wheel.csv (calibrated, reference), ...
+}
+
+int count_of(const std::string& text, const std::string& word) {
+  int n = 0;
+  for (auto at = text.find(word); at != std::string::npos; at = text.find(word, at + 1)) ++n;
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("campaign under MPI: 2 and 3 ranks give the single process's results to the byte",
+          "[cli][campaign][mpi]") {
+  if (!have_mpi()) {
+    report_skip("campaign over MPI", "this build has no MPI, or mpirun is not on the PATH");
+    return;
+  }
+  const ScratchDir scratch("campaign_mpi");
+  const std::string dir = scratch.str();
+  write_campaign(dir);
+  REQUIRE(run_cli("campaign " + dir + "/spec.json --out " + dir + "/one", dir).exit_code == 0);
+  for (int ranks : {2, 3}) {
+    const std::string out = fmt::format("{}/ranks{}", dir, ranks);
+    const std::string cmd = fmt::format("{} campaign {}/spec.json --out {} > {}/log.txt 2>&1", mpirun(ranks), dir, out, dir);
+    const int rc = std::system(cmd.c_str());
+    INFO(ranks << " ranks: " << read_file(dir + "/log.txt"));
+    REQUIRE(rc == 0);
+    check_same_results(dir + "/one", out);
+    // Every job ran on a worker rank, never on the scheduler.
+    const CliResult st = run_cli("campaign --status " + out, dir);
+    CHECK(count_of(st.out, "rank ") == 16);
+    CHECK(count_of(st.out, "rank 0") == 0);
+    if (ranks == 3) CHECK(count_of(st.out, "rank 2") > 0);
+  }
+}
+
+TEST_CASE("campaign under MPI: a rank killed mid-job ends the run; starting again reruns the jobs in flight only",
+          "[cli][campaign][mpi]") {
+  if (!have_mpi()) {
+    report_skip("campaign over MPI", "this build has no MPI, or mpirun is not on the PATH");
+    return;
+  }
+  const ScratchDir scratch("campaign_mpi_kill");
+  const std::string dir = scratch.str();
+  write_campaign(dir);
+  const std::string out = dir + "/c";
+  REQUIRE(std::system(fmt::format("{} campaign {}/spec.json --out {} > {}/log.txt 2>&1 &", mpirun(3), dir, out, dir)
+                          .c_str()) == 0);
+  // Once four jobs are done and another is in flight, kill the worker rank that runs it (the parent of
+  // the job's process). OpenMPI then ends every rank, and each rank's job dies with it.
+  bool killed = false;
+  for (int i = 0; i < 6000 && !killed; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    int done = 0, tmp = 0;
+    if (fs::exists(out + "/jobs"))
+      for (const auto& e : fs::recursive_directory_iterator(out + "/jobs")) {
+        done += e.path().filename() == "log.txt";
+        tmp += e.path().string().ends_with(".tmp");
+      }
+    if (done >= 4 && tmp > 0)
+      killed = std::system("pid=$(pgrep -f 'terracal (bevameter|calibrate|wheel) ' | head -1); [ -n \"$pid\" ] && "
+                           "kill -9 $(ps -o ppid= -p $pid)") == 0;
+  }
+  REQUIRE(killed);
+  for (int i = 0; i < 400 && std::system("pgrep -f 'terracal campaign' > /dev/null") == 0; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(25));  // mpirun ends the other ranks
+  const CliResult before = run_cli("campaign --status " + out, dir);
+  const int done_before = count_of(before.out, " done ");
+  const int in_flight = count_of(before.out, " running ");
+  INFO(before.out);
+  CHECK(in_flight >= 1);
+  CHECK(in_flight <= 2);  // one job per worker rank
+  const CliResult r = run_cli("campaign " + dir + "/spec.json --out " + out, dir);
+  INFO(r.out << r.err);
+  CHECK(r.exit_code == 0);
+  CHECK(r.out.find(fmt::format("16 done ({} run now)", 16 - done_before)) != std::string::npos);
+  for (const auto& e : fs::recursive_directory_iterator(out + "/jobs")) CHECK(!e.path().string().ends_with(".tmp"));
+}
