@@ -33,8 +33,10 @@ namespace {
 std::vector<std::string> resolved_args(const CampaignJob& job, const std::vector<CampaignJob>& jobs,
                                        const std::string& root, const std::string& out) {
   std::vector<std::string> a = job_command_line(job, out);
-  for (auto& x : a)
+  for (auto& x : a) {
     if (x.rfind("@0/", 0) == 0) x = (fs::path(root) / jobs[job.needs.at(0)].dir / x.substr(3)).string();
+    if (x.rfind("@out/", 0) == 0) x = (fs::path(root) / x.substr(5)).string();
+  }
   return a;
 }
 
@@ -88,6 +90,10 @@ JobOutcome run_campaign_job(const CampaignJob& job, const std::vector<CampaignJo
   fs::remove_all(tmp);  // a run cut off before its rename
   fs::remove_all(final_dir);
   fs::create_directories(tmp.parent_path());
+  for (const auto& [rel, content] : job.writes) {
+    fs::create_directories((fs::path(out) / rel).parent_path());
+    write_text_atomically((fs::path(out) / rel).string(), content);
+  }
   const std::string log = final_dir.string() + ".log";
   write_text_atomically(log, fmt::format("campaign job {} {} on {}\n", job.stage, job.label, worker));
   const auto t0 = std::chrono::steady_clock::now();

@@ -178,10 +178,8 @@ CampaignSpec read_campaign_spec(const std::string& path) {
   for (const auto& st : kCampaignStages)
     if (asked.count(st)) s.stages.push_back(st);
   for (const auto& soil : s.soils)
-    if (!soil.crm.empty() && (s.gravities.size() != 1 || std::fabs(s.gravities[0] - 9.81) > 1e-12))
-      throw InputError(fmt::format("{}: key 'gravities': soil '{}' is a CRM material, whose rigs run at 9.81 m/s^2 "
-                                   "only; give CRM soils in a campaign of gravities [9.81]",
-                                   path, soil.name));
+    if (!soil.crm.empty() && !read_json_file(soil.crm, "CRM soil").is_object())
+      throw InputError(fmt::format("{}: soil '{}': {} is not a JSON object (a CRM material)", path, soil.name, soil.crm));
   if (j.contains("options")) {
     if (!j["options"].is_object()) throw InputError(fmt::format("{}: key 'options': expected an object", path));
     for (const auto& [st, o] : j["options"].items()) {
@@ -272,13 +270,23 @@ std::vector<CampaignJob> campaign_jobs(const CampaignSpec& s) {
       const std::string gz = fmt::format("{}", -g);
       const bool shear = s.options.count("bevameter") && s.options.at("bevameter").contains("shear-loads");
       int bev = -1, cal = -1;
+      // A CRM material carries its gravity: the entry's copy has the entry's, written into the
+      // campaign folder before the job runs (and hashed as the job's input).
+      std::pair<std::string, std::string> crm_soil;
+      if (!soil.crm.empty()) {
+        nlohmann::json m = read_json_file(soil.crm, "CRM soil");
+        m["gravity"] = {0.0, 0.0, -g};
+        crm_soil = {fmt::format("soils/{}.json", base), m.dump(2) + "\n"};
+      }
+      const std::string crm_path = "@out/" + crm_soil.first;
       if (has("bevameter")) {
         CampaignJob j{"", "bevameter", base, "", "bevameter", {}, {}, group};
-        j.args = soil.scm.empty() ? std::vector<std::string>{"--solver", "crm", "--soil", soil.crm}
+        j.args = soil.scm.empty() ? std::vector<std::string>{"--solver", "crm", "--soil", crm_path}
                                   : std::vector<std::string>{"--solver", "scm", "--scm", soil.scm, "--gravity", "0", "0", gz};
+        if (!soil.crm.empty()) j.writes = {crm_soil};
         j.args.insert(j.args.end(), {"--test", shear ? "all" : "plate"});
         add_options(s, "bevameter", j.args);
-        bev = push(j, {soil.scm.empty() ? soil.crm : soil.scm});
+        bev = push(j, {soil.scm.empty() ? soil.crm : soil.scm});  // the copy's bytes follow from the file and g
       }
       if (has("calibrate")) {
         CampaignJob j{"", "calibrate", base, "", "calibrate", {"--plate", "@0/plate.csv"}, {bev}, group};
@@ -298,8 +306,9 @@ std::vector<CampaignJob> campaign_jobs(const CampaignSpec& s) {
         if (has("wheel_reference")) {
           CampaignJob j{"", "wheel_reference", label, "", "wheel", {}, {}, group};
           j.args = soil.scm.empty()
-                       ? std::vector<std::string>{"--terrain", "crm", "--soil", soil.crm, "--wheel", w.file}
+                       ? std::vector<std::string>{"--terrain", "crm", "--soil", crm_path, "--wheel", w.file}
                        : std::vector<std::string>{"--terrain", "scm", "--scm", soil.scm, "--wheel", w.file, "--gravity", "0", "0", gz};
+          if (!soil.crm.empty()) j.writes = {crm_soil};
           add_options(s, "wheel", j.args);
           push(j, {w.file, soil.scm.empty() ? soil.crm : soil.scm});
         }

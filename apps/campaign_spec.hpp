@@ -42,6 +42,9 @@ struct CampaignJob {
   std::vector<std::string> args;  // its arguments, --out left out
   std::vector<int> needs;         // indices of the jobs whose outputs it reads
   int group = 0;                  // soil x gravity index: a group's jobs stay in one shard
+  // Files the job needs written into the campaign folder first (path relative to it, content): a CRM
+  // material with the entry's gravity put in.
+  std::vector<std::pair<std::string, std::string>> writes;
 };
 
 // Reads and validates SPEC.json: unknown keys, empty grids, missing files, duplicate names, a stage
@@ -53,7 +56,8 @@ CampaignSpec read_campaign_spec(const std::string& path);
 // bevameter run for every wheel) appear once.
 std::vector<CampaignJob> campaign_jobs(const CampaignSpec& spec);
 
-// The arguments a job runs with: its args, with "--out <folder>".
+// The arguments a job runs with: its args, with "--out <folder>". "@0/" in them stands for the folder
+// of the first job it needs, "@out/" for the campaign folder.
 std::vector<std::string> job_command_line(const CampaignJob& job, const std::string& out_dir);
 
 }  // namespace terracal::app

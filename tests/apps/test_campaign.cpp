@@ -2,7 +2,9 @@
 // job against the campaign's database and the commands run on their own.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <chrono>
+#include <set>
 #include <filesystem>
 #include <regex>
 #include <thread>
@@ -10,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "apps/campaign_spec.hpp"
 #include "cli_runner.hpp"
 
 using namespace terracal::test;
@@ -195,4 +198,35 @@ TEST_CASE("campaign: shards split the soil x gravity groups and together make th
   const Counts all = counts(run_cli(cmd, dir).out);
   CHECK(all.ran == 0);
   CHECK(all.done == 16);
+}
+
+TEST_CASE("campaign: a CRM soil's copy per gravity carries that gravity; keys follow inputs", "[cli][campaign]") {
+  const ScratchDir scratch("campaign_jobs");
+  const std::string dir = scratch.str();
+  write(dir + "/wheel.json", kWheel);
+  const std::string soil = std::string(TERRACAL_SOURCE_DIR) + "/studies/pipeline/bevameter_soil_2022.json";
+  write(dir + "/spec.json", R"({"soils": [{"name": "bed", "crm": ")" + soil +
+                                R"("}], "gravities": [9.81, 1.62], "wheels": [{"name": "w", "wheel": "wheel.json"}]})");
+  const auto jobs = terracal::app::campaign_jobs(terracal::app::read_campaign_spec(dir + "/spec.json"));
+  REQUIRE(jobs.size() == 8);
+  int checked = 0;
+  for (const auto& j : jobs) {
+    if (j.stage != "bevameter" && j.stage != "wheel_reference") continue;
+    REQUIRE(j.writes.size() == 1);
+    const double g = j.label.find("_g1.62") != std::string::npos ? 1.62 : 9.81;
+    const auto m = nlohmann::json::parse(j.writes[0].second);
+    CHECK(m["gravity"][2].get<double>() == -g);
+    CHECK(m["density"] == nlohmann::json::parse(read_file(soil))["density"]);
+    CHECK(std::find(j.args.begin(), j.args.end(), "@out/" + j.writes[0].first) != j.args.end());
+    ++checked;
+  }
+  CHECK(checked == 4);
+  // The same spec gives the same keys; every job's key is its own.
+  const auto again = terracal::app::campaign_jobs(terracal::app::read_campaign_spec(dir + "/spec.json"));
+  std::set<std::string> keys;
+  for (std::size_t i = 0; i < jobs.size(); ++i) {
+    CHECK(jobs[i].key == again[i].key);
+    keys.insert(jobs[i].key);
+  }
+  CHECK(keys.size() == jobs.size());
 }

@@ -50,10 +50,11 @@ TEST_CASE("bad input, campaign: specs", "[cli][bad_input][campaign]") {
            {"key 'options.wheel.gravity'", "sets --gravity itself"}),
       spec("a flag given a number", ok_but(R"(, "options": {"calibrate": {"no-plots": 1}})"),
            {"key 'options.calibrate.no-plots'", "is a flag"}),
-      spec("CRM soils at another gravity",
-           R"("soils": [{"name": "c", "crm": "{soil}"}], "gravities": [3.71], )" + kWheels, {"key 'gravities'", "CRM"}),
+      spec("a CRM soil that is no JSON object",
+           R"("soils": [{"name": "c", "crm": "wheel_list.json"}], "gravities": [3.71], )" + kWheels,
+           {"soil 'c'", "is not a JSON object"}),
       {"--shard out of range", {}, "campaign {demo}/truth.json --out {out} --shard 2/2", {"--shard 2/2", "0 <= i < N"}},
       {"--status of a folder that holds no campaign", {}, "campaign --status {dir}", {"no campaign.sqlite"}},
   };
-  terracal::test::check_bad_inputs("bad_campaign", cases, {{"wheel.json", kWheel}});
+  terracal::test::check_bad_inputs("bad_campaign", cases, {{"wheel.json", kWheel}, {"wheel_list.json", "[1, 2]"}});
 }
