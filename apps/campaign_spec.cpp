@@ -183,14 +183,20 @@ CampaignSpec read_campaign_spec(const std::string& path) {
   if (j.contains("options")) {
     if (!j["options"].is_object()) throw InputError(fmt::format("{}: key 'options': expected an object", path));
     for (const auto& [st, o] : j["options"].items()) {
-      if (!kStageCommand.count(st) || st == "wheel_reference")
-        throw InputError(fmt::format("{}: key 'options.{}': expected bevameter, calibrate or wheel (the wheel's "
-                                     "options serve both wheel stages)",
+      if (!kStageCommand.count(st))
+        throw InputError(fmt::format("{}: key 'options.{}': expected bevameter, calibrate, wheel (both wheel stages) "
+                                     "or wheel_reference (the reference's wheel only)",
                                      path, st));
       if (!o.is_object()) throw InputError(fmt::format("{}: key 'options.{}': expected an object", path, st));
       check_stage_options(path, st, o);
       s.options[st] = o;
     }
+    if (s.options.count("wheel") && s.options.count("wheel_reference"))
+      for (const auto& [k, v] : s.options["wheel_reference"].items())
+        if (s.options["wheel"].contains(k))
+          throw InputError(fmt::format("{}: key 'options.wheel_reference.{}': already given in options.wheel, which "
+                                       "serves both wheel stages",
+                                       path, k));
   }
   return s;
 }
@@ -310,6 +316,7 @@ std::vector<CampaignJob> campaign_jobs(const CampaignSpec& s) {
                        : std::vector<std::string>{"--terrain", "scm", "--scm", soil.scm, "--wheel", w.file, "--gravity", "0", "0", gz};
           if (!soil.crm.empty()) j.writes = {crm_soil};
           add_options(s, "wheel", j.args);
+          add_options(s, "wheel_reference", j.args);
           push(j, {w.file, soil.scm.empty() ? soil.crm : soil.scm});
         }
       }

@@ -48,6 +48,8 @@ TEST_CASE("bad input, campaign: specs", "[cli][bad_input][campaign]") {
            {"key 'options.wheel.duration'", "refused by terracal wheel --duration"}),
       spec("an option the campaign sets", ok_but(R"(, "options": {"wheel": {"gravity": [0, 0, -1]}})"),
            {"key 'options.wheel.gravity'", "sets --gravity itself"}),
+      spec("a wheel option given twice", ok_but(R"(, "options": {"wheel": {"duration": 1}, "wheel_reference": {"duration": 2}})"),
+           {"key 'options.wheel_reference.duration'", "already given in options.wheel"}),
       spec("a flag given a number", ok_but(R"(, "options": {"calibrate": {"no-plots": 1}})"),
            {"key 'options.calibrate.no-plots'", "is a flag"}),
       spec("a CRM soil that is no JSON object",
