@@ -67,16 +67,16 @@ void check_same_results(const fs::path& a, const fs::path& b) {
   CHECK(compared >= 4 * 2 + 4 + 8);  // plate and shear, scm_params.json, wheel.csv (calibrated, reference), ...
 }
 
-// Sends SIGKILL to the campaign process of MPI rank `rank` (found by its environment); false when
-// there is none.
-bool kill_rank(int rank) {
+// Sends SIGKILL to the campaign process of MPI rank `rank` (found by its environment) whose command
+// line holds `out` (this test's campaign, not another test's running beside it); false when none.
+bool kill_rank(int rank, const std::string& out) {
   const std::string want = "OMPI_COMM_WORLD_RANK=" + std::to_string(rank);
   for (const auto& e : fs::directory_iterator("/proc")) {
     const std::string pid = e.path().filename().string();
     if (pid.find_first_not_of("0123456789") != std::string::npos) continue;
     std::string cmd = read_file(e.path().string() + "/cmdline"), env = read_file(e.path().string() + "/environ");
     std::replace(cmd.begin(), cmd.end(), '\0', ' ');
-    if (cmd.find(" campaign ") == std::string::npos || cmd.find("terracal") == std::string::npos) continue;
+    if (cmd.find(" campaign ") == std::string::npos || cmd.find(out) == std::string::npos) continue;
     std::size_t at = 0;
     for (std::size_t end; (end = env.find('\0', at)) != std::string::npos; at = end + 1)
       if (env.compare(at, end - at, want) == 0) return std::system(("kill -9 " + pid).c_str()) == 0;
@@ -140,10 +140,10 @@ TEST_CASE("campaign under MPI: a rank killed mid-job ends the run; starting agai
         done += e.path().filename() == "log.txt";
         tmp += e.path().string().ends_with(".tmp");
       }
-    if (done >= 4 && tmp > 0) killed = kill_rank(1);
+    if (done >= 4 && tmp > 0) killed = kill_rank(1, out);
   }
   REQUIRE(killed);
-  for (int i = 0; i < 400 && std::system("pgrep -f 'terracal campaign' > /dev/null") == 0; ++i)
+  for (int i = 0; i < 400 && std::system(("pgrep -f 'campaign .*" + out + "' > /dev/null").c_str()) == 0; ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(25));  // mpirun ends the other ranks
   const CliResult before = run_cli("campaign --status " + out, dir);
   const int done_before = count_of(before.out, " done ");
