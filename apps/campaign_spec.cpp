@@ -44,6 +44,19 @@ std::string text_of(const Json& v) {
   return v.dump();
 }
 
+// The command-line words of an option's value (not a flag): a list one word per element where the
+// option takes several values (--gravity X Y Z), else joined by commas (--slips 0.1,0.3); a number or a
+// string as it is.
+std::vector<std::string> option_words(const CLI::Option& o, const Json& v) {
+  if (!v.is_array()) return {text_of(v)};
+  std::vector<std::string> words;
+  for (const auto& e : v) words.push_back(text_of(e));
+  if (o.get_expected_max() > 1) return words;
+  std::string joined;
+  for (const auto& w : words) joined += (joined.empty() ? "" : ",") + w;
+  return {joined};
+}
+
 // A file named in the spec: relative to the spec's folder, made absolute; it must exist.
 std::string spec_file(const std::string& spec, const std::string& key, const Json& v) {
   if (!v.is_string() || v.get<std::string>().empty())
@@ -92,19 +105,10 @@ void check_stage_options(const std::string& spec, const std::string& stage, cons
                                      excerpt(v.dump())));
       continue;
     }
-    std::vector<std::string> values;
-    if (v.is_array() && o->get_expected_max() > 1) {
-      for (const auto& e : v) values.push_back(text_of(e));
-    } else if (v.is_array()) {
-      std::string joined;
-      for (const auto& e : v) joined += (joined.empty() ? "" : ",") + text_of(e);
-      values.push_back(joined);
-    } else if (v.is_string() || v.is_number()) {
-      values.push_back(text_of(v));
-    } else {
+    if (!(v.is_array() || v.is_string() || v.is_number()))
       throw InputError(fmt::format("{}: key '{}': expected a number, a string or a list, found {}", spec, key,
                                    excerpt(v.dump())));
-    }
+    const std::vector<std::string> values = option_words(*o, v);
     try {
       o->add_result(values);
       o->run_callback();
@@ -224,15 +228,7 @@ void add_options(const CampaignSpec& s, const std::string& stage, std::vector<st
       continue;
     }
     args.push_back("--" + k);
-    if (v.is_array() && o->get_expected_max() > 1) {
-      for (const auto& e : v) args.push_back(text_of(e));
-    } else if (v.is_array()) {
-      std::string joined;
-      for (const auto& e : v) joined += (joined.empty() ? "" : ",") + text_of(e);
-      args.push_back(joined);
-    } else {
-      args.push_back(text_of(v));
-    }
+    for (auto& w : option_words(*o, v)) args.push_back(std::move(w));
   }
 }
 
