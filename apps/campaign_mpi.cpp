@@ -12,7 +12,6 @@
 #include <spdlog/spdlog.h>
 
 #include "apps/campaign_db.hpp"
-#include "apps/campaign_report.hpp"
 #include "core/device_selftest.hpp"
 
 #ifdef TERRACAL_HAVE_MPI
@@ -26,8 +25,8 @@ namespace fs = std::filesystem;
 
 MpiWorld mpi_world() { return {}; }
 
-CampaignOutcome run_campaign_mpi(const CampaignSettings&, const CampaignSpec&, const std::vector<CampaignJob>&,
-                                 const MpiWorld&) {
+CampaignOutcome run_campaign_mpi(const CampaignSettings&, const std::vector<CampaignJob>&, const std::string&,
+                                 const JobsReport&, const MpiWorld&) {
   throw std::logic_error("run_campaign_mpi: this build has no MPI");
 }
 
@@ -53,10 +52,10 @@ enum class Plan { kOther, kPending, kRunning, kDone, kFailed, kBlocked };
 
 // Rank 0: hands the next job whose needs are done to whichever worker asks, records every change in
 // the database, and stops the workers once nothing is left that can run.
-CampaignOutcome schedule(const CampaignSettings& s, const CampaignSpec& spec, const std::vector<CampaignJob>& jobs,
-                         int size) {
+CampaignOutcome schedule(const CampaignSettings& s, const std::vector<CampaignJob>& jobs, const std::string& spec_text,
+                         const JobsReport& report, int size) {
   const auto start = std::chrono::steady_clock::now();
-  const std::unique_ptr<CampaignDb> book = open_campaign(s, jobs);
+  const std::unique_ptr<CampaignDb> book = open_campaign(s, jobs, spec_text);
   CampaignDb& db = *book;
   CampaignOutcome o;
   std::vector<Plan> plan(jobs.size(), Plan::kOther);
@@ -145,7 +144,7 @@ CampaignOutcome schedule(const CampaignSettings& s, const CampaignSpec& spec, co
     o.blocked += p == Plan::kBlocked;
   }
   o.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  write_campaign_report(s.out, spec, jobs, db);
+  report(db);
   return o;
 }
 
@@ -189,9 +188,9 @@ MpiWorld mpi_world() {
   return world;
 }
 
-CampaignOutcome run_campaign_mpi(const CampaignSettings& s, const CampaignSpec& spec,
-                                 const std::vector<CampaignJob>& jobs, const MpiWorld& w) {
-  if (w.rank == 0) return schedule(s, spec, jobs, w.size);
+CampaignOutcome run_campaign_mpi(const CampaignSettings& s, const std::vector<CampaignJob>& jobs,
+                                 const std::string& spec_text, const JobsReport& report, const MpiWorld& w) {
+  if (w.rank == 0) return schedule(s, jobs, spec_text, report, w.size);
   // Workers wait until rank 0 has made the folder and the database.
   return work(s, jobs, w);
 }

@@ -21,7 +21,7 @@ MpiWorld mpi_world();
 
 // Rank 0 returns the campaign's outcome (and writes the report); the other ranks return theirs
 // (jobs = the jobs they ran).
-CampaignOutcome run_campaign_mpi(const CampaignSettings& s, const CampaignSpec& spec,
-                                 const std::vector<CampaignJob>& jobs, const MpiWorld& world);
+CampaignOutcome run_campaign_mpi(const CampaignSettings& s, const std::vector<CampaignJob>& jobs,
+                                 const std::string& spec_text, const JobsReport& report, const MpiWorld& world);
 
 }  // namespace terracal::app

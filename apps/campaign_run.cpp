@@ -110,11 +110,10 @@ JobOutcome run_campaign_job(const CampaignJob& job, const std::vector<CampaignJo
   return o;
 }
 
-std::unique_ptr<CampaignDb> open_campaign(const CampaignSettings& s, const std::vector<CampaignJob>& jobs) {
+std::unique_ptr<CampaignDb> open_campaign(const CampaignSettings& s, const std::vector<CampaignJob>& jobs,
+                                          const std::string& spec_text) {
   fs::create_directories(s.out);
-  std::ifstream in(s.spec);
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  write_text_atomically(s.out + "/spec.json", text);
+  write_text_atomically(s.out + "/spec.json", spec_text);
   auto db = std::make_unique<CampaignDb>(s.out + "/campaign.sqlite");
   for (const auto& j : jobs) db->add(j.key, j.stage, j.label, j.dir);
   return db;
@@ -126,11 +125,18 @@ std::string eta_text(double seconds) {
 }
 
 CampaignOutcome run_campaign(const CampaignSettings& s) {
-  const auto start = std::chrono::steady_clock::now();
   const CampaignSpec spec = read_campaign_spec(s.spec);  // refuses a bad spec before anything is made
   const std::vector<CampaignJob> jobs = campaign_jobs(spec);
-  if (const MpiWorld w = mpi_world(); w.size > 1) return run_campaign_mpi(s, spec, jobs, w);
-  const std::unique_ptr<CampaignDb> book = open_campaign(s, jobs);
+  std::ifstream in(s.spec);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return run_jobs(s, jobs, text, [&](const CampaignDb& db) { write_campaign_report(s.out, spec, jobs, db); });
+}
+
+CampaignOutcome run_jobs(const CampaignSettings& s, const std::vector<CampaignJob>& jobs, const std::string& spec_text,
+                         const JobsReport& report) {
+  const auto start = std::chrono::steady_clock::now();
+  if (const MpiWorld w = mpi_world(); w.size > 1) return run_campaign_mpi(s, jobs, spec_text, report, w);
+  const std::unique_ptr<CampaignDb> book = open_campaign(s, jobs, spec_text);
   CampaignDb& db = *book;
   CampaignOutcome o;
   std::vector<char> mine(jobs.size());
@@ -171,7 +177,7 @@ CampaignOutcome run_campaign(const CampaignSettings& s) {
                  eta_text(ran_seconds / o.ran * left));
   }
   o.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  write_campaign_report(s.out, spec, jobs, db);
+  report(db);
   return o;
 }
 

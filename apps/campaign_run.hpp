@@ -3,6 +3,7 @@
 // own process, its state in DIR/campaign.sqlite (campaign_db.hpp). A job writes into a temporary
 // folder that is renamed to its final name once the command succeeded, so a finished job's folder is
 // complete; a job found "running" when a campaign starts was cut off (a killed process) and runs again.
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -26,9 +27,19 @@ struct CampaignOutcome {
 
 CampaignOutcome run_campaign(const CampaignSettings& s);
 
-// What the serial campaign and the MPI one share.
 struct CampaignJob;
 class CampaignDb;
+
+// What a run of jobs writes once it ends, on rank 0 only: a campaign's report, a study's.
+using JobsReport = std::function<void(const CampaignDb& db)>;
+
+// Runs `jobs` into s.out, serially or (started by mpirun) over the ranks, as `terracal campaign`
+// does; `spec_text` is written to s.out/spec.json (what made the jobs). s.spec is not read. Every
+// command made of jobs (campaign, study) runs through here.
+CampaignOutcome run_jobs(const CampaignSettings& s, const std::vector<CampaignJob>& jobs, const std::string& spec_text,
+                         const JobsReport& report);
+
+// What the serial run and the MPI one share.
 struct JobOutcome {
   int rc = 0;  // the command's exit status (128 + signal)
   double wall_seconds = 0;
@@ -38,8 +49,9 @@ struct JobOutcome {
 // `worker` is written at the top of its log; gpu >= 0 sets the job's CUDA_VISIBLE_DEVICES.
 JobOutcome run_campaign_job(const CampaignJob& job, const std::vector<CampaignJob>& jobs, const std::string& out,
                             const std::string& worker, int gpu);
-// Makes the folder, copies the spec into it and opens the database with every job added.
-std::unique_ptr<CampaignDb> open_campaign(const CampaignSettings& s, const std::vector<CampaignJob>& jobs);
+// Makes the folder, writes spec.json into it and opens the database with every job added.
+std::unique_ptr<CampaignDb> open_campaign(const CampaignSettings& s, const std::vector<CampaignJob>& jobs,
+                                          const std::string& spec_text);
 std::string eta_text(double seconds);
 
 // The table of every job's state (`terracal campaign --status DIR`); throws InputError when DIR holds

@@ -232,8 +232,9 @@ void add_options(const CampaignSpec& s, const std::string& stage, std::vector<st
   }
 }
 
-// The key: the stage, its arguments, the bytes of every file they name (outputs of other jobs by
-// those jobs' keys instead) and the program version, through two FNV-1a streams.
+// The key: the stage, its arguments, the bytes of every file they name and of the files it writes
+// (outputs of other jobs by those jobs' keys instead) and the program version, through two FNV-1a
+// streams.
 std::string job_key(const CampaignJob& job, const std::vector<CampaignJob>& jobs, const std::vector<std::string>& files) {
   Fnv1a64 a, b;
   b.add("terracal campaign job");
@@ -247,6 +248,7 @@ std::string job_key(const CampaignJob& job, const std::vector<CampaignJob>& jobs
   add(job.stage);
   for (const auto& x : job.args) add(x);
   for (const auto& f : files) add(file_bytes(f));
+  for (const auto& [rel, content] : job.writes) add(rel + "\n" + content);
   for (int n : job.needs) add(jobs[n].key);
   return a.hex() + b.hex();
 }
@@ -255,15 +257,17 @@ std::string gravity_label(double g) { return fmt::format("g{}", g); }
 
 }  // namespace
 
+int add_job(std::vector<CampaignJob>& jobs, CampaignJob j, const std::vector<std::string>& files) {
+  j.key = job_key(j, jobs, files);
+  j.dir = fmt::format("jobs/{}/{}-{}", j.stage, j.label, j.key.substr(0, 8));
+  jobs.push_back(std::move(j));
+  return static_cast<int>(jobs.size()) - 1;
+}
+
 std::vector<CampaignJob> campaign_jobs(const CampaignSpec& s) {
   std::vector<CampaignJob> jobs;
   auto has = [&](const std::string& st) { return std::count(s.stages.begin(), s.stages.end(), st) > 0; };
-  auto push = [&](CampaignJob j, const std::vector<std::string>& files) {
-    j.key = job_key(j, jobs, files);
-    j.dir = fmt::format("jobs/{}/{}-{}", j.stage, j.label, j.key.substr(0, 8));
-    jobs.push_back(std::move(j));
-    return static_cast<int>(jobs.size()) - 1;
-  };
+  auto push = [&](CampaignJob j, const std::vector<std::string>& files) { return add_job(jobs, std::move(j), files); };
   // Placeholders for other jobs' outputs: replaced by their folders when a job runs.
   int group = 0;
   for (const auto& soil : s.soils)

@@ -56,6 +56,12 @@ CampaignSpec read_campaign_spec(const std::string& path);
 // bevameter run for every wheel) appear once.
 std::vector<CampaignJob> campaign_jobs(const CampaignSpec& spec);
 
+// Appends `job` to `jobs` with its key (its stage, arguments, the bytes of `files` and of the files
+// it writes, the keys of the jobs it needs, the program version) and its folder
+// (jobs/<stage>/<label>-<key prefix>); returns its index. Every maker of jobs (campaign, study) adds
+// them through here.
+int add_job(std::vector<CampaignJob>& jobs, CampaignJob job, const std::vector<std::string>& files);
+
 // The arguments a job runs with: its args, with "--out <folder>". "@0/" in them stands for the folder
 // of the first job it needs, "@out/" for the campaign folder.
 std::vector<std::string> job_command_line(const CampaignJob& job, const std::string& out_dir);

@@ -42,6 +42,8 @@ double base_value(const rom::RomVehicle& v, const std::string& n) {
   if (n == "roll_damping_rear") return v.roll_damping[1];
   if (n == "max_brake_torque") return v.powertrain.max_brake_torque;
   if (n == "rolling_resistance") return v.tire[0].rolling_resistance;
+  if (n == "roll_stiffness_total") return v.roll_stiffness[0] + v.roll_stiffness[1];
+  if (n == "roll_stiffness_front_share") return v.roll_stiffness[0] / (v.roll_stiffness[0] + v.roll_stiffness[1]);
   return 1.0;  // the scales
 }
 
@@ -74,9 +76,14 @@ std::vector<bayes::ModelParameter> default_rom_parameters(rom::RomModel model, c
   std::vector<bayes::ModelParameter> p = {tire_scale(b, "tire_cornering_scale_front"),
                                           tire_scale(b, "tire_cornering_scale_rear"),
                                           tire_scale(b, "tire_longitudinal_scale")};
-  if (has_roll(model))
-    for (const char* n : {"roll_stiffness_front", "roll_stiffness_rear", "roll_damping_front", "roll_damping_rear"})
+  // The roll stiffness as its sum and front share: manoeuvres pin the sum far more tightly than the
+  // split, and front and rear as parameters make a long diagonal ridge that chains cross slowly
+  // (docs/decisions.md, "ROM calibration sampler").
+  if (has_roll(model)) {
+    for (const char* n : {"roll_stiffness_total", "roll_damping_front", "roll_damping_rear"})
       p.push_back(uniform(b, n, 0.25 * base_value(b, n), 4 * base_value(b, n)));
+    p.push_back(uniform(b, "roll_stiffness_front_share", 0.05, 0.95));
+  }
   p.push_back(uniform(b, "max_steer", 0.5 * b.max_steer, std::min(1.5 * b.max_steer, 1.5)));
   p.push_back(uniform(b, "torque_scale", 0.3, 3));
   if (b.has(rom::kEffectRollingResistance)) p.push_back(uniform(b, "rolling_resistance", 0, 0.1));
@@ -116,6 +123,10 @@ std::vector<bayes::ModelParameter> read_rom_parameters(const std::string& path, 
       p.initial = 0.5 * (p.prior.lower + p.prior.upper);  // the preset's value is outside: start in the middle
     out.push_back(p);
   }
+  std::vector<std::string> given;
+  for (const auto& [key, spec] : j.items()) given.push_back(key);
+  if (const std::string overlap = rom::overlapping_parameters(given); !overlap.empty())
+    throw InputError(fmt::format("{}: {}", path, overlap));
   if (out.empty()) throw InputError(fmt::format("{}: every parameter is fixed; nothing to fit", path));
   return out;
 }

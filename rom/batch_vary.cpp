@@ -44,6 +44,8 @@ enum ParamId : int {
   kTireCorneringScaleFront,
   kTireCorneringScaleRear,
   kRollingResistance,
+  kRollStiffnessTotal,
+  kRollStiffnessFrontShare,
   kParamCount
 };
 
@@ -75,6 +77,8 @@ const ParamInfo kParams[kParamCount] = {
     {"tire_cornering_scale_front", "-", {0, 100, true, false, ""}},
     {"tire_cornering_scale_rear", "-", {0, 100, true, false, ""}},
     {"rolling_resistance", "-", {0, 1, false, false, ""}},
+    {"roll_stiffness_total", "N m/rad", {0, 2e12, true, false, "N m/rad"}},
+    {"roll_stiffness_front_share", "-", {0, 1, true, true, ""}},
 };
 
 int param_id(const std::string& name) {
@@ -162,6 +166,20 @@ void apply(RomVehicle& v, const RomVehicle& base, int id, double x) {
     case kRollingResistance:
       for (auto& t : v.tire) t.rolling_resistance = x;
       break;
+    // The sum and the front share of the roll stiffness: each keeps the other as v has it, so
+    // the two give the same vehicle in either order.
+    case kRollStiffnessTotal: {
+      const double share = v.roll_stiffness[0] / (v.roll_stiffness[0] + v.roll_stiffness[1]);
+      v.roll_stiffness[0] = share * x;
+      v.roll_stiffness[1] = (1 - share) * x;
+      break;
+    }
+    case kRollStiffnessFrontShare: {
+      const double total = v.roll_stiffness[0] + v.roll_stiffness[1];
+      v.roll_stiffness[0] = x * total;
+      v.roll_stiffness[1] = (1 - x) * total;
+      break;
+    }
     case kTorqueScale:
       for (int i = 0; i < base.powertrain.max_torque.n; ++i)
         v.powertrain.max_torque.y[i] = x * base.powertrain.max_torque.y[i];
@@ -236,6 +254,21 @@ std::string vary_distribution_text(const VaryParameter& p) {
   return "";
 }
 
+std::string overlapping_parameters(const std::vector<std::string>& names) {
+  // Each pair: a parameter and those that set some of the same values (the later one would win).
+  static const std::pair<const char*, std::vector<const char*>> kOverlaps[] = {
+      {"roll_stiffness_total", {"roll_stiffness_front", "roll_stiffness_rear"}},
+      {"roll_stiffness_front_share", {"roll_stiffness_front", "roll_stiffness_rear"}},
+      {"tire_cornering_scale", {"tire_cornering_scale_front", "tire_cornering_scale_rear"}},
+  };
+  const auto has = [&](const char* n) { return std::find(names.begin(), names.end(), n) != names.end(); };
+  for (const auto& [a, others] : kOverlaps)
+    for (const char* b : others)
+      if (has(a) && has(b))
+        return fmt::format("'{}' and '{}' set the same vehicle values; give one or the other", a, b);
+  return {};
+}
+
 void apply_vary_parameter(RomVehicle& v, const RomVehicle& base, const std::string& name, double value) {
   apply(v, base, known_param_id(name), value);
 }
@@ -292,6 +325,10 @@ VarySpec vary_from_json(const nlohmann::json& j, const std::string& source) {
     spec.parameters.push_back(p);
   }
   root.finish();
+  std::vector<std::string> names;
+  for (const auto& p : spec.parameters) names.push_back(p.name);
+  if (const std::string overlap = overlapping_parameters(names); !overlap.empty())
+    throw InputError(fmt::format("{}: {}", source, overlap));
   std::sort(spec.parameters.begin(), spec.parameters.end(),
             [](const VaryParameter& x, const VaryParameter& y) { return x.name < y.name; });
   return spec;

@@ -27,6 +27,13 @@
 //   tire_cornering_scale_front, tire_cornering_scale_rear
 //                            factor [-] on the lateral df0 of one axle's tires
 //   rolling_resistance       coefficient [-] of every tire (the vehicle needs the rolling_resistance effect)
+//   roll_stiffness_total     front + rear roll stiffness [N m/rad], keeping the front share
+//   roll_stiffness_front_share  front / (front + rear) roll stiffness [-], keeping the total
+//                            (the pair a fit identifies better than front and rear: manoeuvres
+//                            pin the sum more tightly than the split)
+//
+// Parameters that set the same values (roll_stiffness_total or _front_share with _front or _rear;
+// tire_cornering_scale with its _front or _rear) are refused together: one would silently win.
 //
 // Each parameter has an allowed range (the vehicle reader's, vary_parameter_range); a drawn value
 // outside it, or a drawn vehicle that fails rom::validate, is an InputError naming the parameter,
@@ -97,6 +104,9 @@ inline constexpr std::uint64_t kVaryDefaultMaxBytes = std::uint64_t{8} << 30;
 // does not depend on the thread count.
 VaryDraws draw_vehicles(const RomVehicle& base, const VarySpec& spec, long n, std::uint64_t seed,
                         std::uint64_t max_bytes = kVaryDefaultMaxBytes);
+
+// "" when no two of `names` set the same vehicle values; otherwise why they cannot go together.
+std::string overlapping_parameters(const std::vector<std::string>& names);
 
 // Sets one parameter of v to `value` (a scale multiplies the base's values): what draw_vehicles
 // applies per vehicle. Throws InputError for an unknown name.

@@ -21,6 +21,16 @@ void set_axle(json& j, const std::string& key, int axle, double value) {
   j[key] = pair;
 }
 
+// As apply_vary_parameter: the sum keeps the file's front share, the share keeps its sum.
+void set_roll_stiffness_sum_or_share(json& j, bool sum, double x) {
+  const json& k = j["roll_stiffness"];
+  const double front = k.is_array() ? k[0].get<double>() : k.get<double>();
+  const double rear = k.is_array() ? k[1].get<double>() : k.get<double>();
+  const double share = sum ? front / (front + rear) : x;
+  const double total = sum ? x : front + rear;
+  j["roll_stiffness"] = json::array({share * total, (1 - share) * total});
+}
+
 // The tires as tire_front and tire_rear objects (a tire file's content read in).
 void split_tires(json& j, const std::string& folder) {
   const auto load = [&](const json& t) -> json {
@@ -78,6 +88,8 @@ nlohmann::ordered_json vehicle_json_with(const std::string& name_or_path, const 
     } else if (n == "cg_to_front") {
       j["cg_to_rear"] = base["cg_to_front"].get<double>() + base["cg_to_rear"].get<double>() - x;
       j["cg_to_front"] = x;
+    } else if (n == "roll_stiffness_total" || n == "roll_stiffness_front_share") {
+      set_roll_stiffness_sum_or_share(j, n == "roll_stiffness_total", x);
     } else if (n.rfind("roll_stiffness_", 0) == 0 || n.rfind("roll_damping_", 0) == 0) {
       const bool front = n.ends_with("_front");
       set_axle(j, n.substr(0, n.rfind('_')), front ? 0 : 1, x);

@@ -101,12 +101,16 @@ TEST_CASE("bad input, calibrate-rom: references and parameter files", "[apps][ca
   write(root + "/noay/trajectory.csv", "time,vx,yaw_rate\n0,6,0\n0.05,6,0\n0.1,6,0\n");
   write(root + "/unknown.json", R"({"tire_stifness": {"type": "uniform", "lower": 0.5, "upper": 2}})");
   write(root + "/roll11.json", R"({"roll_stiffness_front": {"type": "uniform", "lower": 1e4, "upper": 1e5}})");
+  write(root + "/overlap.json", R"({"roll_stiffness_total": {"type": "uniform", "lower": 1e4, "upper": 1e5},
+                                     "roll_stiffness_front": {"type": "uniform", "lower": 1e4, "upper": 1e5}})");
   write(root + "/inverted.json", R"({"torque_scale": {"type": "uniform", "lower": 2, "upper": 0.5}})");
   write(root + "/friction.json", R"({"friction": {"type": "uniform", "lower": 0.5, "upper": 1}})");
   struct Case {
     std::string args, expect;
+    bool roll_model = false;  // run the 18-DOF model (the one with roll parameters)
   };
   const std::string base = "calibrate-rom --model 11dof --vehicle hmmwv --out " + root + "/o ";
+  const std::string base18 = "calibrate-rom --model 18dof --vehicle hmmwv --out " + root + "/o ";
   const std::vector<Case> cases = {
       {"--reference " + root + "/noinputs", "no inputs.txt"},
       {"--reference " + root + "/missing", "not a folder"},
@@ -118,9 +122,11 @@ TEST_CASE("bad input, calibrate-rom: references and parameter files", "[apps][ca
       {"--reference " + root + "/ok --params " + root + "/inverted.json", "lower 2 must be below upper 0.5"},
       {"--reference " + root + "/ok --params " + root + "/friction.json", "unknown key 'friction'"},
       {"--reference " + root + "/ok --model 30dof", "30dof"},
+      {"--reference " + root + "/ok --params " + root + "/overlap.json",
+       "'roll_stiffness_total' and 'roll_stiffness_front' set the same vehicle values", true},
   };
   for (const Case& c : cases) {
-    const CliResult r = run_cli(base + c.args, root);
+    const CliResult r = run_cli((c.roll_model ? base18 : base) + c.args, root);
     INFO(c.args << "\n" << r.err);
     CHECK(r.exit_code == 2);
     CHECK(r.err.find(c.expect) != std::string::npos);

@@ -189,7 +189,7 @@ TEST_CASE("vary: scales multiply the base's values, cg_to_front keeps the wheelb
   }
   CHECK(vary_parameter_unit("roll_damping_front") == "N m s/rad");
   CHECK(vary_parameter_unit("torque_scale") == "-");
-  CHECK(vary_parameter_names().size() == 20);
+  CHECK(vary_parameter_names().size() == 22);
   // The per-axle cornering scales act on one axle; rolling_resistance sets every tire's coefficient.
   RomVehicle v = base;
   apply_vary_parameter(v, base, "tire_cornering_scale_rear", 0.7);
@@ -202,6 +202,41 @@ TEST_CASE("vary: scales multiply the base's values, cg_to_front keeps the wheelb
   for (int l = 0; l < 2; ++l) CHECK(v.tire[0].y[l].df0 == 1.3 * base.tire[0].y[l].df0);
   CHECK(v.tire[0].rolling_resistance == 0.03);
   CHECK(v.tire[1].rolling_resistance == 0.03);
+}
+
+TEST_CASE("vary: the roll stiffness's sum and front share give one vehicle in either order", "[rom_batch_vary]") {
+  RomVehicle base = testing::hmmwv();
+  base.roll_stiffness[0] = 30000;
+  base.roll_stiffness[1] = 50000;
+  RomVehicle a = base, b = base;
+  apply_vary_parameter(a, base, "roll_stiffness_total", 120000);
+  apply_vary_parameter(a, base, "roll_stiffness_front_share", 0.25);
+  apply_vary_parameter(b, base, "roll_stiffness_front_share", 0.25);
+  apply_vary_parameter(b, base, "roll_stiffness_total", 120000);
+  CHECK(a.roll_stiffness[0] == Approx(30000).epsilon(1e-14));
+  CHECK(a.roll_stiffness[1] == Approx(90000).epsilon(1e-14));
+  CHECK(b.roll_stiffness[0] == Approx(a.roll_stiffness[0]).epsilon(1e-14));
+  CHECK(b.roll_stiffness[1] == Approx(a.roll_stiffness[1]).epsilon(1e-14));
+  // Each alone keeps the other: the total keeps the base's share 3/8, the share keeps the total 80000.
+  RomVehicle t = base, s = base;
+  apply_vary_parameter(t, base, "roll_stiffness_total", 160000);
+  CHECK(t.roll_stiffness[0] == Approx(60000).epsilon(1e-14));
+  apply_vary_parameter(s, base, "roll_stiffness_front_share", 0.5);
+  CHECK(s.roll_stiffness[0] == Approx(40000).epsilon(1e-14));
+  CHECK(s.roll_stiffness[1] == Approx(40000).epsilon(1e-14));
+  CHECK(vary_parameter_range("roll_stiffness_front_share").contains(0.5));
+  CHECK_FALSE(vary_parameter_range("roll_stiffness_front_share").contains(1.0));
+}
+
+TEST_CASE("vary: parameters that set the same values are refused together", "[rom_batch_vary]") {
+  using Catch::Contains;
+  CHECK_THAT(thrown(R"({"roll_stiffness_total": {"distribution": "normal", "mean": 6e4, "sd": 1e3},
+                       "roll_stiffness_rear": {"distribution": "normal", "mean": 3e4, "sd": 1e3}})"),
+             Contains("vary.json") && Contains("'roll_stiffness_total'") && Contains("'roll_stiffness_rear'"));
+  CHECK_THAT(thrown(R"({"tire_cornering_scale": {"distribution": "uniform", "low": 0.9, "high": 1.1},
+                       "tire_cornering_scale_front": {"distribution": "uniform", "low": 0.9, "high": 1.1}})"),
+             Contains("'tire_cornering_scale'") && Contains("'tire_cornering_scale_front'"));
+  CHECK(overlapping_parameters({"roll_stiffness_total", "roll_stiffness_front_share", "mass"}).empty());
 }
 
 TEST_CASE("vary: bad files are refused naming the key and the value", "[rom_batch_vary]") {

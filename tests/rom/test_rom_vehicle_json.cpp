@@ -1,10 +1,14 @@
 // Vehicle files: LFDM's HMMWV vehicle and tire files load to the same vehicle as our preset (whose
 // numbers came from them), maps converted from rpm to rad/s.
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include <catch2/catch.hpp>
 
 #include "core/vehicle/tmeasy_params.hpp"
+#include "rom/batch_vary.hpp"
+#include "rom/rom_vehicle_edit.hpp"
 #include "rom/rom_vehicle_json.hpp"
 
 using namespace terracal;
@@ -49,4 +53,25 @@ TEST_CASE("rom vehicle files: LFDM keys with a meaning we do not model are refus
   j = nlohmann::json::parse(kLfdmHmmwv);
   j["nonLinearSteer"] = true;
   CHECK_THROWS_WITH(read_rom_vehicle(j, "HMMWV.json", ".", &preset.tire[0]), Catch::Contains("nonLinearSteer"));
+}
+
+TEST_CASE("rom vehicle files: a vehicle written with fitted values loads as those values applied", "[rom]") {
+  // What calibrate-rom writes (vehicle_json_with) and what it ran (apply_vary_parameter) must be one
+  // vehicle, for every kind of parameter: plain values, scales and the roll stiffness's sum and share.
+  const RomVehicle base = load_rom_vehicle("hmmwv");
+  const std::vector<std::string> names = {"roll_stiffness_front_share", "roll_stiffness_total", "roll_damping_rear",
+                                          "tire_cornering_scale_rear", "torque_scale", "max_steer"};
+  const std::vector<double> values = {0.2, 90000, 2500, 0.9, 0.85, 0.8};
+  const nlohmann::json written = vehicle_json_with("hmmwv", names, values);
+  const RomVehicle read = read_rom_vehicle(nlohmann::json::parse(written.dump()), "written.json");
+  RomVehicle applied = base;
+  for (std::size_t k = 0; k < names.size(); ++k) apply_vary_parameter(applied, base, names[k], values[k]);
+  CHECK(read.roll_stiffness[0] == Approx(18000).epsilon(1e-12));
+  CHECK(read.roll_stiffness[1] == Approx(72000).epsilon(1e-12));
+  CHECK(applied.roll_stiffness[0] == Approx(read.roll_stiffness[0]).epsilon(1e-12));
+  CHECK(applied.roll_stiffness[1] == Approx(read.roll_stiffness[1]).epsilon(1e-12));
+  CHECK(read.roll_damping[1] == 2500);
+  CHECK(read.max_steer == 0.8);
+  for (int l = 0; l < 2; ++l) CHECK(read.tire[1].y[l].df0 == Approx(applied.tire[1].y[l].df0).epsilon(1e-12));
+  CHECK(read.powertrain.max_torque.y[3] == Approx(applied.powertrain.max_torque.y[3]).epsilon(1e-12));
 }
