@@ -106,11 +106,7 @@ CampaignOutcome schedule(const CampaignSettings& s, const std::vector<CampaignJo
       plan[j] = rc == 0 ? Plan::kDone : Plan::kFailed;
       std::string error;
       if (rc != 0) {
-        std::ifstream log(fs::path(s.out) / (jobs[j].dir + ".log"));
-        std::string line, last;
-        while (std::getline(log, line))
-          if (!line.empty()) last = line;
-        error = fmt::format("exit {}: {}", rc, last);
+        error = job_error(rc, (fs::path(s.out) / (jobs[j].dir + ".log")).string());
         block_dependents(j);
         spdlog::warn("campaign: {} {} failed on rank {} ({})", jobs[j].stage, jobs[j].label, worker, error);
       }

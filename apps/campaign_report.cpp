@@ -13,46 +13,12 @@
 
 #include "apps/campaign_db.hpp"
 #include "apps/campaign_spec.hpp"
+#include "apps/wheel_compare.hpp"
 #include "core/atomic_file.hpp"
 
 namespace terracal::app {
 namespace fs = std::filesystem;
 namespace {
-
-// wheel.csv's columns by name, one vector per column (empty when the file is missing or unreadable).
-std::map<std::string, std::vector<double>> read_columns(const fs::path& csv) {
-  std::map<std::string, std::vector<double>> out;
-  std::ifstream in(csv);
-  std::string line;
-  if (!std::getline(in, line)) return out;
-  std::vector<std::string> names;
-  std::stringstream hs(line);
-  for (std::string n; std::getline(hs, n, ',');) names.push_back(n);
-  while (std::getline(in, line)) {
-    std::stringstream ls(line);
-    std::size_t c = 0;
-    for (std::string v; std::getline(ls, v, ',') && c < names.size(); ++c) {
-      try {
-        out[names[c]].push_back(std::stod(v));
-      } catch (const std::exception&) {
-        out[names[c]].push_back(NAN);
-      }
-    }
-  }
-  return out;
-}
-
-// RMSE of a against b in percent of b's largest magnitude (not its range: SCM's sinkage hardly changes
-// with slip, and a range near zero would blow small differences up).
-double rmse_percent(const std::vector<double>& a, const std::vector<double>& b) {
-  if (a.size() != b.size() || b.empty()) return NAN;
-  double s = 0, top = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    s += (a[i] - b[i]) * (a[i] - b[i]);
-    top = std::max(top, std::fabs(b[i]));
-  }
-  return top > 0 ? 100.0 * std::sqrt(s / double(a.size())) / top : NAN;
-}
 
 std::string percent(double v) { return std::isfinite(v) ? fmt::format("{:.1f} %", v) : "–"; }
 
@@ -123,8 +89,8 @@ void write_campaign_report(const std::string& dir, const CampaignSpec& spec, con
     const auto ref = std::find_if(jobs.begin(), jobs.end(),
                                   [&](const CampaignJob& r) { return r.stage == "wheel_reference" && r.label == j.label; });
     if (ref == jobs.end() || row[ref->key].state != "done") continue;
-    auto a = read_columns(fs::path(dir) / j.dir / "wheel.csv");
-    auto b = read_columns(fs::path(dir) / ref->dir / "wheel.csv");
+    auto a = read_csv_columns((fs::path(dir) / j.dir / "wheel.csv").string());
+    auto b = read_csv_columns((fs::path(dir) / ref->dir / "wheel.csv").string());
     wheel += fmt::format("| {} | {} | {} | {} |\n", j.label, percent(rmse_percent(a["dbp_N"], b["dbp_N"])),
                          percent(rmse_percent(a["torque_Nm"], b["torque_Nm"])),
                          percent(rmse_percent(a["sinkage_m"], b["sinkage_m"])));

@@ -40,15 +40,6 @@ std::vector<std::string> resolved_args(const CampaignJob& job, const std::vector
   return a;
 }
 
-// The last non-empty line of a log (the command's error message).
-std::string last_line(const std::string& path) {
-  std::ifstream in(path);
-  std::string line, last;
-  while (std::getline(in, line))
-    if (!line.empty()) last = line;
-  return last;
-}
-
 // Runs `terracal ARGS` (this program) with stdout and stderr into `log`; returns its exit status
 // (128 + signal when a signal ended it). The job dies with the campaign's process (PR_SET_PDEATHSIG):
 // a killed campaign leaves no job running on, which a restart would race for the job's folder.
@@ -105,7 +96,7 @@ JobOutcome run_campaign_job(const CampaignJob& job, const std::vector<CampaignJo
   } else {
     if (o.rc == 0) o.rc = 1;  // exit 0 without an output folder
     fs::remove_all(tmp);
-    o.error = fmt::format("exit {}: {}", rc, last_line(log));
+    o.error = job_error(rc, log);
   }
   return o;
 }
@@ -117,6 +108,17 @@ std::unique_ptr<CampaignDb> open_campaign(const CampaignSettings& s, const std::
   auto db = std::make_unique<CampaignDb>(s.out + "/campaign.sqlite");
   for (const auto& j : jobs) db->add(j.key, j.stage, j.label, j.dir);
   return db;
+}
+
+std::string job_error(int rc, const std::string& log) {
+  std::ifstream in(log);
+  std::string line, last;
+  while (std::getline(in, line))
+    if (!line.empty()) last = line;
+  // "[10:58:26] error SCM: ..." -> "SCM: ...": the log's time and level say nothing in a table.
+  if (last.size() > 11 && last[0] == '[' && last[9] == ']')
+    if (const auto space = last.find(' ', 11); space != std::string::npos) last = last.substr(space + 1);
+  return fmt::format("exit {}: {}", rc, last);
 }
 
 std::string eta_text(double seconds) {

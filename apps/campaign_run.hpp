@@ -53,6 +53,8 @@ JobOutcome run_campaign_job(const CampaignJob& job, const std::vector<CampaignJo
 std::unique_ptr<CampaignDb> open_campaign(const CampaignSettings& s, const std::vector<CampaignJob>& jobs,
                                           const std::string& spec_text);
 std::string eta_text(double seconds);
+// "exit 2: <the last line of the job's log>", the log's time and level left out.
+std::string job_error(int rc, const std::string& log);
 
 // The table of every job's state (`terracal campaign --status DIR`); throws InputError when DIR holds
 // no campaign.

@@ -7,11 +7,10 @@
 #include <set>
 #include <sstream>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "apps/commands.hpp"
+#include "apps/job_options.hpp"
 #include "core/checksum.hpp"
 #include "core/errors.hpp"
 #include "core/json_file.hpp"
@@ -30,50 +29,6 @@ const std::map<std::string, std::string> kStageCommand = {
 const std::set<std::string> kCampaignSets = {"out", "scm", "soil", "solver", "terrain", "plate", "shear",
                                              "wheel", "gravity", "test", "help"};
 
-// Registers a stage's command on `app`; the returned function owns what its options write into.
-Command command_of(CLI::App& app, const std::string& command) {
-  if (command == "bevameter") return add_bevameter(app);
-  if (command == "calibrate") return add_calibrate(app);
-  return add_wheel(app);
-}
-
-std::string text_of(const Json& v) {
-  if (v.is_string()) return v.get<std::string>();
-  if (v.is_number_integer()) return fmt::format("{}", v.get<long long>());
-  if (v.is_number()) return fmt::format("{}", v.get<double>());
-  return v.dump();
-}
-
-// The command-line words of an option's value (not a flag): a list one word per element where the
-// option takes several values (--gravity X Y Z), else joined by commas (--slips 0.1,0.3); a number or a
-// string as it is.
-std::vector<std::string> option_words(const CLI::Option& o, const Json& v) {
-  if (!v.is_array()) return {text_of(v)};
-  std::vector<std::string> words;
-  for (const auto& e : v) words.push_back(text_of(e));
-  if (o.get_expected_max() > 1) return words;
-  std::string joined;
-  for (const auto& w : words) joined += (joined.empty() ? "" : ",") + w;
-  return {joined};
-}
-
-// A file named in the spec: relative to the spec's folder, made absolute; it must exist.
-std::string spec_file(const std::string& spec, const std::string& key, const Json& v) {
-  if (!v.is_string() || v.get<std::string>().empty())
-    throw InputError(fmt::format("{}: key '{}': expected a file name (string), found {}", spec, key, excerpt(v.dump())));
-  fs::path p(v.get<std::string>());
-  if (p.is_relative()) p = fs::path(spec).parent_path() / p;
-  if (!fs::is_regular_file(p))
-    throw InputError(fmt::format("{}: key '{}': file '{}' not found", spec, key, p.string()));
-  return fs::absolute(p).lexically_normal().string();
-}
-
-void refuse_unknown(const std::string& spec, const std::string& where, const Json& o, const std::set<std::string>& ok) {
-  for (const auto& [k, v] : o.items())
-    if (!ok.count(k))
-      throw InputError(fmt::format("{}: unknown key '{}{}'; expected one of {}", spec, where, k, fmt::join(ok, ", ")));
-}
-
 std::string name_of(const std::string& spec, const std::string& key, const Json& o, std::set<std::string>& seen) {
   if (!o.contains("name") || !o["name"].is_string() || o["name"].get<std::string>().empty())
     throw InputError(fmt::format("{}: key '{}.name': expected a non-empty string", spec, key));
@@ -86,37 +41,13 @@ std::string name_of(const std::string& spec, const std::string& key, const Json&
   return n;
 }
 
-// Every option of a stage is one its command takes, with a value the option accepts: checked by the
-// command's own CLI definition (its ranges and choices), so a bad value stops the campaign before any job.
+// Every option of a stage is one its command takes, with a value the option accepts: a bad value stops
+// the campaign before any job.
 void check_stage_options(const std::string& spec, const std::string& stage, const Json& opts) {
-  CLI::App app;
-  const std::string command = kStageCommand.at(stage);
-  const Command keep = command_of(app, command);  // owns the variables the options write into
-  CLI::App* sub = app.get_subcommand(command);
-  for (const auto& [k, v] : opts.items()) {
-    const std::string key = fmt::format("options.{}.{}", stage, k);
+  for (const auto& [k, v] : opts.items())
     if (kCampaignSets.count(k))
-      throw InputError(fmt::format("{}: key '{}': the campaign sets --{} itself", spec, key, k));
-    CLI::Option* o = sub->get_option_no_throw("--" + k);
-    if (!o) throw InputError(fmt::format("{}: key '{}': 'terracal {}' has no option --{}", spec, key, command, k));
-    if (o->get_expected_max() == 0) {  // a flag
-      if (!v.is_boolean())
-        throw InputError(fmt::format("{}: key '{}': --{} is a flag; expected true or false, found {}", spec, key, k,
-                                     excerpt(v.dump())));
-      continue;
-    }
-    if (!(v.is_array() || v.is_string() || v.is_number()))
-      throw InputError(fmt::format("{}: key '{}': expected a number, a string or a list, found {}", spec, key,
-                                   excerpt(v.dump())));
-    const std::vector<std::string> values = option_words(*o, v);
-    try {
-      o->add_result(values);
-      o->run_callback();
-    } catch (const CLI::Error& e) {
-      throw InputError(fmt::format("{}: key '{}': value {} refused by terracal {} --{}: {}", spec, key,
-                                   excerpt(v.dump()), command, k, e.what()));
-    }
-  }
+      throw InputError(fmt::format("{}: key 'options.{}.{}': the campaign sets --{} itself", spec, stage, k, k));
+  check_command_options(spec, fmt::format("options.{}.", stage), kStageCommand.at(stage), opts, {});
 }
 
 }  // namespace
@@ -217,19 +148,7 @@ std::string file_bytes(const std::string& path) {
 void add_options(const CampaignSpec& s, const std::string& stage, std::vector<std::string>& args) {
   const auto it = s.options.find(stage);
   if (it == s.options.end()) return;
-  CLI::App app;
-  const std::string command = kStageCommand.at(stage);
-  const Command keep = command_of(app, command);
-  const CLI::App* sub = app.get_subcommand(command);
-  for (const auto& [k, v] : it->second.items()) {
-    const CLI::Option* o = sub->get_option("--" + k);
-    if (o->get_expected_max() == 0) {
-      if (v.get<bool>()) args.push_back("--" + k);
-      continue;
-    }
-    args.push_back("--" + k);
-    for (auto& w : option_words(*o, v)) args.push_back(std::move(w));
-  }
+  for (auto& w : command_option_words(kStageCommand.at(stage), it->second)) args.push_back(std::move(w));
 }
 
 // The key: the stage, its arguments, the bytes of every file they name and of the files it writes

@@ -23,5 +23,6 @@ Command add_calibrate_rom(CLI::App& app);
 Command add_validate_rom(CLI::App& app);
 Command add_pipeline_rom(CLI::App& app);
 Command add_campaign(CLI::App& app);
+Command add_study(CLI::App& app);
 
 }  // namespace terracal::app

@@ -126,6 +126,7 @@ int main(int argc, char** argv) {
   add(terracal::app::add_validate_rom, "validate-rom");
   add(terracal::app::add_pipeline_rom, "pipeline-rom");
   add(terracal::app::add_campaign, "campaign");
+  add(terracal::app::add_study, "study");
   // Progress and messages go to stderr; stdout carries the summary table only.
   spdlog::set_default_logger(spdlog::stderr_color_mt("terracal"));
   spdlog::set_pattern("[%H:%M:%S] %^%l%$ %v");

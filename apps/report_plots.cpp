@@ -43,6 +43,15 @@ const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd",
                           "#8c564b", "#e377c2", "#7f7f7f", "#17becf"};
 }  // namespace
 
+void draw_plot(const std::string& dir, const std::string& png, const std::string& script,
+               const std::vector<std::pair<std::string, std::string>>& data) {
+  const std::string work = dir + "/.plot_" + png;
+  std::filesystem::create_directories(work);
+  for (const auto& [name, content] : data) write_text_atomically(work + "/" + name, content);
+  render(work, script, png);
+  publish(work, png, dir);
+}
+
 void plot_bevameter(const std::string& dir, const BevameterCurves& c, const lowfi::ScmSoil* fit) {
   const std::string work = dir + "/.plot_bevameter";
   std::filesystem::create_directories(work);

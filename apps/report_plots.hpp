@@ -9,6 +9,12 @@
 
 namespace terracal::app {
 
+// DIR/PNG drawn by a gnuplot `script` (which sets its own terminal and `set output 'PNG'`) from
+// `data` (file name, content) written beside it in a work folder: for reports whose plots are
+// assembled by their writer. A missing gnuplot or a failing script is a warning.
+void draw_plot(const std::string& dir, const std::string& png, const std::string& script,
+               const std::vector<std::pair<std::string, std::string>>& data);
+
 // DIR/bevameter.png: force against sinkage per plate and torque against angle per load; with
 // `fit`, the SCM laws of that parameter set as lines.
 void plot_bevameter(const std::string& dir, const BevameterCurves& curves, const lowfi::ScmSoil* fit);

@@ -93,12 +93,14 @@ std::unique_ptr<TerrainSite> site_for(const SoilChoice& soil, const TerrainOptio
 }
 
 std::vector<rigs::WheelResult> wong_reece_sweep(const SoilChoice& soil, const rigs::WheelSpec& wheel,
-                                                const std::vector<double>& slips) {
+                                                const std::vector<double>& slips, double tolerance) {
+  lowfi::WongReeceOptions options;
+  options.rel_tol = tolerance;
   if (!soil.scm) throw InputError("--terrain wong-reece needs an SCM parameter set (--scm SCM.json)");
   std::vector<rigs::WheelResult> out;
   for (double s : slips) {
     const auto t0 = Clock::now();
-    const auto wr = lowfi::wong_reece(*soil.scm, {wheel.radius, wheel.width}, wheel.mass * norm(soil.gravity), s);
+    const auto wr = lowfi::wong_reece(*soil.scm, {wheel.radius, wheel.width}, wheel.mass * norm(soil.gravity), s, options);
     rigs::WheelResult r;
     r.slip = s;
     r.load = wr.load;
@@ -289,7 +291,7 @@ std::vector<rigs::WheelResult> run_wheel_sweep(SoilModel solver, const SoilChoic
   for (double s : slips) check_range(rigs::WheelRanges::kSlip, s, "--slips");
   if (solver == SoilModel::kWongReece) {
     if (site_description) *site_description = "Wong-Reece (analytic, GSL quadrature)";
-    return wong_reece_sweep(soil, wheel, slips);
+    return wong_reece_sweep(soil, wheel, slips, o.wong_reece_tolerance);
   }
   SoilChoice s = soil;
   s.solver = solver;

@@ -112,6 +112,7 @@ void add_terrain_options(CLI::App* sub, TerrainOptions& o, bool crm, bool scm) {
     noted(
         sub->add_option("--scm-effects", o.scm_effects,
                         fmt::format("SCM effects: {}, or none", fmt::join(EffectSet<lowfi::ScmEffects>::kNames, ", ")))
+            ->check(scm_effect_name())
             ->capture_default_str(),
         o.scm_given);
     sub->add_option("--gravity", o.gravity, "gravity vector for SCM (default Earth) [m/s^2]")->expected(3);
@@ -193,6 +194,20 @@ std::unique_ptr<TerrainSite> scm_site(const lowfi::ScmSoil& soil, const TerrainO
   if (o.gravity.size() == 3) s.gravity = {o.gravity[0], o.gravity[1], o.gravity[2]};
   s.effects = parse_scm_effects_option(o.scm_effects);
   return std::make_unique<lowfi::ScmSite>(soil, s);
+}
+
+CLI::Validator scm_effect_name() {
+  return CLI::Validator(
+      [](std::string& name) -> std::string {
+        try {
+          parse_scm_effects_option({name});
+        } catch (const InputError& e) {
+          const std::string m = e.what(), prefix = "--scm-effects: ";  // CLI11 names the option itself
+          return m.rfind(prefix, 0) == 0 ? m.substr(prefix.size()) : m;
+        }
+        return {};
+      },
+      "EFFECT");
 }
 
 lowfi::ScmEffectChoice parse_scm_effects_option(const std::vector<std::string>& list) {

@@ -13,6 +13,7 @@
 #include "highfi/crm/crm_scene.hpp"
 #include "lowfi/scm_soil.hpp"
 #include "lowfi/scm_terrain.hpp"
+#include "lowfi/wong_reece.hpp"
 
 namespace terracal::app {
 
@@ -36,6 +37,7 @@ struct TerrainOptions {
   double step = 0;     // time step [s]; 0 = CRM's CFL step, SCM 1e-3
   std::vector<std::string> scm_effects = {lowfi::ScmDamping::kName};
   std::vector<double> gravity;  // SCM: override Earth gravity
+  double wong_reece_tolerance = lowfi::WongReeceOptions{}.rel_tol;  // the entry-angle root and quadratures
   double bin_scale = 1;         // CRM bins (and their depth) scaled by this: the bin-size check
   double bin_depth_scale = 0;   // the bed's depth scaled by this instead (0 = bin_scale): which dimension matters
   // The options of one solver given on the command line, so that a run on the other solver refuses
@@ -85,6 +87,9 @@ std::unique_ptr<TerrainSite> crm_site(const CrmSoil& soil, const TerrainOptions&
 // The SCM effects a --scm-effects list names ("none" and empty entries name none), parsed; throws
 // InputError naming --scm-effects and an unknown name.
 lowfi::ScmEffectChoice parse_scm_effects_option(const std::vector<std::string>& list);
+// Checks one --scm-effects word on the command line (a known effect or none), so a spec that names
+// a wrong one is refused before any job runs.
+CLI::Validator scm_effect_name();
 std::unique_ptr<TerrainSite> scm_site(const lowfi::ScmSoil& soil, const TerrainOptions& o, const Vec3<double>& gravity);
 
 // Parses "0,0.2,0.4" into numbers; InputError naming the option.

@@ -50,6 +50,7 @@ void add_options(CLI::App* sub, VehicleArgs& a) {
       ->capture_default_str();
   sub->add_option("--scm-effects", a.scm_effects,
                   fmt::format("SCM effects: {}, or none", fmt::join(EffectSet<lowfi::ScmEffects>::kNames, ", ")))
+      ->check(scm_effect_name())
       ->capture_default_str();
   sub->add_option("--mu", a.run.friction, "ground friction relative to the tire data's")
       ->check(in_range(Range{0.01, 2, false, false}))

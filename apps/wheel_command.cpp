@@ -48,10 +48,17 @@ Command add_wheel(CLI::App& app) {
   sub->add_flag("--with-wong-reece", a->with_wong_reece,
                 "with --terrain scm: also the Wong-Reece model of the same set (wheel_wong_reece.csv, comparison.md)");
   add_terrain_options(sub, a->options, true, true);
-  return [a] {
+  auto* tolerance = sub->add_option("--wong-reece-tolerance", a->options.wong_reece_tolerance,
+                                    "Wong-Reece: relative tolerance of the entry-angle root and of each quadrature")
+                        ->check(in_range(Range{1e-14, 1e-3}))
+                        ->capture_default_str();
+  return [a, tolerance] {
     const OutDir out = prepare_out_dir("--out", a->out);
     if (a->with_wong_reece && a->terrain != SoilModel::kScm)
       throw InputError("--with-wong-reece: only with --terrain scm");
+    if (tolerance->count() > 0 && a->terrain != SoilModel::kWongReece && !a->with_wong_reece)
+      throw InputError(fmt::format("--wong-reece-tolerance {}: only with --terrain wong-reece or --with-wong-reece",
+                                   a->options.wong_reece_tolerance));
     const rigs::WheelSpec wheel = rigs::read_wheel_json(a->wheel);
     const auto slips = parse_list(a->slips, "--slips");
     rigs::WheelRun run;

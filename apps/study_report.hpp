@@ -1,0 +1,31 @@
+#pragma once
+// A study's results (docs/study.md): DIR/report.md, DIR/<study>.csv and DIR/<study>.png, from the
+// runs' wheel.csv and run.json and the job table.
+//   accuracy-cost: each run's RMSE against the reference (drawbar pull, torque, sinkage over the
+//     slips, in % of the reference's largest value) next to its wall time, with the Pareto front;
+//   stability: each run's verdict: stable, failed (the command's exit and message), non-finite,
+//     blew up (sinkage past the wheel's radius, drawbar pull or torque above 5 x the wheel's weight
+//     (x radius)), or unsteady (drawbar pull's standard deviation above the weight);
+//   effects: each variant's wall time against the base's and how far it moves the results.
+#include <map>
+#include <string>
+#include <vector>
+
+namespace terracal::app {
+
+struct StudySpec;
+struct CampaignJob;
+class CampaignDb;
+
+// Verdicts of the stability study.
+inline constexpr const char* kStable = "stable";
+
+// The verdict on one run from its job's state and error and its wheel.csv's columns (the radius and
+// weight of its wheel under its gravity).
+std::string stability_verdict(const std::string& state, const std::string& error,
+                              const std::map<std::string, std::vector<double>>& wheel, double radius, double weight);
+
+void write_study_report(const std::string& dir, const StudySpec& spec, const std::vector<CampaignJob>& jobs,
+                        const CampaignDb& db);
+
+}  // namespace terracal::app

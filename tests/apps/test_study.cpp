@@ -1,0 +1,160 @@
+// `terracal study`: the three studies on SCM and Wong-Reece at small settings, checked against what
+// the physics says (errors shrink with resolution, a step past the contact's limit is caught, an
+// effect that changes the model changes the result) and resumed without recomputing.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "apps/study_report.hpp"
+#include "apps/wheel_compare.hpp"
+#include "cli_runner.hpp"
+
+using namespace terracal::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+// The study's CSV as rows keyed by its label column.
+std::map<std::string, std::map<std::string, std::string>> rows_by_label(const std::string& csv, const char* label) {
+  std::map<std::string, std::map<std::string, std::string>> out;
+  std::stringstream in(read_file(csv));
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> names;
+  std::stringstream hs(line);
+  for (std::string n; std::getline(hs, n, ',');) names.push_back(n);
+  while (std::getline(in, line)) {
+    std::map<std::string, std::string> row;
+    std::size_t c = 0;
+    bool quoted = false;
+    std::string cell;
+    for (char ch : line + ",") {
+      if (ch == '"') quoted = !quoted;
+      else if (ch == ',' && !quoted) {
+        if (c < names.size()) row[names[c++]] = cell;
+        cell.clear();
+      } else cell += ch;
+    }
+    out[row[label]] = row;
+  }
+  return out;
+}
+
+double num(const std::map<std::string, std::string>& row, const std::string& key) { return std::stod(row.at(key)); }
+
+int runs_now(const std::string& out) {
+  std::smatch m;
+  return std::regex_search(out, m, std::regex(R"(\((\d+) run now\))")) ? std::stoi(m[1]) : -1;
+}
+
+}  // namespace
+
+TEST_CASE("study accuracy-cost: SCM's grid and step errors shrink towards the finest setting; resumes",
+          "[cli][study]") {
+  const ScratchDir scratch("study_accuracy");
+  const std::string dir = scratch.str();
+  write(dir + "/spec.json", R"({"options": {"slips": [0.2, 0.5], "duration": 1},
+    "knobs": {"grid": [0.04, 0.02, 0.01], "step": [0.004, 0.002, 0.001]}})");
+  const std::string cmd = "study accuracy-cost --solver scm --spec " + dir + "/spec.json --out " + dir + "/s";
+  CliResult r = run_cli(cmd, dir);
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(runs_now(r.out) == 5);  // the reference (grid 0.01, step 0.001) and two coarser values per knob
+  const auto rows = rows_by_label(dir + "/s/accuracy_cost.csv", "label");
+  REQUIRE(rows.size() == 4);
+  // Convergence with resolution: each coarser setting is further from the reference.
+  CHECK(num(rows.at("grid_0.04"), "max_err_pct") > num(rows.at("grid_0.02"), "max_err_pct"));
+  CHECK(num(rows.at("step_0.004"), "max_err_pct") > num(rows.at("step_0.002"), "max_err_pct"));
+  CHECK(num(rows.at("grid_0.02"), "max_err_pct") > 0);
+  // The step error is first order (semi-implicit Euler): halving the step about halves it.
+  const double ratio = num(rows.at("step_0.004"), "dbp_err_pct") / num(rows.at("step_0.002"), "dbp_err_pct");
+  CHECK(ratio > 1.5);
+  CHECK(ratio < 4.0);
+  const std::string report = read_file(dir + "/s/report.md");
+  CHECK(report.find("| grid | 0.04 |") != std::string::npos);
+  CHECK(fs::exists(dir + "/s/spec.json"));
+  // Again: nothing reruns.
+  r = run_cli(cmd, dir);
+  CHECK(r.exit_code == 0);
+  CHECK(runs_now(r.out) == 0);
+}
+
+TEST_CASE("study stability: a step past SCM's contact limit is caught and named, the others stay stable",
+          "[cli][study]") {
+  const ScratchDir scratch("study_stability");
+  const std::string dir = scratch.str();
+  write(dir + "/spec.json", R"({"options": {"slips": [0.3], "duration": 0.5},
+    "sweeps": {"step": [0.001, 0.05], "gravity": [1.62], "stiffness": [0.01, 100], "slip": [-0.5, 0.95],
+               "standstill": true}})");
+  const CliResult r = run_cli("study stability --solver scm --spec " + dir + "/spec.json --out " + dir + "/s", dir);
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);  // unstable runs are the study's findings
+  const auto rows = rows_by_label(dir + "/s/stability.csv", "label");
+  CHECK(rows.at("step_0.001").at("verdict") == "stable");
+  CHECK_THAT(rows.at("step_0.05").at("verdict"),
+             Catch::Contains("failed") && Catch::Contains("unstable for its contact"));
+  for (const char* ok : {"base", "gravity_1.62", "stiffness_0.01", "stiffness_100", "slip_-0.5", "slip_0.95",
+                         "standstill"})
+    CHECK(rows.at(ok).at("verdict") == "stable");
+  // Softer soil sinks deeper; a wheel at rest pulls nothing; skid pulls backwards.
+  CHECK(num(rows.at("stiffness_0.01"), "sinkage_m") > 3 * num(rows.at("stiffness_100"), "sinkage_m"));
+  CHECK(std::fabs(num(rows.at("standstill"), "dbp_over_weight")) < 1e-3);
+  CHECK(num(rows.at("slip_-0.5"), "dbp_over_weight") < 0);
+  CHECK(read_file(dir + "/s/report.md").find("1 of 9 runs not stable") != std::string::npos);
+}
+
+TEST_CASE("study stability: the verdicts on a run's results", "[study]") {
+  using terracal::app::stability_verdict;
+  const std::map<std::string, std::vector<double>> ok = {
+      {"dbp_N", {300}}, {"torque_Nm", {200}}, {"sinkage_m", {0.03}}, {"dbp_sd_N", {5}}};
+  CHECK(stability_verdict("done", "", ok, 0.47, 1059) == "stable");
+  auto bad = ok;
+  bad["torque_Nm"] = {NAN};
+  CHECK(stability_verdict("done", "", bad, 0.47, 1059) == "non-finite");
+  bad = ok;
+  bad["sinkage_m"] = {0.5};
+  CHECK_THAT(stability_verdict("done", "", bad, 0.47, 1059), Catch::Contains("blew up"));
+  bad = ok;
+  bad["dbp_N"] = {-6000};
+  CHECK_THAT(stability_verdict("done", "", bad, 0.47, 1059), Catch::Contains("blew up"));
+  bad = ok;
+  bad["dbp_sd_N"] = {2000};
+  CHECK_THAT(stability_verdict("done", "", bad, 0.47, 1059), Catch::Contains("unsteady"));
+  CHECK_THAT(stability_verdict("failed", "exit 3: x", ok, 0.47, 1059), Catch::Contains("exit 3: x"));
+  CHECK(stability_verdict("done", "", {}, 0.47, 1059) == "no results");
+}
+
+TEST_CASE("study effects: bulldozing moves SCM's sinkage, elastic unloading hardly moves a steady wheel",
+          "[cli][study]") {
+  const ScratchDir scratch("study_effects");
+  const std::string dir = scratch.str();
+  write(dir + "/spec.json", R"({"options": {"slips": [0.1, 0.5], "duration": 2}})");
+  const CliResult r = run_cli("study effects --solver scm --spec " + dir + "/spec.json --out " + dir + "/s", dir);
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const auto rows = rows_by_label(dir + "/s/effects.csv", "variant");
+  REQUIRE(rows.size() == 4);
+  CHECK(num(rows.at("bulldozing"), "sinkage_change_pct") > 5);
+  // Unloading happens behind the contact only: a wheel at steady slip barely sees it.
+  CHECK(num(rows.at("elastic_unloading"), "sinkage_change_pct") < 0.1);
+  // Without damping the contact rings: the results move.
+  CHECK(num(rows.at("none"), "dbp_change_pct") > 0.1);
+}
+
+TEST_CASE("study accuracy-cost: Wong-Reece converges with its quadrature tolerance", "[cli][study]") {
+  const ScratchDir scratch("study_wong_reece");
+  const std::string dir = scratch.str();
+  const CliResult r = run_cli("study accuracy-cost --solver wong-reece --out " + dir + "/s", dir);
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const auto rows = rows_by_label(dir + "/s/accuracy_cost.csv", "label");
+  CHECK(num(rows.at("wong-reece-tolerance_0.001"), "max_err_pct") < 0.1);
+  CHECK(num(rows.at("wong-reece-tolerance_1e-06"), "max_err_pct") < 1e-4);
+  CHECK(num(rows.at("wong-reece-tolerance_0.001"), "max_err_pct") >=
+        num(rows.at("wong-reece-tolerance_1e-06"), "max_err_pct"));
+}

@@ -1,0 +1,53 @@
+// Bad study commands and specs: exit 2 naming the key, nothing started (no study folder).
+#include "bad_input_suite.hpp"
+
+using terracal::test::BadInput;
+
+namespace {
+
+BadInput spec(const std::string& what, const std::string& study, const std::string& solver, const std::string& body,
+              std::vector<std::string> phrases) {
+  return {what, {{"spec.json", "{" + body + "}"}},
+          "study " + study + " --solver " + solver + " --spec {dir}/spec.json --out {out}", std::move(phrases)};
+}
+
+}  // namespace
+
+TEST_CASE("bad input, study: commands and specs", "[cli][bad_input][study]") {
+  const std::vector<BadInput> cases = {
+      {"an unknown study", {}, "study accuracy --solver scm --out {out}", {"study 'accuracy'", "accuracy-cost"}},
+      {"an unknown solver", {}, "study stability --solver sph --out {out}", {"--solver sph", "crm, scm or wong-reece"}},
+      {"a vehicle solver", {}, "study effects --solver rom --out {out}", {"--solver rom", "pipeline-rom"}},
+      {"Wong-Reece has no effects", {}, "study effects --solver wong-reece --out {out}",
+       {"wong-reece solver has no effects"}},
+      spec("an unknown key", "stability", "scm", R"("sweep": {"step": [0.001]})", {"unknown key 'sweep'"}),
+      spec("a knob the wheel command does not take", "accuracy-cost", "scm", R"("knobs": {"gird": [0.02, 0.01]})",
+           {"key 'knobs.gird'", "has no option --gird"}),
+      spec("a knob value the wheel command refuses", "accuracy-cost", "scm", R"("knobs": {"grid": [5, 0.01]})",
+           {"knobs.grid[0]", "refused by terracal wheel --grid"}),
+      spec("an empty knob list", "accuracy-cost", "scm", R"("knobs": {"grid": []})",
+           {"key 'knobs.grid'", "non-empty list"}),
+      spec("a value given twice", "stability", "scm", R"("sweeps": {"slip": [0.2, 0.2]})",
+           {"key 'sweeps.slip[1]'", "appears twice"}),
+      spec("a gravity out of range", "stability", "scm", R"("sweeps": {"gravity": [0]})",
+           {"key 'sweeps.gravity'", "(0, 100]"}),
+      spec("a negative stiffness factor", "stability", "scm", R"("sweeps": {"stiffness": [-1]})",
+           {"key 'sweeps.stiffness'", "must be positive"}),
+      spec("a slip out of range", "stability", "scm", R"("sweeps": {"slip": [1.5]})",
+           {"sweeps.slip", "refused by terracal wheel --slips"}),
+      spec("an option the study sets", "effects", "scm", R"("options": {"terrain": "crm"})",
+           {"key 'options.terrain'", "set by terracal itself"}),
+      spec("an effect variant of no options", "effects", "scm", R"("effects": {"off": {}})",
+           {"key 'effects.off'", "expected an object of wheel options"}),
+      spec("a bad effect option", "effects", "scm", R"("effects": {"off": {"scm-effects": "bulldozer"}})",
+           {"effects.off.scm-effects", "bulldozer"}),
+      spec("a missing wheel file", "effects", "scm", R"("wheel": "nowhere.json")", {"key 'wheel'", "not found"}),
+      spec("a wheel with a bad value", "effects", "scm", R"("wheel": {"radius": -1, "width": 0.25, "mass": 108})",
+           {"key 'wheel'", "radius"}),
+      spec("an SCM soil without its parameters", "stability", "scm", R"("soil": {"Bekker Kphi": 1e6})",
+           {"key 'soil'", "Soil parameters"}),
+      spec("a CRM soil with a misspelt key", "stability", "crm", R"("soil": {"densty": 1700})",
+           {"key 'soil", "density", "missing"}),
+  };
+  terracal::test::check_bad_inputs("bad_study", cases);
+}
