@@ -89,7 +89,7 @@ std::string accuracy_cost(const std::string& dir, const std::vector<RunResult>& 
   std::string md = fmt::format(
       "Each knob from coarse to fine with the others at their finest; the reference runs every knob at its finest "
       "({:.3g} s wall). Error: RMSE over the slips against the reference, in % of the reference's largest value. "
-      "Wall: the rig's own time (run.json).\n\n| knob | value | wall [s] | drawbar pull | torque | sinkage | on the "
+      "Wall: the wheel runs' own time (run.json): without start-up and, for CRM, without settling the bed.\n\n| knob | value | wall [s] | drawbar pull | torque | sinkage | on the "
       "Pareto front |\n|---|---|---|---|---|---|---|\n",
       ref.wall);
   std::vector<std::array<double, 4>> err(rs.size());
@@ -206,7 +206,7 @@ std::string stability(const std::string& dir, const StudySpec& spec, const std::
     const int cols = std::min(panels, 3), rows = (panels + cols - 1) / cols;
     const std::string s = fmt::format(
         "set terminal pngcairo noenhanced size {},{} font 'Sans,11'\nset output 'stability.png'\nset multiplot layout "
-        "{},{} title '{}: where the solver stays stable'\nset grid\nset key below\nset ylabel 'drawbar pull / "
+        "{},{} title '{}: where the solver stays stable'\nset grid\nset key below\nset format x '%g'\nset ylabel 'drawbar pull / "
         "weight'\n{}unset multiplot\n",
         480 * cols, 380 * rows, rows, cols, soil_model_name(spec.solver), body);
     draw_plot(dir, "stability.png", s, files);
@@ -275,10 +275,10 @@ void write_study_report(const std::string& dir, const StudySpec& spec, const std
                         const CampaignDb& db) {
   const std::vector<RunResult> rs = collect(dir, spec, jobs, db);
   std::string md = fmt::format("# Study {}: {}\n\nSpec: {} (as run: `spec.json`). Single-wheel runs (`terracal wheel "
-                               "--terrain {}`), each a job of a campaign in this folder (`terracal campaign --status "
-                               "{}`).\n\n",
-                               study_kind_name(spec.kind), soil_model_name(spec.solver), spec.source,
-                               soil_model_name(spec.solver), dir);
+                               "--terrain {}`), each a job of a campaign in this folder (`terracal campaign --status` "
+                               "on it lists them).\n\n",
+                               study_kind_name(spec.kind), soil_model_name(spec.solver),
+                               fs::path(spec.source).filename().string(), soil_model_name(spec.solver));
   const bool have_first = rs.front().row.state == "done";
   if (spec.kind == StudyKind::kStability)
     md += stability(dir, spec, rs);

@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Regenerates results/study_<solver>/<study>/ from the default specs: `studies/study/results.sh BIN
+# SOLVER...` (BIN: the terracal program; SOLVER: scm, wong-reece, crm). The studies run in
+# /tmp/terracal_study/<solver>/<study> (campaigns: run again, they go on where they stopped); the
+# report, its CSV and plot and the spec as run are copied into results/.
+set -uo pipefail
+cd "$(dirname "$0")/../.."
+bin=${1:?terracal program}; shift
+for solver in "$@"; do
+  studies="accuracy-cost stability effects"
+  [ "$solver" = wong-reece ] && studies="accuracy-cost stability"  # it has no effects to switch
+  for study in $studies; do
+    work=/tmp/terracal_study/$solver/$study
+    dest=results/study_${solver//-/_}/$study
+    start=$(date +%s)
+    "$bin" study "$study" --solver "$solver" --out "$work" > "/tmp/terracal_study_${solver}_$study.log" 2>&1
+    echo "$solver $study: exit $? in $(( $(date +%s) - start )) s"
+    mkdir -p "$dest"
+    cp "$work"/report.md "$work"/spec.json "$work"/*.csv "$dest"/
+    cp "$work"/*.png "$dest"/ 2>/dev/null || echo "  (no plot: gnuplot missing)"
+  done
+done
