@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/campaign_db.hpp"
+#include "apps/campaign_plots.hpp"
 #include "apps/campaign_spec.hpp"
 #include "apps/wheel_compare.hpp"
 #include "core/atomic_file.hpp"
@@ -46,14 +47,20 @@ void write_campaign_report(const std::string& dir, const CampaignSpec& spec, con
                                spec.name, spec.soils.size(), spec.gravities.size(), spec.wheels.size(),
                                fmt::join(spec.stages, ", "), done, jobs.size(), failed);
   md += "## Wall time per stage\n\n| stage | jobs done | total [s] | per job [s] |\n|---|---|---|---|\n";
+  std::vector<std::pair<std::string, double>> stage_wall;
   for (const auto& st : kCampaignStages)
-    if (per_stage.count(st))
+    if (per_stage.count(st)) {
       md += fmt::format("| {} | {} | {:.3g} | {:.3g} |\n", st, per_stage[st].first, per_stage[st].second,
                         per_stage[st].second / per_stage[st].first);
+      stage_wall.push_back({st, per_stage[st].second});
+    }
+  plot_stage_wall(dir, stage_wall);
+  if (!stage_wall.empty()) md += "\n![wall time per stage](stage_wall.png)\n";
 
   // Calibrated parameters: median and 90 % interval per soil and gravity.
   std::string params;
   std::vector<std::string> names;
+  std::map<std::string, std::vector<ParameterBand>> bands;
   for (const auto& j : jobs) {
     if (j.stage != "calibrate" || row[j.key].state != "done") continue;
     std::ifstream in(fs::path(dir) / j.dir / "scm_params.json");
@@ -68,6 +75,13 @@ void write_campaign_report(const std::string& dir, const CampaignSpec& spec, con
       for (const auto& [k, v] : post.items())
         if (v.is_object() && v.contains("q50") && k.rfind("sigma2", 0) != 0) names.push_back(k);
     params += "| " + j.label;
+    // The job's soil and gravity from its group (soil-major, as campaign_jobs makes them).
+    const std::size_t ng = spec.gravities.size();
+    const std::string soil = spec.soils[static_cast<std::size_t>(j.group) / ng].name;
+    const double g = spec.gravities[static_cast<std::size_t>(j.group) % ng];
+    for (const auto& n : names)
+      if (post.contains(n))
+        bands[n].push_back({soil, g, post[n].value("q05", NAN), post[n].value("q50", NAN), post[n].value("q95", NAN)});
     for (const auto& n : names)
       params += post.contains(n) ? fmt::format(" | {:.4g} ({:.3g} – {:.3g})", post[n].value("q50", NAN),
                                                post[n].value("q05", NAN), post[n].value("q95", NAN))
@@ -80,10 +94,13 @@ void write_campaign_report(const std::string& dir, const CampaignSpec& spec, con
     md += "\n|---|";
     for (std::size_t i = 0; i < names.size(); ++i) md += "---|";
     md += "\n" + params;
+    plot_parameter_bands(dir, names, bands);
+    md += "\n![calibrated parameters against gravity](parameters.png)\n";
   }
 
   // The calibrated set's wheel against the reference soil's, per entry.
   std::string wheel;
+  std::vector<WheelErrors> errors;
   for (const auto& j : jobs) {
     if (j.stage != "wheel" || row[j.key].state != "done") continue;
     const auto ref = std::find_if(jobs.begin(), jobs.end(),
@@ -91,14 +108,16 @@ void write_campaign_report(const std::string& dir, const CampaignSpec& spec, con
     if (ref == jobs.end() || row[ref->key].state != "done") continue;
     auto a = read_csv_columns((fs::path(dir) / j.dir / "wheel.csv").string());
     auto b = read_csv_columns((fs::path(dir) / ref->dir / "wheel.csv").string());
-    wheel += fmt::format("| {} | {} | {} | {} |\n", j.label, percent(rmse_percent(a["dbp_N"], b["dbp_N"])),
-                         percent(rmse_percent(a["torque_Nm"], b["torque_Nm"])),
-                         percent(rmse_percent(a["sinkage_m"], b["sinkage_m"])));
+    const WheelErrors e{j.label, rmse_percent(a["dbp_N"], b["dbp_N"]), rmse_percent(a["torque_Nm"], b["torque_Nm"]),
+                        rmse_percent(a["sinkage_m"], b["sinkage_m"])};
+    wheel += fmt::format("| {} | {} | {} | {} |\n", j.label, percent(e.dbp), percent(e.torque), percent(e.sinkage));
+    errors.push_back(e);
   }
+  plot_wheel_errors(dir, errors);
   if (!wheel.empty())
     md += "\n## Single wheel: the calibrated set against the reference soil\n\nRMSE over the slips, in % of the "
           "reference's largest value.\n\n| entry | drawbar pull | torque | sinkage |\n|---|---|---|---|\n" +
-          wheel;
+          wheel + "\n![wheel errors per entry](wheel_errors.png)\n";
   md += "\n## Jobs\n\n" + table;
   write_text_atomically(dir + "/report.md", md);
 }

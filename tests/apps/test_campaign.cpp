@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/campaign_spec.hpp"
+#include "core/gnuplot.hpp"
 #include "cli_runner.hpp"
 
 using namespace terracal::test;
@@ -85,6 +86,8 @@ TEST_CASE("campaign: runs, resumes without recomputing, reruns only what a chang
   CHECK(report.find("16 of 16 jobs done") != std::string::npos);
   CHECK(report.find("| sand2_g3.71 |") != std::string::npos);  // calibrated parameters per soil and gravity
   CHECK(report.find("| sand_g9.81_w |") != std::string::npos);  // wheel errors per entry
+  if (terracal::gnuplot_available())  // the report's plots: parameters against gravity, wheel errors, wall per stage
+    for (const char* png : {"parameters.png", "wheel_errors.png", "stage_wall.png"}) CHECK(fs::exists(dir + "/c/" + png));
 
   // A job's outputs are those of the same command run on its own, to the byte.
   const fs::path bev = job_dir(dir + "/c", "bevameter", "sand2_g3.71");
