@@ -21,6 +21,8 @@ Command command_of(CLI::App& app, const std::string& command) {
   if (command == "bevameter") return add_bevameter(app);
   if (command == "calibrate") return add_calibrate(app);
   if (command == "wheel") return add_wheel(app);
+  if (command == "rom") return add_rom(app);
+  if (command == "vehicle") return add_vehicle(app);
   throw std::logic_error("command_of: no job runs 'terracal " + command + "'");
 }
 

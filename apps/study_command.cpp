@@ -1,6 +1,8 @@
-// `terracal study accuracy-cost|stability|effects --solver crm|scm|wong-reece [--spec S.json] --out DIR`:
+// `terracal study accuracy-cost|stability|effects --solver crm|scm|wong-reece|rom|vehicle [--spec S.json]
+// --out DIR`:
 // a study's runs as a campaign (resumable, spread over MPI ranks like `terracal campaign`), then its
 // report.
+#include <algorithm>
 #include <memory>
 #include <string>
 
@@ -20,14 +22,14 @@ namespace terracal::app {
 
 Command add_study(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
-      "study", "Accuracy against cost, stability or effects of one soil solver, as a resumable campaign; report.md");
+      "study", "Accuracy against cost, stability or effects of one solver, as a resumable campaign; report.md");
   struct Args {
     std::string kind, solver, spec;
     CampaignSettings s;
   };
   auto a = std::make_shared<Args>();
   sub->add_option("study", a->kind, "accuracy-cost, stability or effects")->required();
-  sub->add_option("--solver", a->solver, "crm, scm or wong-reece")->required();
+  sub->add_option("--solver", a->solver, "crm, scm, wong-reece, rom or vehicle")->required();
   sub->add_option("--spec", a->spec, "study spec (JSON, docs/study.md); default: the solver's embedded one")
       ->check(CLI::ExistingFile);
   sub->add_option("--out", a->s.out, "study folder (report.md, campaign.sqlite, jobs/)")->required();
@@ -38,14 +40,11 @@ Command add_study(CLI::App& app) {
     else if (a->kind == "stability") kind = StudyKind::kStability;
     else if (a->kind == "effects") kind = StudyKind::kEffects;
     else throw InputError(fmt::format("study '{}': expected accuracy-cost, stability or effects", a->kind));
-    if (a->solver == "rom" || a->solver == "vehicle")
-      throw InputError(fmt::format("--solver {}: studies run the soil solvers (crm, scm, wong-reece) so far; the "
-                                   "vehicles' accuracy against cost is `terracal pipeline-rom`'s",
-                                   a->solver));
-    const auto it = soil_model_names().find(a->solver);
-    if (it == soil_model_names().end())
-      throw InputError(fmt::format("--solver {}: expected crm, scm or wong-reece", a->solver));
-    const StudySpec spec = read_study_spec(kind, it->second, a->spec);  // refuses a bad spec before anything
+    const auto it = std::find(kStudySolvers.begin(), kStudySolvers.end(), a->solver);
+    if (it == kStudySolvers.end())
+      throw InputError(fmt::format("--solver {}: expected crm, scm, wong-reece, rom or vehicle", a->solver));
+    const auto solver = static_cast<StudySolver>(it - kStudySolvers.begin());
+    const StudySpec spec = read_study_spec(kind, solver, a->spec);  // refuses a bad spec before anything
     const auto jobs = study_jobs(spec);
     std::unique_ptr<OutDir> out;
     if (mpi_world().rank == 0) out = std::make_unique<OutDir>("--out", a->s.out);

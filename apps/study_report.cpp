@@ -22,26 +22,38 @@ namespace fs = std::filesystem;
 namespace {
 
 using Columns = std::map<std::string, std::vector<double>>;
-const char* kQuantities[3] = {"dbp_N", "torque_Nm", "sinkage_m"};
+
+bool wheel_study(const StudySpec& s) { return study_command(s.solver) == "wheel"; }
+
+// What runs are compared on: the wheel's steady means over the slips, or a vehicle's channels over time.
+struct Quantity {
+  std::string column, name, stem;  // in the run's CSV, in tables, in the study's CSV
+};
+std::vector<Quantity> quantities(const StudySpec& s) {
+  if (wheel_study(s))
+    return {{"dbp_N", "drawbar pull", "dbp"}, {"torque_Nm", "torque", "torque"}, {"sinkage_m", "sinkage", "sinkage"}};
+  return {{"vx", "vx", "vx"}, {"yaw_rate", "yaw rate", "yaw_rate"}, {"ay", "ay", "ay"}, {"roll", "roll", "roll"}};
+}
 
 // One run with what its job left.
 struct RunResult {
   const StudyRun* run = nullptr;
   JobRow row;
-  Columns wheel;     // wheel.csv, empty unless done
-  double wall = NAN;  // run.json's wall_seconds: the rig's own time, without start-up
+  Columns out;       // wheel.csv or trajectory.csv, empty unless done
+  double wall = NAN;  // run.json's wall_seconds: the run's own time, without start-up
 };
 
 std::vector<RunResult> collect(const std::string& dir, const StudySpec& spec, const std::vector<CampaignJob>& jobs,
                                const CampaignDb& db) {
   std::map<std::string, JobRow> rows;
   for (auto& r : db.rows()) rows[r.key] = r;
+  const std::string csv = wheel_study(spec) ? "wheel.csv" : "trajectory.csv";
   std::vector<RunResult> out;
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     RunResult r{&spec.runs[i], rows[jobs[i].key], {}, NAN};
     if (r.row.state == "done") {
       const fs::path folder = fs::path(dir) / jobs[i].dir;
-      r.wheel = read_csv_columns((folder / "wheel.csv").string());
+      r.out = read_csv_columns((folder / csv).string());
       try {
         std::ifstream in(folder / "run.json");
         r.wall = nlohmann::json::parse(in).value("wall_seconds", NAN);
@@ -53,16 +65,44 @@ std::vector<RunResult> collect(const std::string& dir, const StudySpec& spec, co
   return out;
 }
 
-// The largest of the three RMSEs (drawbar pull, torque, sinkage) of a against b, each in % of b's.
-std::array<double, 4> errors(const Columns& a, const Columns& b) {
-  std::array<double, 4> e{};
-  e[3] = 0;
-  for (int q = 0; q < 3; ++q) {
-    const auto ia = a.find(kQuantities[q]), ib = b.find(kQuantities[q]);
-    e[q] = ia == a.end() || ib == b.end() ? NAN : rmse_percent(ia->second, ib->second);
-    e[3] = std::isfinite(e[q]) && std::isfinite(e[3]) ? std::max(e[3], e[q]) : NAN;
+// Each quantity's RMSE of a against b in % of b's largest value, then the largest of those that are
+// finite (NaN when none is).
+std::vector<double> errors(const StudySpec& s, const Columns& a, const Columns& b) {
+  std::vector<double> e;
+  double top = NAN;
+  for (const auto& q : quantities(s)) {
+    const auto ia = a.find(q.column), ib = b.find(q.column);
+    e.push_back(ia == a.end() || ib == b.end() ? NAN : rmse_percent(ia->second, ib->second));
+    if (std::isfinite(e.back())) top = std::isfinite(top) ? std::max(top, e.back()) : e.back();
   }
+  e.push_back(top);
   return e;
+}
+
+std::string error_headers(const StudySpec& s) {
+  std::string h;
+  for (const auto& q : quantities(s)) h += " " + q.name + " |";
+  return h;
+}
+std::string error_cells(const std::vector<double>& e) {
+  std::string c;
+  for (std::size_t i = 0; i + 1 < e.size(); ++i) c += " " + percent_text(e[i]) + " |";
+  return c;
+}
+std::string error_csv_header(const StudySpec& s, const char* suffix) {
+  std::string h;
+  for (const auto& q : quantities(s)) h += fmt::format(",{}_{}", q.stem, suffix);
+  return h;
+}
+std::string error_csv(const std::vector<double>& e) {
+  std::string c;
+  for (std::size_t i = 0; i + 1 < e.size(); ++i) c += fmt::format(",{:.6g}", e[i]);
+  return c;
+}
+std::string dashes(std::size_t n) {
+  std::string d;
+  for (std::size_t i = 0; i < n; ++i) d += "---|";
+  return d;
 }
 
 std::string jobs_table(const std::vector<RunResult>& rs) {
@@ -83,60 +123,62 @@ std::vector<std::string> groups_of(const std::vector<RunResult>& rs) {
   return g;
 }
 
-std::string accuracy_cost(const std::string& dir, const std::vector<RunResult>& rs) {
+std::string accuracy_cost(const std::string& dir, const StudySpec& spec, const std::vector<RunResult>& rs) {
   const RunResult& ref = rs.front();
-  std::string csv = "knob,value,label,wall_s,dbp_err_pct,torque_err_pct,sinkage_err_pct,max_err_pct,pareto\n";
+  const std::size_t nq = quantities(spec).size();
+  const bool own_reference = spec.merged.contains("reference");
+  std::string csv = "knob,value,label,wall_s" + error_csv_header(spec, "err_pct") + ",max_err_pct,pareto\n";
   std::string md = fmt::format(
-      "Each knob from coarse to fine with the others at their finest; the reference runs every knob at its finest "
-      "({:.3g} s wall). Error: RMSE over the slips against the reference, in % of the reference's largest value. "
-      "Wall: the wheel runs' own time (run.json): without start-up and, for CRM, without settling the bed.\n\n| knob | value | wall [s] | drawbar pull | torque | sinkage | on the "
-      "Pareto front |\n|---|---|---|---|---|---|---|\n",
-      ref.wall);
-  std::vector<std::array<double, 4>> err(rs.size());
-  for (std::size_t i = 1; i < rs.size(); ++i) err[i] = errors(rs[i].wheel, ref.wheel);
+      "{} ({:.3g} s wall). Error: RMSE against the reference ({}), in % of the reference's largest value. Wall: the "
+      "runs' own time (run.json): without start-up{}.\n\n| knob | value | wall [s] |{} on the Pareto front |\n|{}\n",
+      own_reference ? fmt::format("The reference runs the base options with `{}`; each knob's runs set that knob "
+                                  "alone over the base",
+                                  spec.merged["reference"].dump())
+                    : "Each knob from coarse to fine with the others at their finest; the reference runs every knob "
+                      "at its finest",
+      ref.wall, wheel_study(spec) ? "over the slips" : "over the manoeuvre's samples",
+      spec.solver == StudySolver::kCrm ? " and without settling the bed" : "", error_headers(spec), dashes(nq + 4));
+  std::vector<std::vector<double>> err(rs.size());
+  for (std::size_t i = 1; i < rs.size(); ++i) err[i] = errors(spec, rs[i].out, ref.out);
   // Pareto: no other run is at least as fast and at least as accurate, and better in one.
   auto pareto = [&](std::size_t i) {
-    if (!std::isfinite(err[i][3]) || !std::isfinite(rs[i].wall)) return false;
+    if (!std::isfinite(err[i][nq]) || !std::isfinite(rs[i].wall)) return false;
     for (std::size_t j = 1; j < rs.size(); ++j)
-      if (j != i && std::isfinite(err[j][3]) && rs[j].wall <= rs[i].wall && err[j][3] <= err[i][3] &&
-          (rs[j].wall < rs[i].wall || err[j][3] < err[i][3]))
+      if (j != i && std::isfinite(err[j][nq]) && rs[j].wall <= rs[i].wall && err[j][nq] <= err[i][nq] &&
+          (rs[j].wall < rs[i].wall || err[j][nq] < err[i][nq]))
         return false;
     return true;
   };
   std::map<std::string, std::string> data;
-  std::string front;
+  std::vector<std::pair<double, double>> front;
   for (std::size_t i = 1; i < rs.size(); ++i) {
     const auto& r = rs[i];
     const bool p = pareto(i);
-    md += fmt::format("| {} | {} | {:.3g} | {} | {} | {} | {} |\n", r.run->group, r.run->value, r.wall,
-                      percent_text(err[i][0]), percent_text(err[i][1]), percent_text(err[i][2]), p ? "yes" : "");
-    csv += fmt::format("{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{}\n", r.run->group, r.run->value, r.run->label,
-                       r.wall, err[i][0], err[i][1], err[i][2], err[i][3], p ? 1 : 0);
-    if (std::isfinite(err[i][3]) && err[i][3] > 0 && std::isfinite(r.wall) && r.wall > 0) {
-      data[r.run->group] += fmt::format("{} {} {}\n", r.wall, err[i][3], r.run->value);
-      if (p) front += fmt::format("{} {}\n", r.wall, err[i][3]);
+    md += fmt::format("| {} | {} | {:.3g} |{} {} |\n", r.run->group, r.run->value_text, r.wall, error_cells(err[i]),
+                      p ? "yes" : "");
+    csv += fmt::format("{},{},{},{:.6g}{},{:.6g},{}\n", r.run->group, r.run->value_text, r.run->label, r.wall,
+                       error_csv(err[i]), err[i][nq], p ? 1 : 0);
+    if (std::isfinite(err[i][nq]) && err[i][nq] > 0 && std::isfinite(r.wall) && r.wall > 0) {
+      data[r.run->group] += fmt::format("{} {} \"{}\"\n", r.wall, err[i][nq], r.run->value_text);
+      if (p) front.push_back({r.wall, err[i][nq]});
     }
   }
   write_text_atomically(dir + "/accuracy_cost.csv", csv);
-  // The front sorted by wall time, drawn as a step line.
-  std::vector<std::pair<double, double>> f;
-  for (std::size_t i = 1; i < rs.size(); ++i)
-    if (pareto(i) && err[i][3] > 0) f.push_back({rs[i].wall, err[i][3]});
-  std::sort(f.begin(), f.end());
-  front.clear();
-  for (auto [w, e] : f) front += fmt::format("{} {}\n", w, e);
-  std::vector<std::pair<std::string, std::string>> files = {{"front.dat", front.empty() ? "nan nan\n" : front}};
+  std::sort(front.begin(), front.end());
+  std::string f;
+  for (auto [w, e] : front) f += fmt::format("{} {}\n", w, e);
+  std::vector<std::pair<std::string, std::string>> files = {{"front.dat", f.empty() ? "nan nan\n" : f}};
   std::string s = fmt::format(
       "set terminal pngcairo noenhanced size 900,620 font 'Sans,11'\nset output 'accuracy_cost.png'\nset logscale "
       "xy\nset grid\nset key outside right\nset xlabel 'wall time [s]'\nset ylabel 'largest error against the "
-      "reference [%]'\nset title 'accuracy against cost'\nset arrow from {0},graph 0 to {0},graph 1 nohead dt 2 lc "
+      "reference [%]'\nset title '{}: accuracy against cost'\nset arrow from {},graph 0 to {},graph 1 nohead dt 2 lc "
       "rgb 'gray'\nplot 'front.dat' using 1:2 with steps lw 2 lc rgb 'black' title 'Pareto front', ",
-      ref.wall > 0 ? ref.wall : 1);
+      study_solver_name(spec.solver), ref.wall > 0 ? ref.wall : 1, ref.wall > 0 ? ref.wall : 1);
   int c = 0;
   for (const auto& [g, d] : data) {
     files.push_back({g + ".dat", d});
     s += fmt::format("'{0}.dat' using 1:2 with linespoints pt 7 ps 1.3 lc rgb '{1}' title '{0}', '{0}.dat' using "
-                     "1:2:(sprintf('%g', $3)) with labels offset 0.8,0.6 left tc rgb '{1}' notitle, ",
+                     "1:2:3 with labels offset 0.8,0.6 left tc rgb '{1}' notitle, ",
                      g, kColours[c++ % 8]);
   }
   s.resize(s.size() - 2);
@@ -153,38 +195,64 @@ double mean_of(const Columns& c, const char* key) {
   return s / double(it->second.size());
 }
 
+double peak_of(const Columns& c, const char* key) {
+  const auto it = c.find(key);
+  if (it == c.end() || it->second.empty()) return NAN;
+  double m = 0;
+  for (double v : it->second) m = std::max(m, std::fabs(v));
+  return m;
+}
+
+// A run's verdict and the two figures its row shows (the first is the plot's y).
+struct Judged {
+  std::string verdict;
+  double a = NAN, b = NAN;
+};
+
+Judged judge(const StudySpec& spec, const RunResult& r) {
+  if (!wheel_study(spec))
+    return {vehicle_verdict(r.row.state, r.row.error, r.out), peak_of(r.out, "yaw_rate"),
+            r.out.count("vx") && !r.out.at("vx").empty() ? r.out.at("vx").back() : NAN};
+  const auto& w = r.run->scene["wheel"];
+  // The weight under this run's gravity: the sweep's own, or the base's (Earth unless set).
+  double g = 9.81;
+  if (r.run->options.contains("gravity")) g = std::fabs(r.run->options["gravity"][2].get<double>());
+  if (r.run->scene.contains("soil") && r.run->scene["soil"].contains("gravity"))
+    g = std::fabs(r.run->scene["soil"]["gravity"][2].get<double>());
+  const double weight = w.value("mass", 0.0) * g;
+  return {stability_verdict(r.row.state, r.row.error, r.out, w.value("radius", 0.0), weight),
+          mean_of(r.out, "dbp_N") / weight, mean_of(r.out, "sinkage_m")};
+}
+
 std::string stability(const std::string& dir, const StudySpec& spec, const std::vector<RunResult>& rs) {
-  std::string csv = "sweep,value,label,verdict,dbp_over_weight,sinkage_m,wall_s\n";
-  std::string md =
-      "Each sweep changes one setting of the base; a run is stable when it ends with finite, bounded, steady results "
-      "(docs/study.md). Drawbar pull over weight and sinkage: means over the run's slips.\n\n| sweep | value | "
-      "verdict | DBP / weight | sinkage [m] | wall [s] |\n|---|---|---|---|---|---|\n";
+  const bool wheel = wheel_study(spec);
+  const char* ya = wheel ? "DBP / weight" : "peak yaw rate [rad/s]";
+  const char* yb = wheel ? "sinkage [m]" : "final vx [m/s]";
+  std::string csv = wheel ? "sweep,value,label,verdict,dbp_over_weight,sinkage_m,wall_s\n"
+                          : "sweep,value,label,verdict,peak_yaw_rate,final_vx,wall_s\n";
+  std::string md = fmt::format(
+      "Each sweep changes one setting of the base; a run is stable when it ends with finite, bounded{} results "
+      "(docs/study.md).{}\n\n| sweep | value | verdict | {} | {} | wall [s] |\n|---|---|---|---|---|---|\n",
+      wheel ? ", steady" : "", wheel ? " Drawbar pull over weight and sinkage: means over the run's slips." : "", ya, yb);
   std::map<std::string, std::pair<std::string, std::string>> data;  // group -> (stable, unstable) points
   int unstable = 0;
   for (const auto& r : rs) {
-    const double radius = r.run->wheel.value("radius", 0.0);
-    // The weight under this run's gravity: the sweep's own, or the base's (Earth unless set).
-    double g = 9.81;
-    if (r.run->options.contains("gravity")) g = std::fabs(r.run->options["gravity"][2].get<double>());
-    if (r.run->soil.contains("gravity")) g = std::fabs(r.run->soil["gravity"][2].get<double>());
-    const double weight = r.run->wheel.value("mass", 0.0) * g;
-    const std::string v = stability_verdict(r.row.state, r.row.error, r.wheel, radius, weight);
-    const double dbpw = mean_of(r.wheel, "dbp_N") / weight, z = mean_of(r.wheel, "sinkage_m");
-    unstable += v != kStable;
-    md += fmt::format("| {} | {} | {} | {:.3g} | {:.3g} | {:.3g} |\n", r.run->group, r.run->reference ? "" :
-                      fmt::format("{}", r.run->value), v, dbpw, z, r.wall);
-    csv += fmt::format("{},{},{},\"{}\",{:.6g},{:.6g},{:.6g}\n", r.run->group, r.run->value, r.run->label, v, dbpw, z,
-                       r.wall);
+    const Judged j = judge(spec, r);
+    unstable += j.verdict != kStable;
+    md += fmt::format("| {} | {} | {} | {:.3g} | {:.3g} | {:.3g} |\n", r.run->group, r.run->value_text, j.verdict, j.a,
+                      j.b, r.wall);
+    csv += fmt::format("{},{},{},\"{}\",{:.6g},{:.6g},{:.6g}\n", r.run->group, r.run->value_text, r.run->label,
+                       j.verdict, j.a, j.b, r.wall);
     if (r.run->reference || r.run->group == "standstill") continue;
     auto& [good, bad] = data[r.run->group];
-    (v == kStable ? good : bad) += fmt::format("{} {}\n", r.run->value, v == kStable && std::isfinite(dbpw) ? dbpw : 0);
+    (j.verdict == kStable ? good : bad) +=
+        fmt::format("{} {}\n", r.run->value, j.verdict == kStable && std::isfinite(j.a) ? j.a : 0);
   }
   write_text_atomically(dir + "/stability.csv", csv);
-  const auto groups = groups_of(rs);
   std::vector<std::pair<std::string, std::string>> files;
   int panels = 0;
   std::string body;
-  for (const auto& g : groups) {
+  for (const auto& g : groups_of(rs)) {
     if (!data.count(g)) continue;
     ++panels;
     files.push_back({g + "_ok.dat", data[g].first.empty() ? "nan nan\n" : data[g].first});
@@ -206,43 +274,47 @@ std::string stability(const std::string& dir, const StudySpec& spec, const std::
     const int cols = std::min(panels, 3), rows = (panels + cols - 1) / cols;
     const std::string s = fmt::format(
         "set terminal pngcairo noenhanced size {},{} font 'Sans,11'\nset output 'stability.png'\nset multiplot layout "
-        "{},{} title '{}: where the solver stays stable'\nset grid\nset key below\nset format x '%g'\nset ylabel 'drawbar pull / "
-        "weight'\n{}unset multiplot\n",
-        480 * cols, 380 * rows, rows, cols, soil_model_name(spec.solver), body);
+        "{},{} title '{}: where the solver stays stable'\nset grid\nset key below\nset format x '%g'\nset ylabel "
+        "'{}'\n{}unset multiplot\n",
+        480 * cols, 380 * rows, rows, cols, study_solver_name(spec.solver), ya, body);
     draw_plot(dir, "stability.png", s, files);
   }
   return fmt::format("**{} of {} runs not stable.**\n\n", unstable, rs.size()) + md +
          "\n![stability map](stability.png)\n\nData: `stability.csv`.\n";
 }
 
-std::string effects(const std::string& dir, const std::vector<RunResult>& rs) {
+std::string effects(const std::string& dir, const StudySpec& spec, const std::vector<RunResult>& rs) {
   const RunResult& base = rs.front();
-  std::string csv = "variant,options,wall_s,wall_over_base,dbp_change_pct,torque_change_pct,sinkage_change_pct\n";
+  const std::size_t nq = quantities(spec).size();
+  std::string csv = "variant,changes,wall_s,wall_over_base" + error_csv_header(spec, "change_pct") + "\n";
   std::string md = fmt::format(
-      "Each variant against the base settings ({:.3g} s wall): its cost and how far it moves the results (RMSE over "
-      "the slips, in % of the base's largest value).\n\n| variant | options | wall [s] | wall / base | drawbar pull "
-      "| torque | sinkage |\n|---|---|---|---|---|---|---|\n",
-      base.wall);
+      "Each variant against the base settings ({:.3g} s wall): its cost and how far it moves the results (RMSE, in "
+      "% of the base's largest value).\n\n| variant | changes | wall [s] | wall / base |{}\n|{}\n",
+      base.wall, error_headers(spec), dashes(nq + 4));
   std::string dat;
   for (std::size_t i = 1; i < rs.size(); ++i) {
     const auto& r = rs[i];
-    const auto e = errors(r.wheel, base.wheel);
+    const auto e = errors(spec, r.out, base.out);
     nlohmann::ordered_json own = nlohmann::ordered_json::object();
     for (const auto& [k, v] : r.run->options.items())
       if (!base.run->options.contains(k) || base.run->options[k] != v) own[k] = v;
-    md += fmt::format("| {} | `{}` | {:.3g} | {:.3g} | {} | {} | {} |\n", r.run->label, own.dump(), r.wall,
-                      r.wall / base.wall, percent_text(e[0]), percent_text(e[1]), percent_text(e[2]));
-    csv += fmt::format("{},\"{}\",{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n", r.run->label, own.dump(), r.wall,
-                       r.wall / base.wall, e[0], e[1], e[2]);
-    dat += fmt::format("\"{}\" {} {}\n", r.run->label, r.wall / base.wall, std::isfinite(e[3]) ? e[3] : 0);
+    if (r.run->scene.contains("vehicle") && r.run->scene["vehicle"].is_object() &&
+        r.run->scene["vehicle"] != base.run->scene["vehicle"])
+      own["vehicle effects"] = r.run->scene["vehicle"].value("effects", nlohmann::ordered_json::array());
+    md += fmt::format("| {} | `{}` | {:.3g} | {:.3g} |{}\n", r.run->label, own.dump(), r.wall, r.wall / base.wall,
+                      error_cells(e));
+    std::string quoted = own.dump();
+    for (std::size_t k = 0; (k = quoted.find('"', k)) != std::string::npos; k += 2) quoted.insert(k, "\"");
+    csv += fmt::format("{},\"{}\",{:.6g},{:.6g}{}\n", r.run->label, quoted, r.wall, r.wall / base.wall, error_csv(e));
+    dat += fmt::format("\"{}\" {} {}\n", r.run->label, r.wall / base.wall, std::isfinite(e[nq]) ? e[nq] : 0);
   }
   write_text_atomically(dir + "/effects.csv", csv);
   const std::string s =
       "set terminal pngcairo noenhanced size 1100,420 font 'Sans,11'\nset output 'effects.png'\nset multiplot layout "
       "1,2\nset style fill solid 0.7\nset boxwidth 0.6\nset grid y\nset xtics rotate by -30\nset yrange [0:*]\nset "
       "title 'cost: wall time over the base'\nplot 'effects.dat' using 0:2:xtic(1) with boxes lc rgb '#1f77b4' "
-      "notitle, 1 with lines dt 2 lc rgb 'gray' notitle\nset title 'change of the results [%]'\nplot 'effects.dat' "
-      "using 0:3:xtic(1) with boxes lc rgb '#d62728' notitle\nunset multiplot\n";
+      "notitle, 1 with lines dt 2 lc rgb 'gray' notitle\nset title 'largest change of the results [%]'\nplot "
+      "'effects.dat' using 0:3:xtic(1) with boxes lc rgb '#d62728' notitle\nunset multiplot\n";
   draw_plot(dir, "effects.png", s, {{"effects.dat", dat}});
   return md + "\n![effects: cost and change](effects.png)\n\nData: `effects.csv`.\n";
 }
@@ -253,7 +325,7 @@ std::string stability_verdict(const std::string& state, const std::string& error
                               const std::map<std::string, std::vector<double>>& wheel, double radius, double weight) {
   if (state == "failed") return "failed (" + error + ")";
   if (state != "done") return state;
-  for (const char* q : kQuantities) {
+  for (const char* q : {"dbp_N", "torque_Nm", "sinkage_m"}) {
     const auto it = wheel.find(q);
     if (it == wheel.end() || it->second.empty()) return "no results";
     for (double x : it->second)
@@ -271,22 +343,42 @@ std::string stability_verdict(const std::string& state, const std::string& error
   return kStable;
 }
 
+std::string vehicle_verdict(const std::string& state, const std::string& error,
+                            const std::map<std::string, std::vector<double>>& trajectory) {
+  if (state == "failed") return "failed (" + error + ")";
+  if (state != "done") return state;
+  for (const char* q : {"vx", "yaw_rate", "ay", "roll"}) {
+    const auto it = trajectory.find(q);
+    if (it == trajectory.end() || it->second.empty()) return "no results";
+    for (double x : it->second)
+      if (!std::isfinite(x)) return "non-finite";
+  }
+  for (double x : trajectory.at("vx"))
+    if (std::fabs(x) > 100) return "blew up (|vx| above 100 m/s)";
+  for (double x : trajectory.at("yaw_rate"))
+    if (std::fabs(x) > 10) return "blew up (|yaw rate| above 10 rad/s)";
+  for (double x : trajectory.at("ay"))
+    if (std::fabs(x) > 100) return "blew up (|ay| above 100 m/s^2)";
+  for (double x : trajectory.at("roll"))
+    if (std::fabs(x) > 1) return "rolled over (|roll| above 1 rad)";
+  return kStable;
+}
+
 void write_study_report(const std::string& dir, const StudySpec& spec, const std::vector<CampaignJob>& jobs,
                         const CampaignDb& db) {
   const std::vector<RunResult> rs = collect(dir, spec, jobs, db);
-  std::string md = fmt::format("# Study {}: {}\n\nSpec: {} (as run: `spec.json`). Single-wheel runs (`terracal wheel "
-                               "--terrain {}`), each a job of a campaign in this folder (`terracal campaign --status` "
-                               "on it lists them).\n\n",
-                               study_kind_name(spec.kind), soil_model_name(spec.solver),
-                               fs::path(spec.source).filename().string(), soil_model_name(spec.solver));
-  const bool have_first = rs.front().row.state == "done";
+  const std::string command = study_command(spec.solver);
+  std::string md = fmt::format("# Study {}: {}\n\nSpec: {} (as run: `spec.json`). Runs of `terracal {}`, each a job "
+                               "of a campaign in this folder (`terracal campaign --status` on it lists them).\n\n",
+                               study_kind_name(spec.kind), study_solver_name(spec.solver),
+                               fs::path(spec.source).filename().string(), command);
   if (spec.kind == StudyKind::kStability)
     md += stability(dir, spec, rs);
-  else if (!have_first)
+  else if (rs.front().row.state != "done")
     md += fmt::format("**The {} run did not finish ({}): nothing to compare with.**\n",
                       spec.kind == StudyKind::kEffects ? "base" : "reference", rs.front().row.error);
   else
-    md += spec.kind == StudyKind::kAccuracyCost ? accuracy_cost(dir, rs) : effects(dir, rs);
+    md += spec.kind == StudyKind::kAccuracyCost ? accuracy_cost(dir, spec, rs) : effects(dir, spec, rs);
   md += "\n## Jobs\n\n" + jobs_table(rs);
   write_text_atomically(dir + "/report.md", md);
 }

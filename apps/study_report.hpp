@@ -1,6 +1,6 @@
 #pragma once
 // A study's results (docs/study.md): DIR/report.md, DIR/<study>.csv and DIR/<study>.png, from the
-// runs' wheel.csv and run.json and the job table.
+// runs' wheel.csv or trajectory.csv, their run.json and the job table.
 //   accuracy-cost: each run's RMSE against the reference (drawbar pull, torque, sinkage over the
 //     slips, in % of the reference's largest value) next to its wall time, with the Pareto front;
 //   stability: each run's verdict: stable, failed (the command's exit and message), non-finite,
@@ -24,6 +24,11 @@ inline constexpr const char* kStable = "stable";
 // weight of its wheel under its gravity).
 std::string stability_verdict(const std::string& state, const std::string& error,
                               const std::map<std::string, std::vector<double>>& wheel, double radius, double weight);
+
+// The same for a vehicle's trajectory.csv: non-finite, blew up (|vx| above 100 m/s, |yaw rate| above
+// 10 rad/s, |ay| above 100 m/s^2) or rolled over (|roll| above 1 rad).
+std::string vehicle_verdict(const std::string& state, const std::string& error,
+                            const std::map<std::string, std::vector<double>>& trajectory);
 
 void write_study_report(const std::string& dir, const StudySpec& spec, const std::vector<CampaignJob>& jobs,
                         const CampaignDb& db);

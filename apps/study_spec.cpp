@@ -15,6 +15,8 @@
 #include "core/text_check.hpp"
 #include "highfi/crm/crm_scene.hpp"
 #include "lowfi/scm_soil.hpp"
+#include "rom/rom_vehicle.hpp"
+#include "rom/rom_vehicle_json.hpp"
 #include "virtual_bevameter/wheel_rig.hpp"
 
 namespace terracal::app {
@@ -76,56 +78,93 @@ Json default_crm() {
                                  kWheel, kCrmSoil, kGravities, kStiffness));
 }
 
-// The options a study sets itself.
-const std::set<std::string> kStudySets = {"terrain", "wheel", "scm", "soil", "out", "help", "gravity", "no-plots"};
+// The step steer of results/rom_accuracy_cost (ISO 7401: 0.15 at 1 s, 20 m/s, 5 s).
+constexpr const char* kStepSteer =
+    R"({"type": "step_steer", "steering": 0.15, "step_time": 1, "initial_speed": 20, "end_time": 5})";
 
-std::string content_hash(const std::string& text) {
-  Fnv1a64 h;
-  h.add(text);
-  return h.hex();
+Json default_rom() {
+  return Json::parse(fmt::format(R"({{
+    "vehicle": "hmmwv", "maneuver": {},
+    "options": {{"model": "24dof"}},
+    "reference": {{"integrator": "cvodes", "rtol": 1e-10}},
+    "knobs": {{"step": [0.004, 0.002, 0.001, 0.0005, 0.00025], "model": ["11dof", "18dof"]}},
+    "sweeps": {{"step": [0.001, 0.002, 0.004, 0.006, 0.008, 0.01], "gravity": [9.81, 3.71, 1.62, 0.1],
+                "friction": [0.05, 0.2, 0.5, 1, 2]}},
+    "effects": {{"no_tire_relaxation": {{"vehicle-effects": ["torque_converter", "roll", "rolling_resistance"]}},
+                 "no_torque_converter": {{"vehicle-effects": ["tire_relaxation", "roll", "rolling_resistance"]}},
+                 "no_rolling_resistance": {{"vehicle-effects": ["tire_relaxation", "torque_converter", "roll"]}}}}}})",
+                                 kStepSteer));
 }
 
-// "grid_0.005": names a run's folder.
-std::string label_of(const std::string& group, double v) { return fmt::format("{}_{}", group, v); }
+Json default_vehicle() {
+  return Json::parse(fmt::format(R"({{
+    "vehicle": "hmmwv", "maneuver": {},
+    "options": {{}},
+    "reference": {{"rtol": 1e-8}},
+    "knobs": {{"rtol": [1e-3, 1e-4, 1e-5, 1e-6], "step": [0.02, 0.01, 0.005]}},
+    "sweeps": {{"mu": [0.05, 0.2, 0.5, 1, 2], "step": [0.01, 0.05, 0.1]}},
+    "effects": {{}}}})",
+                                 kStepSteer));
+}
 
-// A list of numbers at KEY, non-empty, every one finite.
-std::vector<double> numbers(const std::string& spec, const std::string& key, const Json& v) {
+// The options a study sets itself: its scene's and --out.
+const std::set<std::string> kStudySets = {"terrain", "wheel",   "scm",  "soil", "out", "help", "gravity",
+                                          "no-plots", "vehicle", "maneuver", "inputs"};
+
+bool wheel_rig(StudySolver s) { return s == StudySolver::kCrm || s == StudySolver::kScm || s == StudySolver::kWongReece; }
+
+// A knob's values: numbers, or names (a model, an integrator), non-empty, none twice.
+std::vector<Json> values(const std::string& spec, const std::string& key, const Json& v) {
   if (!v.is_array() || v.empty())
-    throw InputError(fmt::format("{}: key '{}': expected a non-empty list of numbers, found {}", spec, key,
-                                 excerpt(v.dump())));
-  std::vector<double> out;
+    throw InputError(fmt::format("{}: key '{}': expected a non-empty list, found {}", spec, key, excerpt(v.dump())));
+  std::vector<Json> out;
   for (std::size_t i = 0; i < v.size(); ++i) {
-    if (!v[i].is_number() || !std::isfinite(v[i].get<double>()))
-      throw InputError(fmt::format("{}: key '{}[{}]': expected a number, found {}", spec, key, i, excerpt(v[i].dump())));
-    if (std::count(out.begin(), out.end(), v[i].get<double>()))
-      throw InputError(fmt::format("{}: key '{}[{}]': {} appears twice", spec, key, i, v[i].get<double>()));
-    out.push_back(v[i].get<double>());
+    if (!(v[i].is_string() || (v[i].is_number() && std::isfinite(v[i].get<double>()))))
+      throw InputError(fmt::format("{}: key '{}[{}]': expected a number or a name, found {}", spec, key, i,
+                                   excerpt(v[i].dump())));
+    if (std::count(out.begin(), out.end(), v[i]))
+      throw InputError(fmt::format("{}: key '{}[{}]': {} appears twice", spec, key, i, v[i].dump()));
+    out.push_back(v[i]);
   }
   return out;
 }
 
-// The wheel or soil at KEY: inline (an object) or a file relative to the spec.
+std::string text_of(const Json& v) { return v.is_string() ? v.get<std::string>() : fmt::format("{}", v.get<double>()); }
+
+// A part of the scene at KEY: inline (an object), a file relative to the spec, or (vehicle) a preset.
 Json scene_part(const std::string& spec, const std::string& key, const Json& v) {
   if (v.is_object()) return v;
+  if (key == "vehicle" && v.is_string() && fs::path(v.get<std::string>()).extension() != ".json")
+    return v;  // a preset: the command checks its name
   const std::string file = spec_file(spec, key, v);
   return Json::parse(read_json_file(file, key + " file").dump());
 }
 
+// The scene's soil option: --soil (a CRM material) or --scm (an SCM set).
+const char* soil_option(StudySolver s) { return s == StudySolver::kCrm ? "soil" : "scm"; }
+
 // The soil with its stiffness scaled: Kphi of an SCM set, E of a CRM material.
 Json scaled_soil(const StudySpec& s, const Json& soil, double factor) {
   Json out = soil;
-  if (s.solver == SoilModel::kCrm)
+  if (s.solver == StudySolver::kCrm)
     out["young_modulus"] = factor * soil.at("young_modulus").get<double>();
   else
     out["Soil parameters"]["Bekker Kphi"] = factor * soil.at("Soil parameters").at("Bekker Kphi").get<double>();
   return out;
 }
 
-// Checks the scene before any job: the wheel and the soil as the wheel command reads them.
-void check_scene(const StudySpec& s, const Json& wheel, const Json& soil) {
-  rigs::parse_wheel(nlohmann::json::parse(wheel.dump()), s.source + ": key 'wheel'");
-  const nlohmann::json plain = nlohmann::json::parse(soil.dump());
-  if (s.solver == SoilModel::kCrm) {
+// Checks the scene before any job: the wheel and the soil as the wheel command reads them (a vehicle
+// and a manoeuvre are checked by their command when it runs).
+void check_scene(const StudySpec& s, const Json& m) {
+  if (!wheel_rig(s.solver)) {
+    for (const char* k : {"vehicle", "maneuver"})
+      if (!(m[k].is_object() || m[k].is_string()))
+        throw InputError(fmt::format("{}: key '{}': expected an object, a file or (vehicle) a preset", s.source, k));
+    return;
+  }
+  rigs::parse_wheel(nlohmann::json::parse(m["wheel"].dump()), s.source + ": key 'wheel'");
+  const nlohmann::json plain = nlohmann::json::parse(m["soil"].dump());
+  if (s.solver == StudySolver::kCrm) {
     parse_crm_soil(plain, s.source + ": key 'soil'");
   } else {
     if (!plain.contains("Soil parameters"))
@@ -135,152 +174,250 @@ void check_scene(const StudySpec& s, const Json& wheel, const Json& soil) {
   }
 }
 
-void add_knob_runs(StudySpec& s, const Json& knobs, const Json& base, const Json& soil, const Json& wheel) {
+// The scene of the base: option -> content.
+Json base_scene(const StudySpec& s) {
+  if (wheel_rig(s.solver)) return Json{{"wheel", s.merged["wheel"]}, {soil_option(s.solver), s.merged["soil"]}};
+  return Json{{"vehicle", s.merged["vehicle"]}, {"maneuver", s.merged["maneuver"]}};
+}
+
+StudyRun run_of(const std::string& group, const std::string& label, const Json& value, const Json& options,
+                const Json& scene, bool reference = false) {
+  StudyRun r{group, label, value.is_number() ? value.get<double>() : 0.0, value.is_null() ? "" : text_of(value),
+             options, scene, reference};
+  return r;
+}
+
+void add_knob_runs(StudySpec& s, const Json& knobs, const Json& base, const Json& scene) {
+  const std::string command = study_command(s.solver);
   if (!knobs.is_object() || knobs.empty())
     throw InputError(fmt::format("{}: key 'knobs': expected an object of knob -> values (coarse to fine)", s.source));
+  // The reference: the spec's own, or every knob at its finest (the last value).
+  const bool given = s.merged.contains("reference");
   Json finest = base;
-  for (const auto& [k, v] : knobs.items()) finest[k] = numbers(s.source, "knobs." + k, v).back();
-  check_command_options(s.source, "knobs.", "wheel", finest, kStudySets);
-  s.runs.push_back({"reference", "reference", 0, finest, soil, wheel, true});
+  if (given) {
+    if (!s.merged["reference"].is_object())
+      throw InputError(fmt::format("{}: key 'reference': expected an object of options", s.source));
+    check_command_options(s.source, "reference.", command, s.merged["reference"], kStudySets);
+    for (const auto& [k, v] : s.merged["reference"].items()) finest[k] = v;
+  } else {
+    for (const auto& [k, v] : knobs.items()) finest[k] = values(s.source, "knobs." + k, v).back();
+  }
+  check_command_options(s.source, given ? "reference." : "knobs.", command, finest, kStudySets);
+  s.runs.push_back(run_of("reference", "reference", Json(), finest, scene, true));
   for (const auto& [k, v] : knobs.items()) {
-    const std::vector<double> values = numbers(s.source, "knobs." + k, v);
-    for (std::size_t i = 0; i + 1 < values.size(); ++i) {  // the last is the reference's
-      Json o = finest;
-      o[k] = values[i];
-      check_command_options(s.source, fmt::format("knobs.{}[{}]: ", k, i), "wheel", Json{{k, values[i]}}, kStudySets);
-      s.runs.push_back({k, label_of(k, values[i]), values[i], o, soil, wheel, false});
+    const std::vector<Json> list = values(s.source, "knobs." + k, v);
+    for (std::size_t i = 0; i + (given ? 0 : 1) < list.size(); ++i) {  // without `reference`, the last is it
+      Json o = given ? base : finest;
+      o[k] = list[i];
+      check_command_options(s.source, fmt::format("knobs.{}[{}]: ", k, i), command, Json{{k, list[i]}}, kStudySets);
+      s.runs.push_back(run_of(k, k + "_" + text_of(list[i]), list[i], o, scene));
     }
   }
 }
 
-void add_sweep_runs(StudySpec& s, const Json& sweeps, const Json& base, const Json& soil, const Json& wheel) {
+// One sweep value's options and scene: gravity, stiffness, slip and standstill are the study's own;
+// any other name is an option of the command.
+void sweep_value(const StudySpec& s, const std::string& k, double x, Json& o, Json& scene) {
+  const std::string key = "sweeps." + k;
+  const std::string command = study_command(s.solver);
+  if (k == "gravity") {
+    if (!(x > 0 && x <= 100))
+      throw InputError(fmt::format("{}: key '{}': value {} is not a gravity in (0, 100] m/s^2", s.source, key, x));
+    if (s.solver == StudySolver::kVehicle)
+      throw InputError(fmt::format("{}: key '{}': the full vehicle runs at Earth's gravity only", s.source, key));
+    if (s.solver == StudySolver::kCrm) scene["soil"]["gravity"] = Json::array({0.0, 0.0, -x});
+    else if (s.solver == StudySolver::kRom) o["gravity"] = x;
+    else o["gravity"] = Json::array({0.0, 0.0, -x});
+    if (s.solver == StudySolver::kRom) check_command_options(s.source, key + ": ", command, Json{{"gravity", x}}, {});
+  } else if (k == "stiffness") {
+    if (!wheel_rig(s.solver))
+      throw InputError(fmt::format("{}: key '{}': a soil's stiffness; the {} solver runs on rigid ground", s.source,
+                                   key, study_solver_name(s.solver)));
+    if (!(x > 0)) throw InputError(fmt::format("{}: key '{}': factor {} must be positive", s.source, key, x));
+    scene[soil_option(s.solver)] = scaled_soil(s, scene[soil_option(s.solver)], x);
+  } else if (k == "slip") {
+    if (!wheel_rig(s.solver))
+      throw InputError(fmt::format("{}: key '{}': the wheel's slip; not a {} setting", s.source, key,
+                                   study_solver_name(s.solver)));
+    o["slips"] = Json::array({x});
+    check_command_options(s.source, key + ": ", command, Json{{"slips", o["slips"]}}, kStudySets);
+  } else {
+    o[k] = x;
+    check_command_options(s.source, key + ": ", command, Json{{k, x}}, kStudySets);
+  }
+}
+
+void add_sweep_runs(StudySpec& s, const Json& sweeps, const Json& base, const Json& scene) {
   if (!sweeps.is_object() || sweeps.empty())
     throw InputError(fmt::format("{}: key 'sweeps': expected an object of sweep -> values", s.source));
-  s.runs.push_back({"base", "base", 0, base, soil, wheel, true});
+  s.runs.push_back(run_of("base", "base", Json(), base, scene, true));
   for (const auto& [k, v] : sweeps.items()) {
     if (k == "standstill") {
       if (!v.is_boolean())
         throw InputError(fmt::format("{}: key 'sweeps.standstill': expected true or false, found {}", s.source,
                                      excerpt(v.dump())));
+      if (!wheel_rig(s.solver))
+        throw InputError(fmt::format("{}: key 'sweeps.standstill': the wheel rig's; give a manoeuvre from rest "
+                                     "instead",
+                                     s.source));
       if (!v.get<bool>()) continue;
-      Json w = wheel, o = base;
-      w["angular_velocity"] = 0.0;
+      Json o = base, sc = scene;
+      sc["wheel"]["angular_velocity"] = 0.0;
       o["slips"] = Json::array({0.0});
-      s.runs.push_back({"standstill", "standstill", 0, o, soil, w, false});
+      s.runs.push_back(run_of("standstill", "standstill", Json(), o, sc));
       continue;
     }
-    for (double x : numbers(s.source, "sweeps." + k, v)) {
-      Json o = base, so = soil;
-      const std::string key = fmt::format("sweeps.{}", k);
-      if (k == "gravity") {
-        if (!(x > 0 && x <= 100))
-          throw InputError(fmt::format("{}: key '{}': value {} is not a gravity in (0, 100] m/s^2", s.source, key, x));
-        if (s.solver == SoilModel::kCrm)
-          so["gravity"] = Json::array({0.0, 0.0, -x});
-        else
-          o["gravity"] = Json::array({0.0, 0.0, -x});
-      } else if (k == "stiffness") {
-        if (!(x > 0)) throw InputError(fmt::format("{}: key '{}': factor {} must be positive", s.source, key, x));
-        so = scaled_soil(s, soil, x);
-      } else if (k == "slip") {
-        o["slips"] = Json::array({x});
-      } else {
-        o[k] = x;
-      }
-      const Json own = k == "gravity" && s.solver != SoilModel::kCrm ? Json{{"gravity", o["gravity"]}}
-                       : k == "slip"                                 ? Json{{"slips", o["slips"]}}
-                       : k == "stiffness" || k == "gravity"          ? Json::object()
-                                                                     : Json{{k, x}};
-      if (k != "gravity") check_command_options(s.source, key + ": ", "wheel", own, kStudySets);
-      s.runs.push_back({k, label_of(k, x), x, o, so, wheel, false});
+    for (const Json& x : values(s.source, "sweeps." + k, v)) {
+      if (!x.is_number())
+        throw InputError(fmt::format("{}: key 'sweeps.{}': {} is not a number", s.source, k, x.dump()));
+      Json o = base, sc = scene;
+      sweep_value(s, k, x.get<double>(), o, sc);
+      s.runs.push_back(run_of(k, k + "_" + text_of(x), x, o, sc));
     }
   }
 }
 
-void add_effect_runs(StudySpec& s, const Json& effects, const Json& base, const Json& soil, const Json& wheel) {
+// A vehicle's JSON for an effects variant: the preset's or file's, with its effects replaced.
+Json vehicle_with_effects(const StudySpec& s, const std::string& key, const Json& vehicle, const Json& effects) {
+  if (!effects.is_array())
+    throw InputError(fmt::format("{}: key '{}': expected a list of effect names, found {}", s.source, key,
+                                 excerpt(effects.dump())));
+  for (const auto& e : effects)
+    if (!e.is_string() || std::none_of(std::begin(rom::kRomEffectNames), std::end(rom::kRomEffectNames),
+                                       [&](const char* n) { return e.get<std::string>() == n; }))
+      throw InputError(fmt::format("{}: key '{}': unknown effect {}; expected names among {}", s.source, key, e.dump(),
+                                   fmt::join(rom::kRomEffectNames, ", ")));
+  Json v = vehicle;
+  if (vehicle.is_string()) {
+    const std::string text = rom::rom_preset_json(vehicle.get<std::string>());
+    if (text.empty())
+      throw InputError(fmt::format("{}: key 'vehicle': '{}' is no preset (hmmwv, sedan)", s.source,
+                                   vehicle.get<std::string>()));
+    v = Json::parse(text);
+  }
+  v["effects"] = effects;
+  return v;
+}
+
+void add_effect_runs(StudySpec& s, const Json& effects, const Json& base, const Json& scene) {
   if (!effects.is_object() || effects.empty())
     throw InputError(fmt::format("{}: the {} solver has no effects to switch (key 'effects' is empty)", s.source,
-                                 soil_model_name(s.solver)));
-  s.runs.push_back({"base", "base", 0, base, soil, wheel, true});
+                                 study_solver_name(s.solver)));
+  s.runs.push_back(run_of("base", "base", Json(), base, scene, true));
   for (const auto& [name, opts] : effects.items()) {
+    const std::string key = "effects." + name;
     if (name.empty() || name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_-") != std::string::npos)
-      throw InputError(fmt::format("{}: key 'effects.{}': a variant's name may hold a-z, 0-9, '_' and '-' only",
-                                   s.source, name));
+      throw InputError(fmt::format("{}: key '{}': a variant's name may hold a-z, 0-9, '_' and '-' only", s.source, key));
     if (!opts.is_object() || opts.empty())
-      throw InputError(fmt::format("{}: key 'effects.{}': expected an object of wheel options, found {}", s.source,
-                                   name, excerpt(opts.dump())));
-    check_command_options(s.source, "effects." + name + ".", "wheel", opts, kStudySets);
-    Json o = base;
-    for (const auto& [k, v] : opts.items()) o[k] = v;
-    s.runs.push_back({name, name, 0, o, soil, wheel, false});
+      throw InputError(fmt::format("{}: key '{}': expected an object of options, found {}", s.source, key,
+                                   excerpt(opts.dump())));
+    Json o = base, sc = scene, own = opts;
+    if (own.contains("vehicle-effects")) {  // the ROM's effects live in its vehicle file
+      if (s.solver != StudySolver::kRom)
+        throw InputError(fmt::format("{}: key '{}.vehicle-effects': only for the rom solver", s.source, key));
+      sc["vehicle"] = vehicle_with_effects(s, key + ".vehicle-effects", scene["vehicle"], own["vehicle-effects"]);
+      own.erase("vehicle-effects");
+    }
+    check_command_options(s.source, key + ".", study_command(s.solver), own, kStudySets);
+    for (const auto& [k, v] : own.items()) o[k] = v;
+    s.runs.push_back(run_of(name, name, Json(), o, sc));
   }
 }
 
 }  // namespace
 
 std::string study_kind_name(StudyKind k) { return kStudyKinds[static_cast<int>(k)]; }
+std::string study_solver_name(StudySolver s) { return kStudySolvers[static_cast<int>(s)]; }
+std::string study_command(StudySolver s) {
+  return wheel_rig(s) ? "wheel" : s == StudySolver::kRom ? "rom" : "vehicle";
+}
 
-Json default_study_spec(SoilModel solver) {
+Json default_study_spec(StudySolver solver) {
   switch (solver) {
-    case SoilModel::kCrm:
+    case StudySolver::kCrm:
       return default_crm();
-    case SoilModel::kScm:
+    case StudySolver::kScm:
       return default_scm();
-    case SoilModel::kWongReece:
+    case StudySolver::kWongReece:
       return default_wong_reece();
+    case StudySolver::kRom:
+      return default_rom();
+    case StudySolver::kVehicle:
+      return default_vehicle();
   }
   return {};
 }
 
-StudySpec read_study_spec(StudyKind kind, SoilModel solver, const std::string& path) {
+StudySpec read_study_spec(StudyKind kind, StudySolver solver, const std::string& path) {
   StudySpec s;
   s.kind = kind;
   s.solver = solver;
-  s.source = path.empty() ? fmt::format("the default {} spec", soil_model_name(solver)) : path;
+  s.source = path.empty() ? fmt::format("the default {} spec", study_solver_name(solver)) : path;
   s.merged = default_study_spec(solver);
+  const std::set<std::string> keys =
+      wheel_rig(solver) ? std::set<std::string>{"wheel", "soil", "options", "knobs", "reference", "sweeps", "effects"}
+                        : std::set<std::string>{"vehicle", "maneuver", "options", "knobs", "reference", "sweeps",
+                                                "effects"};
   if (!path.empty()) {
     const Json j = Json::parse(read_json_file(path, "study spec").dump());
     if (!j.is_object()) throw InputError(fmt::format("{}: expected a JSON object", path));
-    refuse_unknown(path, "", j, {"wheel", "soil", "options", "knobs", "sweeps", "effects"});
+    refuse_unknown(path, "", j, keys);
     for (const auto& [k, v] : j.items()) {
       if (k == "options") {
         if (!v.is_object()) throw InputError(fmt::format("{}: key 'options': expected an object", path));
         for (const auto& [o, x] : v.items()) s.merged["options"][o] = x;  // over the default's, key by key
+      } else if (k == "wheel" || k == "soil" || k == "vehicle" || k == "maneuver") {
+        s.merged[k] = scene_part(path, k, v);
       } else {
-        s.merged[k] = (k == "wheel" || k == "soil") ? scene_part(path, k, v) : v;
+        s.merged[k] = v;
       }
     }
   }
-  const Json& m = s.merged;
-  check_scene(s, m["wheel"], m["soil"]);
-  check_command_options(s.source, "options.", "wheel", m["options"], kStudySets);
+  check_scene(s, s.merged);
+  const Json& base = s.merged["options"];
+  check_command_options(s.source, "options.", study_command(solver), base, kStudySets);
+  const Json scene = base_scene(s);
   switch (kind) {
     case StudyKind::kAccuracyCost:
-      add_knob_runs(s, m["knobs"], m["options"], m["soil"], m["wheel"]);
+      add_knob_runs(s, s.merged["knobs"], base, scene);
       break;
     case StudyKind::kStability:
-      add_sweep_runs(s, m["sweeps"], m["options"], m["soil"], m["wheel"]);
+      add_sweep_runs(s, s.merged["sweeps"], base, scene);
       break;
     case StudyKind::kEffects:
-      add_effect_runs(s, m["effects"], m["options"], m["soil"], m["wheel"]);
+      add_effect_runs(s, s.merged["effects"], base, scene);
       break;
   }
   return s;
 }
 
+namespace {
+std::string content_hash(const std::string& text) {
+  Fnv1a64 h;
+  h.add(text);
+  return h.hex();
+}
+}  // namespace
+
 std::vector<CampaignJob> study_jobs(const StudySpec& s) {
   std::vector<CampaignJob> jobs;
   const std::string stage = study_kind_name(s.kind);
   for (const StudyRun& r : s.runs) {
-    CampaignJob j{"", stage, r.label, "", "wheel", {"--terrain", soil_model_name(s.solver)}, {}, 0, {}};
+    CampaignJob j{"", stage, r.label, "", study_command(s.solver), {}, {}, 0, {}};
+    if (wheel_rig(s.solver)) j.args = {"--terrain", study_solver_name(s.solver)};
     // Every scene file under its content's hash: runs that share a soil share its file.
-    const std::string soil_text = r.soil.dump(2) + "\n", wheel_text = r.wheel.dump(2) + "\n";
-    const std::string soil_file = "inputs/soil-" + content_hash(soil_text) + ".json";
-    const std::string wheel_file = "inputs/wheel-" + content_hash(wheel_text) + ".json";
-    j.writes = {{soil_file, soil_text}, {wheel_file, wheel_text}};
-    j.args.insert(j.args.end(), {s.solver == SoilModel::kCrm ? "--soil" : "--scm", "@out/" + soil_file, "--wheel",
-                                 "@out/" + wheel_file, "--no-plots"});
-    for (auto& w : command_option_words("wheel", r.options)) j.args.push_back(std::move(w));
+    for (const auto& [option, content] : r.scene.items()) {
+      if (content.is_string()) {  // a preset
+        j.args.insert(j.args.end(), {"--" + option, content.get<std::string>()});
+        continue;
+      }
+      const std::string text = content.dump(2) + "\n";
+      const std::string file = "inputs/" + option + "-" + content_hash(text) + ".json";
+      j.writes.push_back({file, text});
+      j.args.insert(j.args.end(), {"--" + option, "@out/" + file});
+    }
+    j.args.push_back("--no-plots");
+    for (auto& w : command_option_words(j.command, r.options)) j.args.push_back(std::move(w));
     add_job(jobs, j, {});
   }
   return jobs;

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates results/study_<solver>/<study>/ from the default specs: `studies/study/results.sh BIN
-# SOLVER...` (BIN: the terracal program; SOLVER: scm, wong-reece, crm). The studies run in
+# SOLVER...` (BIN: the terracal program; SOLVER: scm, wong-reece, crm, rom, vehicle). The studies run in
 # /tmp/terracal_study/<solver>/<study> (campaigns: run again, they go on where they stopped); the
 # report, its CSV and plot and the spec as run are copied into results/.
 set -uo pipefail
@@ -8,7 +8,7 @@ cd "$(dirname "$0")/../.."
 bin=${1:?terracal program}; shift
 for solver in "$@"; do
   studies="accuracy-cost stability effects"
-  [ "$solver" = wong-reece ] && studies="accuracy-cost stability"  # it has no effects to switch
+  case "$solver" in wong-reece|vehicle) studies="accuracy-cost stability" ;; esac  # no effects to switch
   for study in $studies; do
     work=/tmp/terracal_study/$solver/$study
     dest=results/study_${solver//-/_}/$study
