@@ -25,6 +25,10 @@ using Columns = std::map<std::string, std::vector<double>>;
 
 bool wheel_study(const StudySpec& s) { return study_command(s.solver) == "wheel"; }
 
+// A step sweep's run that ends more than this far (largest RMSE in % of the base's largest value)
+// from the base run has drifted: the base's own step changes its results by far less.
+constexpr double kDriftPercent = 25;
+
 // What runs are compared on: the wheel's steady means over the slips, or a vehicle's channels over time.
 struct Quantity {
   std::string column, name, stem;  // in the run's CSV, in tables, in the study's CSV
@@ -65,6 +69,23 @@ std::vector<RunResult> collect(const std::string& dir, const StudySpec& spec, co
   return out;
 }
 
+// y(t) linearly interpolated at the times `at` (held at its ends); t increasing.
+std::vector<double> resampled(const std::vector<double>& t, const std::vector<double>& y, const std::vector<double>& at) {
+  std::vector<double> out;
+  if (t.empty() || t.size() != y.size()) return std::vector<double>(at.size(), NAN);
+  for (double x : at) {
+    const auto hi = std::upper_bound(t.begin(), t.end(), x);
+    if (hi == t.begin()) out.push_back(y.front());
+    else if (hi == t.end()) out.push_back(y.back());
+    else {
+      const std::size_t k = static_cast<std::size_t>(hi - t.begin());
+      const double w = (x - t[k - 1]) / (t[k] - t[k - 1]);
+      out.push_back(y[k - 1] + w * (y[k] - y[k - 1]));
+    }
+  }
+  return out;
+}
+
 // Each quantity's RMSE of a against b in % of b's largest value, then the largest of those that are
 // finite (NaN when none is).
 std::vector<double> errors(const StudySpec& s, const Columns& a, const Columns& b) {
@@ -72,7 +93,14 @@ std::vector<double> errors(const StudySpec& s, const Columns& a, const Columns& 
   double top = NAN;
   for (const auto& q : quantities(s)) {
     const auto ia = a.find(q.column), ib = b.find(q.column);
-    e.push_back(ia == a.end() || ib == b.end() ? NAN : rmse_percent(ia->second, ib->second));
+    if (ia == a.end() || ib == b.end()) {
+      e.push_back(NAN);
+    } else if (a.count("time") && b.count("time") && a.at("time") != b.at("time")) {
+      // Runs whose steps do not divide the output interval sample other times: compare on b's.
+      e.push_back(rmse_percent(resampled(a.at("time"), ia->second, b.at("time")), ib->second));
+    } else {
+      e.push_back(rmse_percent(ia->second, ib->second));
+    }
     if (std::isfinite(e.back())) top = std::isfinite(top) ? std::max(top, e.back()) : e.back();
   }
   e.push_back(top);
@@ -237,7 +265,13 @@ std::string stability(const std::string& dir, const StudySpec& spec, const std::
   std::map<std::string, std::pair<std::string, std::string>> data;  // group -> (stable, unstable) points
   int unstable = 0;
   for (const auto& r : rs) {
-    const Judged j = judge(spec, r);
+    Judged j = judge(spec, r);
+    // A step is a numerical setting: a run that ends far from the base run has diverged even when
+    // nothing blew up (a ROM that loses its speed at too long a step).
+    if (j.verdict == kStable && r.run->group == "step" && rs.front().row.state == "done") {
+      const double drift = errors(spec, r.out, rs.front().out).back();
+      if (drift > kDriftPercent) j.verdict = fmt::format("drifted ({:.0f} % from the base run)", drift);
+    }
     unstable += j.verdict != kStable;
     md += fmt::format("| {} | {} | {} | {:.3g} | {:.3g} | {:.3g} |\n", r.run->group, r.run->value_text, j.verdict, j.a,
                       j.b, r.wall);

@@ -5,7 +5,9 @@
 //     slips, in % of the reference's largest value) next to its wall time, with the Pareto front;
 //   stability: each run's verdict: stable, failed (the command's exit and message), non-finite,
 //     blew up (sinkage past the wheel's radius, drawbar pull or torque above 5 x the wheel's weight
-//     (x radius)), or unsteady (drawbar pull's standard deviation above the weight);
+//     (x radius)), or unsteady (drawbar pull's standard deviation above the weight); a vehicle's:
+//     non-finite, blew up, rolled over; a run of a `step` sweep that ends more than 25 % from the base
+//     run has drifted;
 //   effects: each variant's wall time against the base's and how far it moves the results.
 #include <map>
 #include <string>
