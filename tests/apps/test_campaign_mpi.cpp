@@ -157,3 +157,28 @@ TEST_CASE("campaign under MPI: a rank killed mid-job ends the run; starting agai
   CHECK(r.out.find(fmt::format("16 done ({} run now)", 16 - done_before)) != std::string::npos);
   for (const auto& e : fs::recursive_directory_iterator(out + "/jobs")) CHECK(!e.path().string().ends_with(".tmp"));
 }
+
+TEST_CASE("study under MPI: 3 ranks give the single process's runs to the byte", "[cli][study][mpi]") {
+  if (!have_mpi()) {
+    report_skip("study over MPI", "this build has no MPI, or mpirun is not on the PATH");
+    return;
+  }
+  const ScratchDir scratch("study_mpi");
+  const std::string dir = scratch.str();
+  REQUIRE(run_cli("study stability --solver rom --out " + dir + "/one", dir).exit_code == 0);
+  const std::string cmd =
+      fmt::format("{} study stability --solver rom --out {}/three > {}/log.txt 2>&1", mpirun(3), dir, dir);
+  const int rc = std::system(cmd.c_str());
+  INFO(read_file(dir + "/log.txt"));
+  REQUIRE(rc == 0);
+  CHECK(read_file(dir + "/log.txt").find("on rank 2") != std::string::npos);  // the workers ran the runs
+  int compared = 0;
+  for (const auto& e : fs::recursive_directory_iterator(fs::path(dir) / "one" / "jobs"))
+    if (e.path().filename() == "trajectory.csv") {
+      const fs::path rel = fs::relative(e.path(), fs::path(dir) / "one");
+      INFO(rel.string());
+      CHECK(read_file(e.path().string()) == read_file((fs::path(dir) / "three" / rel).string()));
+      ++compared;
+    }
+  CHECK(compared == 16);  // the base and the 15 runs of the default sweeps
+}
