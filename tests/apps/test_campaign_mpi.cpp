@@ -182,3 +182,40 @@ TEST_CASE("study under MPI: 3 ranks give the single process's runs to the byte",
     }
   CHECK(compared == 16);  // the base and the 15 runs of the default sweeps
 }
+
+TEST_CASE("campaign under mpirun --enable-recovery: a killed rank's job goes back to the queue, the run finishes",
+          "[cli][campaign][mpi]") {
+  if (!have_mpi()) {
+    report_skip("campaign over MPI with recovery", "this build has no MPI, or mpirun is not on the PATH");
+    return;
+  }
+  const ScratchDir scratch("campaign_mpi_recover");
+  const std::string dir = scratch.str();
+  write_campaign(dir);
+  const std::string out = dir + "/c";
+  REQUIRE(std::system(fmt::format("(mpirun --allow-run-as-root --oversubscribe --enable-recovery -n 3 {} campaign "
+                                  "{}/spec.json --out {} > {}/log.txt 2>&1; echo \"rc=$?\" >> {}/log.txt) &",
+                                  TERRACAL_EXE, dir, out, dir, dir)
+                          .c_str()) == 0);
+  bool killed = false;
+  for (int i = 0; i < 6000 && !killed; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    int done = 0, tmp = 0;
+    if (fs::exists(out + "/jobs"))
+      for (const auto& e : fs::recursive_directory_iterator(out + "/jobs")) {
+        done += e.path().filename() == "log.txt";
+        tmp += e.path().string().ends_with(".tmp");
+      }
+    if (done >= 4 && tmp > 0) killed = kill_rank(1, out);
+  }
+  REQUIRE(killed);
+  for (int i = 0; i < 2400 && read_file(dir + "/log.txt").find("rc=") == std::string::npos; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  const std::string log = read_file(dir + "/log.txt");
+  INFO(log);
+  // The scheduler saw the rank die; rank 2 ran the rest, the dead rank's job included; mpirun ended well.
+  CHECK(log.find("rank 1 (CPU) died") != std::string::npos);
+  CHECK(log.find("16 jobs: 16 done (16 run now)") != std::string::npos);
+  CHECK(log.find("rc=0") != std::string::npos);
+  for (const auto& e : fs::recursive_directory_iterator(out + "/jobs")) CHECK(!e.path().string().ends_with(".tmp"));
+}
