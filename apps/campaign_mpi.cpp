@@ -159,6 +159,9 @@ CampaignOutcome schedule(const CampaignSettings& s, const std::vector<CampaignJo
     if (!arrived) break;  // every worker died
     MPI_Recv(msg, 6, MPI_DOUBLE, status.MPI_SOURCE, kTagToScheduler, MPI_COMM_WORLD, &status);
     const int worker = status.MPI_SOURCE;
+    // A message sent just before its worker died, read after the worker was found dead: its job is back
+    // in the queue already (it runs again), and the worker gets no other.
+    if (!workers[worker].alive) continue;
     workers[worker].pid = static_cast<pid_t>(msg[4]);
     workers[worker].host = msg[5];
     const std::string where = msg[3] >= 0 ? fmt::format("rank {} (GPU {})", worker, static_cast<int>(msg[3]))

@@ -84,6 +84,22 @@ bool kill_rank(int rank, const std::string& out) {
   return false;
 }
 
+// Waits (up to 30 s) until the campaign in `out` has four jobs done and another in flight, then kills
+// its rank `rank`; false when that moment never came.
+bool kill_rank_mid_job(int rank, const std::string& out) {
+  for (int i = 0; i < 6000; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    int done = 0, tmp = 0;
+    if (fs::exists(out + "/jobs"))
+      for (const auto& e : fs::recursive_directory_iterator(out + "/jobs")) {
+        done += e.path().filename() == "log.txt";
+        tmp += e.path().string().ends_with(".tmp");
+      }
+    if (done >= 4 && tmp > 0 && kill_rank(rank, out)) return true;
+  }
+  return false;
+}
+
 int count_of(const std::string& text, const std::string& word) {
   int n = 0;
   for (auto at = text.find(word); at != std::string::npos; at = text.find(word, at + 1)) ++n;
@@ -131,18 +147,7 @@ TEST_CASE("campaign under MPI: a rank killed mid-job ends the run; starting agai
                           .c_str()) == 0);
   // Once four jobs are done and another is in flight, kill worker rank 1. OpenMPI then ends every rank,
   // and each rank's job dies with it.
-  bool killed = false;
-  for (int i = 0; i < 6000 && !killed; ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    int done = 0, tmp = 0;
-    if (fs::exists(out + "/jobs"))
-      for (const auto& e : fs::recursive_directory_iterator(out + "/jobs")) {
-        done += e.path().filename() == "log.txt";
-        tmp += e.path().string().ends_with(".tmp");
-      }
-    if (done >= 4 && tmp > 0) killed = kill_rank(1, out);
-  }
-  REQUIRE(killed);
+  REQUIRE(kill_rank_mid_job(1, out));
   for (int i = 0; i < 400 && std::system(("pgrep -f 'campaign .*" + out + "' > /dev/null").c_str()) == 0; ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(25));  // mpirun ends the other ranks
   const CliResult before = run_cli("campaign --status " + out, dir);
@@ -197,18 +202,7 @@ TEST_CASE("campaign under mpirun --enable-recovery: a killed rank's job goes bac
                                   "{}/spec.json --out {} > {}/log.txt 2>&1; echo \"rc=$?\" >> {}/log.txt) &",
                                   TERRACAL_EXE, dir, out, dir, dir)
                           .c_str()) == 0);
-  bool killed = false;
-  for (int i = 0; i < 6000 && !killed; ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    int done = 0, tmp = 0;
-    if (fs::exists(out + "/jobs"))
-      for (const auto& e : fs::recursive_directory_iterator(out + "/jobs")) {
-        done += e.path().filename() == "log.txt";
-        tmp += e.path().string().ends_with(".tmp");
-      }
-    if (done >= 4 && tmp > 0) killed = kill_rank(1, out);
-  }
-  REQUIRE(killed);
+  REQUIRE(kill_rank_mid_job(1, out));
   for (int i = 0; i < 2400 && read_file(dir + "/log.txt").find("rc=") == std::string::npos; ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   const std::string log = read_file(dir + "/log.txt");
