@@ -69,6 +69,25 @@ void plot_wheel_errors(const std::string& dir, const std::vector<WheelErrors>& e
   draw_plot(dir, "wheel_errors.png", s, {{"e.dat", d}});
 }
 
+void plot_rom_speeds(const std::string& dir, const std::vector<SpeedTrace>& traces) {
+  if (traces.empty()) return;
+  std::vector<std::pair<std::string, std::string>> files;
+  std::string s =
+      "set terminal pngcairo noenhanced size 800,460 font 'Sans,10'\nset output 'rom_speed.png'\nset title "
+      "\"vehicles on each entry's soil (ROM on the wheel table)\"\nset grid\nset key outside right font ',8'\n"
+      "set xlabel 'time [s]'\nset ylabel 'vx [m/s]'\nplot ";
+  for (std::size_t i = 0; i < traces.size(); ++i) {
+    std::string d;
+    for (std::size_t k = 0; k < traces[i].t.size() && k < traces[i].vx.size(); ++k)
+      d += fmt::format("{} {}\n", traces[i].t[k], traces[i].vx[k]);
+    const std::string file = fmt::format("v{}.dat", i);
+    files.push_back({file, d});
+    s += fmt::format("{}'{}' using 1:2 with lines lw 2 lc rgb '{}' title '{}'", i ? ", " : "", file,
+                     kColours[i % std::size(kColours)], traces[i].entry);
+  }
+  draw_plot(dir, "rom_speed.png", s + "\n", files);
+}
+
 void plot_stage_wall(const std::string& dir, const std::vector<std::pair<std::string, double>>& wall) {
   if (wall.empty()) return;
   std::string d;

@@ -23,6 +23,33 @@ namespace {
 
 std::string percent(double v) { return std::isfinite(v) ? fmt::format("{:.1f} %", v) : "–"; }
 
+// The vehicles on each entry's soil: speed at the end, distance, peak yaw rate, and the speed plot.
+std::string rom_section(const std::string& dir, const std::vector<CampaignJob>& jobs,
+                        std::map<std::string, JobRow>& row) {
+  std::string md;
+  std::vector<SpeedTrace> traces;
+  for (const auto& j : jobs) {
+    if (j.stage != "rom" || row[j.key].state != "done") continue;
+    auto c = read_csv_columns((fs::path(dir) / j.dir / "trajectory.csv").string());
+    const auto& t = c["time"];
+    const auto& vx = c["vx"];
+    const auto& x = c["x"];
+    const auto& y = c["y"];
+    if (t.empty() || vx.empty() || x.empty() || y.empty()) continue;
+    double peak = 0;
+    for (double r : c["yaw_rate"]) peak = std::max(peak, std::fabs(r));
+    md += fmt::format("| {} | {:.3g} | {:.3g} | {:.3g} | {:.3g} | {:.3g} |\n", j.label, t.back(), vx.front(), vx.back(),
+                      std::hypot(x.back() - x.front(), y.back() - y.front()), peak);
+    traces.push_back({j.label, t, vx});
+  }
+  if (md.empty()) return "";
+  plot_rom_speeds(dir, traces);
+  return "\n## Vehicles on each entry's soil\n\nThe ROM on the wheel table of the entry's calibrated set "
+         "(`terracal rom --terrain-table`).\n\n| entry | time [s] | vx at start [m/s] | vx at end [m/s] | distance "
+         "[m] | peak yaw rate [rad/s] |\n|---|---|---|---|---|---|\n" +
+         md + "\n![vehicle speed per entry](rom_speed.png)\n";
+}
+
 }  // namespace
 
 void write_campaign_report(const std::string& dir, const CampaignSpec& spec, const std::vector<CampaignJob>& jobs,
@@ -42,9 +69,10 @@ void write_campaign_report(const std::string& dir, const CampaignSpec& spec, con
     }
     table += fmt::format("| {} | {} | {} | {:.3g} | {} |\n", j.stage, j.label, r.state, r.wall_seconds, r.error);
   }
-  std::string md = fmt::format("# Campaign {}\n\n{} soils × {} gravities × {} wheels; stages {}. {} of {} jobs done, "
-                               "{} failed.\n\n",
+  std::string md = fmt::format("# Campaign {}\n\n{} soils × {} gravities × {} wheels{}; stages {}. {} of {} jobs "
+                               "done, {} failed.\n\n",
                                spec.name, spec.soils.size(), spec.gravities.size(), spec.wheels.size(),
+                               spec.vehicles.empty() ? "" : fmt::format(" × {} vehicles", spec.vehicles.size()),
                                fmt::join(spec.stages, ", "), done, jobs.size(), failed);
   md += "## Wall time per stage\n\n| stage | jobs done | total [s] | per job [s] |\n|---|---|---|---|\n";
   std::vector<std::pair<std::string, double>> stage_wall;
@@ -118,6 +146,7 @@ void write_campaign_report(const std::string& dir, const CampaignSpec& spec, con
     md += "\n## Single wheel: the calibrated set against the reference soil\n\nRMSE over the slips, in % of the "
           "reference's largest value.\n\n| entry | drawbar pull | torque | sinkage |\n|---|---|---|---|\n" +
           wheel + "\n![wheel errors per entry](wheel_errors.png)\n";
+  md += rom_section(dir, jobs, row);
   md += "\n## Jobs\n\n" + table;
   write_text_atomically(dir + "/report.md", md);
 }

@@ -25,9 +25,11 @@ using Json = nlohmann::ordered_json;
 
 // The command each stage runs and the options the campaign sets itself (not allowed in "options").
 const std::map<std::string, std::string> kStageCommand = {
-    {"bevameter", "bevameter"}, {"calibrate", "calibrate"}, {"wheel", "wheel"}, {"wheel_reference", "wheel"}};
-const std::set<std::string> kCampaignSets = {"out", "scm", "soil", "solver", "terrain", "plate", "shear",
-                                             "wheel", "gravity", "test", "help"};
+    {"bevameter", "bevameter"}, {"calibrate", "calibrate"},     {"wheel", "wheel"},
+    {"wheel_reference", "wheel"}, {"wheel_table", "wheel-table"}, {"rom", "rom"}};
+const std::set<std::string> kCampaignSets = {"out",   "scm",     "soil", "solver",  "terrain",  "plate",
+                                             "shear", "wheel",   "gravity", "test", "help",     "vehicle",
+                                             "maneuver", "inputs", "terrain-table", "batch"};
 
 std::string name_of(const std::string& spec, const std::string& key, const Json& o, std::set<std::string>& seen) {
   if (!o.contains("name") || !o["name"].is_string() || o["name"].get<std::string>().empty())
@@ -50,12 +52,44 @@ void check_stage_options(const std::string& spec, const std::string& stage, cons
   check_command_options(spec, fmt::format("options.{}.", stage), kStageCommand.at(stage), opts, {});
 }
 
+// The vehicles: unique names, a preset or file, a manoeuvre file and one of the spec's wheels.
+std::vector<CampaignVehicle> read_vehicles(const std::string& path, const Json& list,
+                                           const std::vector<CampaignWheel>& wheels) {
+  if (!list.is_array() || list.empty())
+    throw InputError(fmt::format("{}: key 'vehicles': expected a non-empty list", path));
+  std::vector<CampaignVehicle> out;
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const Json& o = list[i];
+    const std::string key = fmt::format("vehicles[{}]", i);
+    if (!o.is_object()) throw InputError(fmt::format("{}: key '{}': expected an object", path, key));
+    refuse_unknown(path, key + ".", o, {"name", "vehicle", "maneuver", "wheel"});
+    CampaignVehicle v{name_of(path, key, o, names), "", "", ""};
+    const Json vehicle = o.value("vehicle", Json());
+    if (!vehicle.is_string() || vehicle.get<std::string>().empty())
+      throw InputError(fmt::format("{}: key '{}.vehicle': expected a preset (hmmwv, sedan) or a vehicle file", path, key));
+    v.vehicle = fs::path(vehicle.get<std::string>()).extension() == ".json" ? spec_file(path, key + ".vehicle", vehicle)
+                                                                           : vehicle.get<std::string>();
+    v.maneuver = spec_file(path, key + ".maneuver", o.value("maneuver", Json()));
+    const Json wheel = o.value("wheel", Json());
+    if (!wheel.is_string() || std::none_of(wheels.begin(), wheels.end(), [&](const CampaignWheel& w) {
+          return w.name == wheel.get<std::string>();
+        }))
+      throw InputError(fmt::format("{}: key '{}.wheel': {} is none of the spec's wheels (the tire whose table the "
+                                   "vehicle drives on)",
+                                   path, key, excerpt(wheel.dump())));
+    v.wheel = wheel.get<std::string>();
+    out.push_back(v);
+  }
+  return out;
+}
+
 }  // namespace
 
 CampaignSpec read_campaign_spec(const std::string& path) {
   const Json j = Json::parse(read_json_file(path, "campaign spec").dump());
   if (!j.is_object()) throw InputError(fmt::format("{}: expected a JSON object", path));
-  refuse_unknown(path, "", j, {"name", "soils", "gravities", "wheels", "stages", "options"});
+  refuse_unknown(path, "", j, {"name", "soils", "gravities", "wheels", "vehicles", "stages", "options"});
   CampaignSpec s;
   s.name = j.value("name", fs::path(path).stem().string());
   for (const char* k : {"soils", "gravities", "wheels"})
@@ -93,6 +127,7 @@ CampaignSpec read_campaign_spec(const std::string& path) {
     const std::string n = name_of(path, key, o, names);
     s.wheels.push_back({n, spec_file(path, key + ".wheel", o.value("wheel", Json()))});
   }
+  if (j.contains("vehicles")) s.vehicles = read_vehicles(path, j["vehicles"], s.wheels);
   std::set<std::string> asked;
   if (j.contains("stages")) {
     if (!j["stages"].is_array() || j["stages"].empty())
@@ -103,13 +138,25 @@ CampaignSpec read_campaign_spec(const std::string& path) {
                                      fmt::join(kCampaignStages, ", ")));
       asked.insert(st.get<std::string>());
     }
-  } else {
+  } else {  // the soil loop, and the vehicles' stages when the spec has vehicles
     asked.insert(kCampaignStages.begin(), kCampaignStages.end());
+    if (s.vehicles.empty()) asked.erase("wheel_table"), asked.erase("rom");
   }
   if (asked.count("calibrate") && !asked.count("bevameter"))
     throw InputError(fmt::format("{}: key 'stages': 'calibrate' needs 'bevameter'", path));
   if (asked.count("wheel") && !asked.count("calibrate"))
     throw InputError(fmt::format("{}: key 'stages': 'wheel' (the calibrated set) needs 'calibrate'", path));
+  if (asked.count("wheel_table") && !asked.count("calibrate"))
+    throw InputError(fmt::format("{}: key 'stages': 'wheel_table' (of the calibrated set) needs 'calibrate'", path));
+  if (asked.count("rom") && !asked.count("wheel_table"))
+    throw InputError(fmt::format("{}: key 'stages': 'rom' (a vehicle on the wheel table) needs 'wheel_table'", path));
+  if (asked.count("rom"))
+    for (std::size_t i = 0; i < s.gravities.size(); ++i)
+      if (s.gravities[i] < 0.1)
+        throw InputError(fmt::format("{}: key 'gravities[{}]': {} m/s^2 is below the ROMs' 0.1 m/s^2 (stage 'rom')",
+                                     path, i, s.gravities[i]));
+  if (asked.count("rom") && s.vehicles.empty())
+    throw InputError(fmt::format("{}: key 'stages': 'rom' needs the list 'vehicles'", path));
   for (const auto& st : kCampaignStages)
     if (asked.count(st)) s.stages.push_back(st);
   for (const auto& soil : s.soils)
@@ -119,8 +166,8 @@ CampaignSpec read_campaign_spec(const std::string& path) {
     if (!j["options"].is_object()) throw InputError(fmt::format("{}: key 'options': expected an object", path));
     for (const auto& [st, o] : j["options"].items()) {
       if (!kStageCommand.count(st))
-        throw InputError(fmt::format("{}: key 'options.{}': expected bevameter, calibrate, wheel (both wheel stages) "
-                                     "or wheel_reference (the reference's wheel only)",
+        throw InputError(fmt::format("{}: key 'options.{}': expected bevameter, calibrate, wheel (both wheel stages), "
+                                     "wheel_reference (the reference's wheel only), wheel_table or rom",
                                      path, st));
       if (!o.is_object()) throw InputError(fmt::format("{}: key 'options.{}': expected an object", path, st));
       check_stage_options(path, st, o);
@@ -133,6 +180,11 @@ CampaignSpec read_campaign_spec(const std::string& path) {
                                        "serves both wheel stages",
                                        path, k));
   }
+  if (std::count(s.stages.begin(), s.stages.end(), "wheel_table") &&
+      !(s.options.count("wheel_table") && s.options["wheel_table"].contains("loads")))
+    throw InputError(fmt::format("{}: key 'options.wheel_table.loads': the wheel_table stage needs the wheel loads "
+                                 "[N] to tabulate (those the vehicles put on their wheels)",
+                                 path));
   return s;
 }
 
@@ -205,7 +257,7 @@ std::vector<CampaignJob> campaign_jobs(const CampaignSpec& s) {
       }
       const std::string crm_path = "@out/" + crm_soil.first;
       if (has("bevameter")) {
-        CampaignJob j{"", "bevameter", base, "", "bevameter", {}, {}, group};
+        CampaignJob j{"", "bevameter", base, "", "bevameter", {}, {}, group, {}, {}};
         j.args = soil.scm.empty() ? std::vector<std::string>{"--solver", "crm", "--soil", crm_path}
                                   : std::vector<std::string>{"--solver", "scm", "--scm", soil.scm, "--gravity", "0", "0", gz};
         if (!soil.crm.empty()) j.writes = {crm_soil};
@@ -214,22 +266,23 @@ std::vector<CampaignJob> campaign_jobs(const CampaignSpec& s) {
         bev = push(j, {soil.scm.empty() ? soil.crm : soil.scm});  // the copy's bytes follow from the file and g
       }
       if (has("calibrate")) {
-        CampaignJob j{"", "calibrate", base, "", "calibrate", {"--plate", "@0/plate.csv"}, {bev}, group};
+        CampaignJob j{"", "calibrate", base, "", "calibrate", {"--plate", "@0/plate.csv"}, {bev}, group, {}, {}};
         if (shear) j.args.insert(j.args.end(), {"--shear", "@0/shear.csv"});
         add_options(s, "calibrate", j.args);
         cal = push(j, {});
       }
+      std::map<std::string, int> table;  // wheel name -> its wheel_table job
       for (const auto& w : s.wheels) {
         const std::string label = base + "_" + w.name;
         if (has("wheel")) {
           CampaignJob j{"", "wheel", label, "", "wheel",
                         {"--terrain", "scm", "--scm", "@0/scm_params.json", "--wheel", w.file, "--gravity", "0", "0", gz},
-                        {cal}, group};
+                        {cal}, group, {}, {}};
           add_options(s, "wheel", j.args);
           push(j, {w.file});
         }
         if (has("wheel_reference")) {
-          CampaignJob j{"", "wheel_reference", label, "", "wheel", {}, {}, group};
+          CampaignJob j{"", "wheel_reference", label, "", "wheel", {}, {}, group, {}, {}};
           j.args = soil.scm.empty()
                        ? std::vector<std::string>{"--terrain", "crm", "--soil", crm_path, "--wheel", w.file}
                        : std::vector<std::string>{"--terrain", "scm", "--scm", soil.scm, "--wheel", w.file, "--gravity", "0", "0", gz};
@@ -238,6 +291,29 @@ std::vector<CampaignJob> campaign_jobs(const CampaignSpec& s) {
           add_options(s, "wheel_reference", j.args);
           push(j, {w.file, soil.scm.empty() ? soil.crm : soil.scm});
         }
+        const bool driven = s.vehicles.empty() || std::any_of(s.vehicles.begin(), s.vehicles.end(),
+                                                                [&](const CampaignVehicle& v) { return v.wheel == w.name; });
+        if (has("wheel_table") && driven) {
+          CampaignJob j{"", "wheel_table", label, "", "wheel-table",
+                        {"--scm", "@0/scm_params.json", "--wheel", w.file, "--gravity", "0", "0", gz},
+                        {cal}, group, {}, {}};
+          j.out_file = "table.h5";
+          add_options(s, "wheel_table", j.args);
+          table[w.name] = push(j, {w.file});
+        }
+      }
+      for (const auto& v : s.vehicles) {
+        if (!has("rom")) break;
+        CampaignJob j{"", "rom", base + "_" + v.name, "", "rom",
+                      {"--vehicle", v.vehicle, "--maneuver", v.maneuver, "--terrain-table", "@0/table.h5",
+                       "--gravity", fmt::format("{}", g)},
+                      {table.at(v.wheel)}, group, {}, {}};
+        if (!(s.options.count("rom") && s.options.at("rom").contains("model")))
+          j.args.insert(j.args.end(), {"--model", "18dof"});
+        add_options(s, "rom", j.args);
+        std::vector<std::string> files{v.maneuver};
+        if (fs::path(v.vehicle).extension() == ".json") files.push_back(v.vehicle);
+        push(j, files);
       }
       ++group;
     }
@@ -248,7 +324,7 @@ std::vector<std::string> job_command_line(const CampaignJob& job, const std::str
   std::vector<std::string> a{job.command};
   for (const auto& x : job.args) a.push_back(x);
   a.push_back("--out");
-  a.push_back(out_dir);
+  a.push_back(job.out_file.empty() ? out_dir : out_dir + "/" + job.out_file);
   return a;
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // A campaign's spec (docs/campaign.md): soils x gravities x wheels, each taken through the stages
 // bevameter -> calibrate -> wheel (the calibrated set) beside wheel_reference (the soil itself), and
-// the jobs it makes. Every job is one terracal command run in its own process; its key hashes the
+// on to the vehicles: wheel_table (the calibrated set tabulated for a wheel) -> rom (a reduced-order
+// vehicle driving on that table); and the jobs it makes. Every job is one terracal command run in its own process; its key hashes the
 // command, the contents of its input files and the keys of the jobs it reads, so a finished job is
 // never recomputed and a changed input reruns only what depends on it.
 #include <map>
@@ -12,7 +13,8 @@
 
 namespace terracal::app {
 
-inline const std::vector<std::string> kCampaignStages = {"bevameter", "calibrate", "wheel", "wheel_reference"};
+inline const std::vector<std::string> kCampaignStages = {"bevameter", "calibrate",   "wheel",
+                                                          "wheel_reference", "wheel_table", "rom"};
 
 struct CampaignSoil {
   std::string name;
@@ -24,11 +26,21 @@ struct CampaignWheel {
   std::string name, file;
 };
 
+// A vehicle driven on each entry's soil: a ROM (options.rom.model, default 18dof) on the wheel table
+// of one of the campaign's wheels (its tire).
+struct CampaignVehicle {
+  std::string name;
+  std::string vehicle;   // preset or file
+  std::string maneuver;  // file
+  std::string wheel;     // the name of the wheel whose table it drives on
+};
+
 struct CampaignSpec {
   std::string name;
   std::vector<CampaignSoil> soils;
   std::vector<double> gravities;  // [m/s^2], magnitude, pointing down
   std::vector<CampaignWheel> wheels;
+  std::vector<CampaignVehicle> vehicles;
   std::vector<std::string> stages;                        // in kCampaignStages order
   std::map<std::string, nlohmann::ordered_json> options;  // per stage: option name (no dashes) -> value
 };
@@ -45,6 +57,8 @@ struct CampaignJob {
   // Files the job needs written into the campaign folder first (path relative to it, content): a CRM
   // material with the entry's gravity put in.
   std::vector<std::pair<std::string, std::string>> writes;
+  // A command whose --out names a file (wheel-table): that file's name in the job's folder.
+  std::string out_file;
 };
 
 // Reads and validates SPEC.json: unknown keys, empty grids, missing files, duplicate names, a stage

@@ -22,6 +22,7 @@ Command command_of(CLI::App& app, const std::string& command) {
   if (command == "calibrate") return add_calibrate(app);
   if (command == "wheel") return add_wheel(app);
   if (command == "rom") return add_rom(app);
+  if (command == "wheel-table") return add_wheel_table(app);
   if (command == "vehicle") return add_vehicle(app);
   throw std::logic_error("command_of: no job runs 'terracal " + command + "'");
 }
