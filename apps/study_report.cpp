@@ -45,6 +45,7 @@ struct RunResult {
   JobRow row;
   Columns out;       // wheel.csv or trajectory.csv, empty unless done
   double wall = NAN;  // run.json's wall_seconds: the run's own time, without start-up
+  double constraint_violation = NAN;  // the full vehicle's run.json: its largest constraint error
 };
 
 std::vector<RunResult> collect(const std::string& dir, const StudySpec& spec, const std::vector<CampaignJob>& jobs,
@@ -60,7 +61,9 @@ std::vector<RunResult> collect(const std::string& dir, const StudySpec& spec, co
       r.out = read_csv_columns((folder / csv).string());
       try {
         std::ifstream in(folder / "run.json");
-        r.wall = nlohmann::json::parse(in).value("wall_seconds", NAN);
+        const nlohmann::json j = nlohmann::json::parse(in);
+        r.wall = j.value("wall_seconds", NAN);
+        r.constraint_violation = j.value("max_constraint_violation", NAN);
       } catch (const std::exception&) {
       }
     }
@@ -239,7 +242,7 @@ struct Judged {
 
 Judged judge(const StudySpec& spec, const RunResult& r) {
   if (!wheel_study(spec))
-    return {vehicle_verdict(r.row.state, r.row.error, r.out), peak_of(r.out, "yaw_rate"),
+    return {vehicle_verdict(r.row.state, r.row.error, r.out, r.constraint_violation), peak_of(r.out, "yaw_rate"),
             r.out.count("vx") && !r.out.at("vx").empty() ? r.out.at("vx").back() : NAN};
   const auto& w = r.run->scene["wheel"];
   // The weight under this run's gravity: the sweep's own, or the base's (Earth unless set).
@@ -378,7 +381,8 @@ std::string stability_verdict(const std::string& state, const std::string& error
 }
 
 std::string vehicle_verdict(const std::string& state, const std::string& error,
-                            const std::map<std::string, std::vector<double>>& trajectory) {
+                            const std::map<std::string, std::vector<double>>& trajectory,
+                            double max_constraint_violation) {
   if (state == "failed") return "failed (" + error + ")";
   if (state != "done") return state;
   for (const char* q : {"vx", "yaw_rate", "ay", "roll"}) {
@@ -395,6 +399,8 @@ std::string vehicle_verdict(const std::string& state, const std::string& error,
     if (std::fabs(x) > 100) return "blew up (|ay| above 100 m/s^2)";
   for (double x : trajectory.at("roll"))
     if (std::fabs(x) > 1) return "rolled over (|roll| above 1 rad)";
+  if (max_constraint_violation > kConstraintDrift)
+    return fmt::format("constraint drift (joints off by up to {:.3g})", max_constraint_violation);
   return kStable;
 }
 

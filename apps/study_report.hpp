@@ -9,6 +9,7 @@
 //     non-finite, blew up, rolled over; a run of a `step` sweep that ends more than 25 % from the base
 //     run has drifted;
 //   effects: each variant's wall time against the base's and how far it moves the results.
+#include <cmath>
 #include <map>
 #include <string>
 #include <vector>
@@ -28,9 +29,13 @@ std::string stability_verdict(const std::string& state, const std::string& error
                               const std::map<std::string, std::vector<double>>& wheel, double radius, double weight);
 
 // The same for a vehicle's trajectory.csv: non-finite, blew up (|vx| above 100 m/s, |yaw rate| above
-// 10 rad/s, |ay| above 100 m/s^2) or rolled over (|roll| above 1 rad).
+// 10 rad/s, |ay| above 100 m/s^2), rolled over (|roll| above 1 rad), or (the full vehicle, whose
+// run.json gives its largest constraint error; NAN for a ROM) constraint drift above
+// kConstraintDrift.
+inline constexpr double kConstraintDrift = 1e-3;  // m or rad; steady runs: 1e-7 to 1e-5
 std::string vehicle_verdict(const std::string& state, const std::string& error,
-                            const std::map<std::string, std::vector<double>>& trajectory);
+                            const std::map<std::string, std::vector<double>>& trajectory,
+                            double max_constraint_violation = NAN);
 
 void write_study_report(const std::string& dir, const StudySpec& spec, const std::vector<CampaignJob>& jobs,
                         const CampaignDb& db);

@@ -47,7 +47,8 @@ Json default_scm() {
     "options": {{"slips": [0.1, 0.3, 0.5, 0.7], "duration": 2}},
     "knobs": {{"grid": [0.04, 0.02, 0.01, 0.005, 0.0025], "step": [0.004, 0.002, 0.001, 0.0005, 0.00025]}},
     "sweeps": {{"step": [0.0005, 0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1], "gravity": {}, "stiffness": {},
-                "slip": [-0.5, -0.2, 0, 0.2, 0.5, 0.8, 0.95], "standstill": true}},
+                "slip": [-0.5, -0.2, 0, 0.2, 0.5, 0.8, 0.95], "standstill": true,
+                "drop-height": [0.05, 0.2, 0.5, 1]}},
     "effects": {{"none": {{"scm-effects": "none"}},
                  "elastic_unloading": {{"scm-effects": ["damping", "elastic_unloading"]}},
                  "bulldozing": {{"scm-effects": ["damping", "bulldozing"]}},
@@ -69,9 +70,9 @@ Json default_crm() {
   return Json::parse(fmt::format(R"({{
     "wheel": {}, "soil": {},
     "options": {{"slips": [0.2, 0.5], "duration": 1, "spacing": 0.04, "cache": ""}},
-    "knobs": {{"spacing": [0.06, 0.05, 0.04, 0.03], "h-over-d0": [1.2, 1.3, 1.4, 1.5]}},
+    "knobs": {{"spacing": [0.06, 0.05, 0.04, 0.03], "h-over-d0": [1.2, 1.3, 1.4, 1.5], "step": [4e-4, 2e-4, 1e-4]}},
     "sweeps": {{"step": [2e-5, 5e-5, 1e-4, 2e-4, 5e-4, 1e-3], "gravity": {}, "stiffness": {},
-                "slip": [-0.5, 0, 0.5, 0.95], "standstill": true}},
+                "slip": [-0.5, 0, 0.5, 0.95], "standstill": true, "drop-height": [0.05, 0.1, 0.2]}},
     "effects": {{"no_hourglass_damping": {{"hourglass-damping": 0}},
                  "no_hourglass_stiffness": {{"hourglass-stiffness": 0}},
                  "neither": {{"hourglass-damping": 0, "hourglass-stiffness": 0}}}}}})",
@@ -87,7 +88,9 @@ Json default_rom() {
     "vehicle": "hmmwv", "maneuver": {},
     "options": {{"model": "24dof"}},
     "reference": {{"integrator": "cvodes", "rtol": 1e-10}},
-    "knobs": {{"step": [0.004, 0.002, 0.001, 0.0005, 0.00025], "model": ["11dof", "18dof"]}},
+    "knobs": {{"step": [0.004, 0.002, 0.001, 0.0005, 0.00025], "model": ["11dof", "18dof"],
+               "integrator": [{{"integrator": "cvodes", "rtol": 1e-4}}, {{"integrator": "cvodes", "rtol": 1e-6}},
+                              {{"integrator": "cvodes", "rtol": 1e-8}}]}},
     "sweeps": {{"step": [0.001, 0.002, 0.004, 0.006, 0.008, 0.01], "gravity": [9.81, 3.71, 1.62, 0.1],
                 "friction": [0.05, 0.2, 0.5, 1, 2]}},
     "effects": {{"no_tire_relaxation": {{"vehicle-effects": ["torque_converter", "roll", "rolling_resistance"]}},
@@ -113,15 +116,20 @@ const std::set<std::string> kStudySets = {"terrain", "wheel",   "scm",  "soil", 
 
 bool wheel_rig(StudySolver s) { return s == StudySolver::kCrm || s == StudySolver::kScm || s == StudySolver::kWongReece; }
 
-// A knob's values: numbers, or names (a model, an integrator), non-empty, none twice.
+// A knob's values: numbers, names (a model, an integrator) or objects of options set together (an
+// integrator with its tolerance), non-empty, none twice.
 std::vector<Json> values(const std::string& spec, const std::string& key, const Json& v) {
   if (!v.is_array() || v.empty())
     throw InputError(fmt::format("{}: key '{}': expected a non-empty list, found {}", spec, key, excerpt(v.dump())));
+  auto plain = [](const Json& x) { return x.is_string() || (x.is_number() && std::isfinite(x.get<double>())); };
   std::vector<Json> out;
   for (std::size_t i = 0; i < v.size(); ++i) {
-    if (!(v[i].is_string() || (v[i].is_number() && std::isfinite(v[i].get<double>()))))
-      throw InputError(fmt::format("{}: key '{}[{}]': expected a number or a name, found {}", spec, key, i,
-                                   excerpt(v[i].dump())));
+    const bool object = v[i].is_object() && !v[i].empty() &&
+                        std::all_of(v[i].begin(), v[i].end(), [&](const Json& x) { return plain(x); });
+    if (!(plain(v[i]) || object))
+      throw InputError(fmt::format("{}: key '{}[{}]': expected a number, a name or an object of options (each a "
+                                   "number or a name), found {}",
+                                   spec, key, i, excerpt(v[i].dump())));
     if (std::count(out.begin(), out.end(), v[i]))
       throw InputError(fmt::format("{}: key '{}[{}]': {} appears twice", spec, key, i, v[i].dump()));
     out.push_back(v[i]);
@@ -130,6 +138,26 @@ std::vector<Json> values(const std::string& spec, const std::string& key, const 
 }
 
 std::string text_of(const Json& v) { return v.is_string() ? v.get<std::string>() : fmt::format("{}", v.get<double>()); }
+
+// A knob's value as the report shows it, joined by SEP: an object's values, less those the knob's
+// name already says ("24dof_cvodes" with {"model": "24dof", "integrator": "cvodes", "rtol": 1e-6}: 1e-06).
+std::string value_text(const std::string& knob, const Json& v, const char* sep = " ") {
+  if (!v.is_object()) return text_of(v);
+  std::string t;
+  const std::string words = "_" + knob + "_";
+  for (const auto& [k, x] : v.items())
+    if (words.find("_" + text_of(x) + "_") == std::string::npos) t += (t.empty() ? "" : sep) + text_of(x);
+  return t.empty() ? "as named" : t;
+}
+
+// Sets knob K's value in the options O: the option K, or each option of an object.
+void apply_knob(Json& o, const std::string& k, const Json& v) {
+  if (!v.is_object()) {
+    o[k] = v;
+    return;
+  }
+  for (const auto& [ok, ov] : v.items()) o[ok] = ov;
+}
 
 // A part of the scene at KEY: inline (an object), a file relative to the spec, or (vehicle) a preset.
 Json scene_part(const std::string& spec, const std::string& key, const Json& v) {
@@ -181,8 +209,9 @@ Json base_scene(const StudySpec& s) {
 }
 
 StudyRun run_of(const std::string& group, const std::string& label, const Json& value, const Json& options,
-                const Json& scene, bool reference = false) {
-  StudyRun r{group, label, value.is_number() ? value.get<double>() : 0.0, value.is_null() ? "" : text_of(value),
+                const Json& scene, bool reference = false, const std::string& shown = "") {
+  StudyRun r{group,   label, value.is_number() ? value.get<double>() : 0.0,
+             !shown.empty() ? shown : value.is_null() ? "" : text_of(value),
              options, scene, reference};
   return r;
 }
@@ -200,17 +229,22 @@ void add_knob_runs(StudySpec& s, const Json& knobs, const Json& base, const Json
     check_command_options(s.source, "reference.", command, s.merged["reference"], kStudySets);
     for (const auto& [k, v] : s.merged["reference"].items()) finest[k] = v;
   } else {
-    for (const auto& [k, v] : knobs.items()) finest[k] = values(s.source, "knobs." + k, v).back();
+    for (const auto& [k, v] : knobs.items()) apply_knob(finest, k, values(s.source, "knobs." + k, v).back());
   }
   check_command_options(s.source, given ? "reference." : "knobs.", command, finest, kStudySets);
   s.runs.push_back(run_of("reference", "reference", Json(), finest, scene, true));
   for (const auto& [k, v] : knobs.items()) {
+    if (k.empty() || k.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_-") != std::string::npos)
+      throw InputError(fmt::format("{}: key 'knobs.{}': a knob's name may hold a-z, 0-9, '_' and '-' only (it names "
+                                   "folders)",
+                                   s.source, k));
     const std::vector<Json> list = values(s.source, "knobs." + k, v);
     for (std::size_t i = 0; i + (given ? 0 : 1) < list.size(); ++i) {  // without `reference`, the last is it
-      Json o = given ? base : finest;
-      o[k] = list[i];
-      check_command_options(s.source, fmt::format("knobs.{}[{}]: ", k, i), command, Json{{k, list[i]}}, kStudySets);
-      s.runs.push_back(run_of(k, k + "_" + text_of(list[i]), list[i], o, scene));
+      Json o = given ? base : finest, own;
+      apply_knob(o, k, list[i]);
+      apply_knob(own, k, list[i]);
+      check_command_options(s.source, fmt::format("knobs.{}[{}]: ", k, i), command, own, kStudySets);
+      s.runs.push_back(run_of(k, k + "_" + value_text(k, list[i], "_"), list[i], o, scene, false, value_text(k, list[i])));
     }
   }
 }
@@ -242,6 +276,10 @@ void sweep_value(const StudySpec& s, const std::string& k, double x, Json& o, Js
     o["slips"] = Json::array({x});
     check_command_options(s.source, key + ": ", command, Json{{"slips", o["slips"]}}, kStudySets);
   } else {
+    if (k == "drop-height" && s.solver == StudySolver::kWongReece)
+      throw InputError(fmt::format("{}: key '{}': Wong-Reece is a steady model (no fall, no impact); drops run on "
+                                   "scm and crm",
+                                   s.source, key));
     o[k] = x;
     check_command_options(s.source, key + ": ", command, Json{{k, x}}, kStudySets);
   }
@@ -403,7 +441,7 @@ std::vector<CampaignJob> study_jobs(const StudySpec& s) {
   std::vector<CampaignJob> jobs;
   const std::string stage = study_kind_name(s.kind);
   for (const StudyRun& r : s.runs) {
-    CampaignJob j{"", stage, r.label, "", study_command(s.solver), {}, {}, 0, {}};
+    CampaignJob j{"", stage, r.label, "", study_command(s.solver), {}, {}, 0, {}, {}};
     if (wheel_rig(s.solver)) j.args = {"--terrain", study_solver_name(s.solver)};
     // Every scene file under its content's hash: runs that share a soil share its file.
     for (const auto& [option, content] : r.scene.items()) {

@@ -21,7 +21,7 @@ namespace {
 struct WheelArgs {
   SoilModel terrain = SoilModel::kCrm;
   std::string wheel, slips = kDefaultSlips, out;
-  double duration = 4.0, average_from = 0.5;
+  double duration = 4.0, average_from = 0.5, drop_height = 0;
   bool plots = true, with_wong_reece = false;
   TerrainOptions options;
 };
@@ -44,6 +44,10 @@ Command add_wheel(CLI::App& app) {
   sub->add_option("--average-from", a->average_from, "steady means over t >= this fraction of the run")
       ->check(in_range(rigs::WheelRanges::kAverageFrom))
       ->capture_default_str();
+  sub->add_option("--drop-height", a->drop_height,
+                  "CRM, SCM: the wheel starts this far above the surface and falls onto it (a drop test)")
+      ->check(in_range(rigs::WheelRanges::kDropHeight))
+      ->capture_default_str();
   sub->add_flag("!--no-plots", a->plots, "skip the PNG plot");
   sub->add_flag("--with-wong-reece", a->with_wong_reece,
                 "with --terrain scm: also the Wong-Reece model of the same set (wheel_wong_reece.csv, comparison.md)");
@@ -59,11 +63,16 @@ Command add_wheel(CLI::App& app) {
     if (tolerance->count() > 0 && a->terrain != SoilModel::kWongReece && !a->with_wong_reece)
       throw InputError(fmt::format("--wong-reece-tolerance {}: only with --terrain wong-reece or --with-wong-reece",
                                    a->options.wong_reece_tolerance));
+    if (a->drop_height > 0 && a->terrain == SoilModel::kWongReece)
+      throw InputError(fmt::format("--drop-height {} m: Wong-Reece is a steady model (no fall, no impact); drop tests "
+                                   "run on --terrain scm or crm",
+                                   a->drop_height));
     const rigs::WheelSpec wheel = rigs::read_wheel_json(a->wheel);
     const auto slips = parse_list(a->slips, "--slips");
     rigs::WheelRun run;
     run.duration = a->duration;
     run.average_from = a->average_from;
+    run.drop_height = a->drop_height;
     const SoilChoice soil = choose_soil(a->terrain, a->options);
     check_wheel_sweep(a->terrain, soil, a->options, wheel, slips, run);
     warn_about_sweep(wheel, slips);

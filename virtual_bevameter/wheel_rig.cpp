@@ -59,6 +59,7 @@ void validate(const WheelRun& r) {
   check_range("wheel run samples", r.samples, 2, 1e7, "");
   check_range("wheel run load_ramp", r.load_ramp, 0, r.duration, "s (at most the duration)");
   terracal::check_range(WheelRanges::kSlipAngle, r.slip_angle, "wheel run slip_angle");
+  terracal::check_range(WheelRanges::kDropHeight, r.drop_height, "wheel run drop_height");
 }
 
 namespace {
@@ -89,7 +90,7 @@ WheelResult run_wheel(const TerrainSite& site, const WheelSpec& wheel, double sl
   w.shape = wheel_shape(wheel.radius, wheel.width, wheel.grouser_count, wheel.grouser_height, wheel.grouser_thickness);
   const Vec3<double> c = site.centre();
   // Start so that the run is centred on the site: the wheel ends as far past the centre as it began before it.
-  w.position = {c.x - 0.5 * travel, c.y - 0.5 * cross_travel, site.surface_height() + outer};
+  w.position = {c.x - 0.5 * travel, c.y - 0.5 * cross_travel, site.surface_height() + outer + run.drop_height};
   w.mass = wheel.mass;
   w.load_ramp = run.load_ramp;
   const double iy = 0.5 * wheel.mass * wheel.radius * wheel.radius;

@@ -37,6 +37,8 @@ struct WheelRanges {
   static constexpr Range kAverageFrom{0, 0.95};  // a fraction of the duration
   // The carriage's velocity across the wheel's heading over that along it is tan(slip angle).
   static constexpr Range kSlipAngle{0, 0.7853981633974483, false, false, "rad"};
+  // A drop's height: from resting on the surface to a fall of 2 m (6 m/s at the bottom on Earth).
+  static constexpr Range kDropHeight{0, 2, false, false, "m"};
 };
 
 struct WheelRun {
@@ -50,6 +52,10 @@ struct WheelRun {
   // is its speed along the heading: the wheel frame's slips are then s and -(1 - s) tan(slip_angle),
   // as a vehicle's tire sees them (core/vehicle/tmeasy.hpp).
   double slip_angle = 0;
+  // [m] The wheel starts this far above the undisturbed surface (its lowest point), with no vertical
+  // speed, and falls onto the soil under gravity while it turns and travels: a drop test (stability
+  // of the contact under impact). 0: it starts resting on the surface.
+  double drop_height = 0;
 };
 void validate(const WheelRun& r);
 

@@ -120,8 +120,8 @@ void check_body_resolution(const CrmBody& body, const std::string& key, double d
   }
 }
 
-// Checks the bodies; returns the largest speed the CFL limit must cover: bodies, and free fall
-// over the wall height.
+// Checks the bodies; returns the largest speed the CFL limit must cover: bodies, free fall over the
+// wall height, and the fall of a body that starts above the walls (a drop test) onto the floor.
 double check_bodies(const CrmScene& sc, const SceneFail& fail) {
   const CrmBin& bin = sc.bin;
   double speed = std::sqrt(2 * norm(sc.soil.gravity) * bin.size.z);
@@ -135,6 +135,8 @@ double check_bodies(const CrmScene& sc, const SceneFail& fail) {
       fail(key + ".position", fmt::format("[{}, {}, {}] is outside the bin [0, {}] x [0, {}] x [0, inf)", p.x, p.y, p.z,
                                           bin.size.x, bin.size.y));
     speed = std::max(speed, body.motion.max_speed(body.bounding_radius()));
+    const double lowest = p.z - body.bounding_radius();
+    if (lowest > bin.size.z) speed = std::max(speed, std::sqrt(2 * norm(sc.soil.gravity) * lowest));
   }
   return speed;
 }

@@ -163,7 +163,9 @@ TEST_CASE("study: the ROM's half-implicit step converges at first order; a too l
           "[cli][study]") {
   const ScratchDir scratch("study_rom");
   const std::string dir = scratch.str();
-  write(dir + "/spec.json", R"({"knobs": {"step": [0.002, 0.001]}, "sweeps": {"step": [0.001, 0.006, 0.01]}})");
+  write(dir + "/spec.json", R"({"knobs": {"step": [0.002, 0.001],
+    "24dof_cvodes": [{"integrator": "cvodes", "rtol": 1e-4}, {"integrator": "cvodes", "rtol": 1e-6}]},
+    "sweeps": {"step": [0.001, 0.006, 0.01]}})");
   CliResult r = run_cli("study accuracy-cost --solver rom --spec " + dir + "/spec.json --out " + dir + "/a", dir);
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
@@ -173,6 +175,11 @@ TEST_CASE("study: the ROM's half-implicit step converges at first order; a too l
   CHECK(ratio > 1.8);
   CHECK(ratio < 2.2);
   CHECK(num(rows.at("step_0.001"), "yaw_rate_err_pct") < 0.1);
+  // A knob whose values set several options (the integrator with its tolerance): CVODES's error falls
+  // with its tolerance (0.041 % at 1e-4, 0.0066 % at 1e-6 in results/rom_accuracy_cost).
+  const auto& loose = rows.at("24dof_cvodes_0.0001");
+  CHECK(loose.at("value") == "0.0001");
+  CHECK(num(rows.at("24dof_cvodes_1e-06"), "yaw_rate_err_pct") < num(loose, "yaw_rate_err_pct") / 3);
   // The 24-DOF model at a 10 ms step diverges into a rollover the rom command itself does not stop:
   // the study's verdict is what catches it.
   r = run_cli("study stability --solver rom --spec " + dir + "/spec.json --out " + dir + "/s", dir);
@@ -199,4 +206,7 @@ TEST_CASE("study stability: the verdicts on a vehicle's trajectory", "[study]") 
   bad = ok;
   bad["yaw_rate"] = {0, 40};
   CHECK_THAT(vehicle_verdict("done", "", bad), Catch::Contains("blew up"));
+  // The full vehicle's joints: a run that holds them to 1e-6 is sound, one that lets them drift is not.
+  CHECK(vehicle_verdict("done", "", ok, 2e-6) == "stable");
+  CHECK_THAT(vehicle_verdict("done", "", ok, 0.02), Catch::Contains("constraint drift"));
 }

@@ -142,6 +142,38 @@ TEST_CASE("SCM wheel at standstill under load: sinkage converges, no drift, the 
   CHECK(last.x == first_half_end.x);
 }
 
+// A drop test: the wheel falls 0.2 m onto the soil while it turns and travels. Until it touches, it
+// falls freely (z = H - g t^2 / 2); the impact drives it deeper than it rolls; it then rolls onto
+// undisturbed soil, so its steady state is the one of a wheel set down on the surface (the crater
+// stays behind).
+TEST_CASE("SCM wheel dropped from 0.2 m: free fall, an impact deeper than the rut, then the same steady roll",
+          "[lowfi][scm][wheel][hard]") {
+  const lowfi::ScmSoil soil = test::scm_dry_sand();
+  const auto site = test::scm_site(soil, 0.01, 1e-3, {"damping"});
+  const auto w = design_wheel();
+  auto dropped = run_of(4.0);
+  dropped.drop_height = 0.2;
+  const auto r = rigs::run_wheel(site, w, 0.2, dropped);
+  const auto rest = rigs::run_wheel(site, w, 0.2, run_of(4.0));
+  check_sane(r, w);
+  const double g = 9.81, touch = std::sqrt(2 * dropped.drop_height / g);
+  double deepest = 0;
+  for (const auto& x : r.series) {
+    if (x.t < 0.9 * touch) {
+      INFO("t " << x.t << " s: height above the surface " << -x.sinkage);
+      CHECK(std::abs(-x.sinkage - (dropped.drop_height - 0.5 * g * x.t * x.t)) < 3e-3);
+      CHECK(x.vertical == 0.0);
+    }
+    deepest = std::max(deepest, x.sinkage);
+  }
+  INFO("steady sinkage dropped " << r.sinkage << " m, set down " << rest.sinkage << " m; deepest " << deepest
+                                 << " m; DBP " << r.dbp << " / " << rest.dbp << " N");
+  CHECK(deepest > 1.2 * rest.sinkage);
+  CHECK(rigs::unsteady_reason(r).empty());
+  CHECK(rel(r.sinkage, rest.sinkage) < 0.03);
+  CHECK(std::abs(r.dbp - rest.dbp) < 0.03 * r.load);
+}
+
 // Stiff soil, high slip, no damping: the 108 kg wheel sinks 3 mm into LETE sand, a third of it
 // elastic, and its slow carriage keeps it over the same nodes for long. When a left node kept its
 // deepest sinkage, the soil pushed a rising wheel up and was then not there to stop it coming down:

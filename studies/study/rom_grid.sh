@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Every ROM model x integrator setting against the 24-DOF model at CVODES rtol 1e-10, on the ISO
+# 3888-1 double lane change and the ISO 7401 step steer: `terracal study accuracy-cost --solver rom`
+# with the specs rom_grid_dlc.json and rom_grid_step_steer.json. Usage: studies/study/rom_grid.sh BIN
+# [OUT=results/rom_accuracy_cost]. The studies run in /tmp/terracal_study/rom_grid/<manoeuvre>; the
+# report, its CSV and plot and the spec as run are copied into OUT/<manoeuvre>/.
+set -uo pipefail
+cd "$(dirname "$0")/../.."
+bin=${1:?terracal program}
+out=${2:-results/rom_accuracy_cost}
+for m in dlc step_steer; do
+  work=/tmp/terracal_study/rom_grid/$m
+  # One run at a time: the wall times are the comparison.
+  OMP_NUM_THREADS=1 "$bin" study accuracy-cost --solver rom --spec studies/study/rom_grid_$m.json --out "$work" \
+    > "/tmp/terracal_study_rom_grid_$m.log" 2>&1
+  echo "rom grid $m: exit $?"
+  mkdir -p "$out/$m"
+  cp "$work"/report.md "$work"/spec.json "$work"/*.csv "$out/$m"/
+  cp "$work"/*.png "$out/$m"/ 2>/dev/null || echo "  (no plot: gnuplot missing)"
+done
