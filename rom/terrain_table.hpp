@@ -80,16 +80,16 @@ struct SoilTireForces {
 
 // The forces on one wheel under load fz at TMeasy's slips (sx, sy) (core/vehicle/tmeasy.hpp: the
 // rig's s is sx, and tan(alpha) = -sy / (1 - sx)). Conventions, in docs/rom.md:
-// - a table without negative slips mirrors its positive ones for braking: the slip's thrust changes
-//   sign (H(-s) - H(0) = -(H(s) - H(0))), the resistance stays;
+// - a table without negative slips mirrors its positive ones for braking: the gross thrust turns
+//   round with the shear, H(-s) = -H(s) from the table's first slip s1 above zero on, linear from
+//   H(0) at zero to -H(s1) in between; the resistance stays (docs/decisions.md, "ROM soft-soil forces");
 // - the lateral force mirrors with the angle and is linear in it up to the first angle above zero;
 // - loads, slips and angles beyond the table take its nearest entry, per unit load.
 TERRACAL_HD_INLINE SoilTireForces soil_tire_forces(const TerrainTableView& tb, double fz, double sx, double sy) {
   SoilTireForces f;
   if (!(fz > 0)) return f;
-  const bool mirror = tb.slip[0] >= 0;
+  const bool mirror = tb.slip[0] >= 0;     // then slip[0] == 0 < slip[1] (the table's checks)
   const double u = mirror ? fabs(sx) : sx;  // the slip looked up
-  const double sign = mirror && sx < 0 ? -1.0 : 1.0;
   const double tan_a = -sy / fmax(1.0 - sx, 1e-3);
   const double alpha = atan(fabs(tan_a));
   const bool small_angle = tb.has_lateral() && alpha < tb.angle[1];
@@ -98,7 +98,13 @@ TERRACAL_HD_INLINE SoilTireForces soil_tire_forces(const TerrainTableView& tb, d
   const TableSpot s = table_spot(tb.slip, tb.n_slip, u);
   const double h0 = table_value(tb, tb.thrust, l, table_spot(tb.slip, tb.n_slip, 0.0), g);
   f.thrust0 = fz * h0;
-  f.slip_thrust = fz * sign * (table_value(tb, tb.thrust, l, s, g) - h0);
+  double h = table_value(tb, tb.thrust, l, s, g);
+  if (mirror && sx < 0) {  // braking: the shear, and with it the thrust, reversed
+    const double s1 = tb.slip[1];
+    const double h1 = table_value(tb, tb.thrust, l, table_spot(tb.slip, tb.n_slip, s1), g);
+    h = u >= s1 ? -h : h0 - (h0 + h1) * u / s1;
+  }
+  f.slip_thrust = fz * (h - h0);
   f.resistance = fz * fmax(table_value(tb, tb.resistance, l, s, g), 0.0);
   if (tb.has_lateral()) {
     const TableSpot g1 = small_angle ? table_spot(tb.angle, tb.n_angle, tb.angle[1]) : g;

@@ -50,8 +50,11 @@ TEST_CASE("terrain table: lookups equal the formulas at the grid, interpolate be
   CHECK(thrust(4000, 0.3) == Approx(2000 * (f.thrust(0.2) + f.thrust(0.4))).epsilon(1e-12));
   CHECK(thrust(3000, 0.2) == Approx(3000 * f.thrust(0.2)).epsilon(1e-12));
   CHECK(soil_tire_forces(v, 4000, 0.0, 0.0).slip_thrust == 0.0);
-  // Without negative slips the table mirrors: the slip's thrust changes sign, the resistance stays.
-  CHECK(soil_tire_forces(v, 4000, -0.2, 0).slip_thrust == Approx(-4000 * (f.thrust(0.2) - f.h0)).epsilon(1e-12));
+  // Without negative slips the table mirrors: from the first slip above zero (0.02) on, a braked
+  // wheel's thrust is the driven one's turned round; below it, linear from H(0); the resistance stays.
+  CHECK(thrust(4000, -0.2) == Approx(-4000 * f.thrust(0.2)).epsilon(1e-12));
+  CHECK(thrust(4000, -0.02) == Approx(-4000 * f.thrust(0.02)).epsilon(1e-12));
+  CHECK(thrust(4000, -0.01) == Approx(4000 * (f.h0 - 0.5 * (f.h0 + f.thrust(0.02)))).epsilon(1e-12));
   CHECK(soil_tire_forces(v, 4000, -0.2, 0).resistance == Approx(4000 * f.resistance(0.2)).epsilon(1e-12));
   // Beyond the ends: the nearest entry per unit load (loads 500 and 20,000; slip 0.95).
   CHECK(thrust(500, 0.2) == Approx(500 * f.thrust(0.2)).epsilon(1e-12));
@@ -166,6 +169,48 @@ TEST_CASE("deformable_terrain: needs a table; on a soft table the HMMWV accelera
       REQUIRE(std::isfinite(s.x));
       CHECK(std::fabs(s.x) < 1e-6);
     }
+  }
+}
+
+// A soil whose shear saturates early (small Janosi k): the rut's thrust H(0) is larger than what slip
+// adds to it. Mirroring only the slip's part for braking left the thrust positive at every braking
+// slip, so a coasting wheel had no rolling equilibrium: it spun backwards and the HMMWV, throttle on,
+// crawled to a stop before it could accelerate (a campaign's calibrated dry sand did this).
+TEST_CASE("deformable_terrain: on a table whose thrust saturates early, a coasting wheel keeps rolling forward",
+          "[rom][terrain]") {
+  TableFormula f;
+  f.h0 = 0.31, f.mu = 0.2, f.s0 = 0.02;  // H/Fz from 0.31 at zero slip to 0.51
+  const TerrainTable t = formula_table(f);
+  const TerrainTableView tv = t.view();
+  // Braked hard, the wheel is pushed back by the turned-round shear; the thrust changes sign once.
+  const SoilTireForces locked = soil_tire_forces(tv, 4000, -0.8, 0);
+  CHECK(locked.thrust0 + locked.slip_thrust == Approx(-4000 * f.thrust(0.8)).epsilon(1e-12));
+  int sign_changes = 0;
+  double last = f.h0;
+  for (double sx = -0.001; sx > -0.1; sx -= 0.001) {
+    const SoilTireForces r = soil_tire_forces(tv, 4000, sx, 0);
+    const double h = r.thrust0 + r.slip_thrust;
+    sign_changes += (h < 0) != (last < 0);
+    last = h;
+  }
+  CHECK(sign_changes == 1);
+  RomVehicle v = hmmwv();
+  v.effects |= kEffectDeformableTerrain;
+  v.terrain = tv;
+  // Coasting at 2 m/s for half a second, then throttle 0.5.
+  const DriverSeries drive = DriverSeries::from_rows({0.0, 0.5, 0.51, 8.0}, {0, 0, 0, 0}, {0, 0, 0.5, 0.5}, {0, 0, 0, 0});
+  for (RomModel m : {RomModel::k11Dof, RomModel::k18Dof}) {
+    INFO(model_name(m));
+    const RomRunResult r = run(v, drive, options(m, 8, 2));
+    double v1 = NAN, v3 = NAN;
+    for (const auto& s : r.samples) {
+      REQUIRE(std::isfinite(s.vx));
+      if (std::fabs(s.time - 1) < 1e-9) v1 = s.vx;
+      if (std::fabs(s.time - 3) < 1e-9) v3 = s.vx;
+    }
+    INFO("vx at 1 s " << v1 << ", 3 s " << v3 << ", 8 s " << r.samples.back().vx << " m/s");
+    CHECK(v3 > v1);
+    CHECK(r.samples.back().vx > 2);
   }
 }
 
