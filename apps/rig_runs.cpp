@@ -93,9 +93,12 @@ std::unique_ptr<TerrainSite> site_for(const SoilChoice& soil, const TerrainOptio
 }
 
 std::vector<rigs::WheelResult> wong_reece_sweep(const SoilChoice& soil, const rigs::WheelSpec& wheel,
-                                                const std::vector<double>& slips, double tolerance) {
+                                                const std::vector<double>& slips, const TerrainOptions& o) {
   lowfi::WongReeceOptions options;
-  options.rel_tol = tolerance;
+  options.rel_tol = o.wong_reece_tolerance;
+  options.slip_sinkage =
+      o.wong_reece_slip_sinkage ||
+      std::count(o.scm_effects.begin(), o.scm_effects.end(), std::string(lowfi::ScmSlipSinkage::kName)) > 0;
   if (!soil.scm) throw InputError("--terrain wong-reece needs an SCM parameter set (--scm SCM.json)");
   std::vector<rigs::WheelResult> out;
   for (double s : slips) {
@@ -291,7 +294,7 @@ std::vector<rigs::WheelResult> run_wheel_sweep(SoilModel solver, const SoilChoic
   for (double s : slips) check_range(rigs::WheelRanges::kSlip, s, "--slips");
   if (solver == SoilModel::kWongReece) {
     if (site_description) *site_description = "Wong-Reece (analytic, GSL quadrature)";
-    return wong_reece_sweep(soil, wheel, slips, o.wong_reece_tolerance);
+    return wong_reece_sweep(soil, wheel, slips, o);
   }
   SoilChoice s = soil;
   s.solver = solver;

@@ -38,6 +38,9 @@ struct TerrainOptions {
   std::vector<std::string> scm_effects = {lowfi::ScmDamping::kName};
   std::vector<double> gravity;  // SCM: override Earth gravity
   double wong_reece_tolerance = lowfi::WongReeceOptions{}.rel_tol;  // the entry-angle root and quadratures
+  // Wong-Reece with slip sinkage (--wong-reece-slip-sinkage; with --with-wong-reece it follows the SCM
+  // effect slip_sinkage).
+  bool wong_reece_slip_sinkage = false;
   double bin_scale = 1;         // CRM bins (and their depth) scaled by this: the bin-size check
   double bin_depth_scale = 0;   // the bed's depth scaled by this instead (0 = bin_scale): which dimension matters
   // The options of one solver given on the command line, so that a run on the other solver refuses

@@ -56,6 +56,9 @@ Command add_wheel(CLI::App& app) {
                                     "Wong-Reece: relative tolerance of the entry-angle root and of each quadrature")
                         ->check(in_range(Range{1e-14, 1e-3}))
                         ->capture_default_str();
+  sub->add_flag("--wong-reece-slip-sinkage", a->options.wong_reece_slip_sinkage,
+                "with --terrain wong-reece: Lyasko's slip sinkage (S from the set's 'Slip sinkage' block, 1.5 if "
+                "absent); --with-wong-reece follows --scm-effects slip_sinkage");
   return [a, tolerance] {
     const OutDir out = prepare_out_dir("--out", a->out);
     if (a->with_wong_reece && a->terrain != SoilModel::kScm)
@@ -67,6 +70,8 @@ Command add_wheel(CLI::App& app) {
       throw InputError(fmt::format("--drop-height {} m: Wong-Reece is a steady model (no fall, no impact); drop tests "
                                    "run on --terrain scm or crm",
                                    a->drop_height));
+    if (a->options.wong_reece_slip_sinkage && a->terrain != SoilModel::kWongReece)
+      throw InputError("--wong-reece-slip-sinkage: only with --terrain wong-reece (SCM: --scm-effects slip_sinkage)");
     const rigs::WheelSpec wheel = rigs::read_wheel_json(a->wheel);
     const auto slips = parse_list(a->slips, "--slips");
     rigs::WheelRun run;

@@ -62,7 +62,9 @@ ScmSoil read_scm_json(const std::string& path) {
   const nlohmann::json j = read_json_file(path, "SCM parameter file");
   if (!j.contains("Soil parameters"))
     throw InputError(fmt::format("{}: missing the object 'Soil parameters' (Chrono SCM JSON)", path));
-  return parse_scm_soil(j["Soil parameters"], path);
+  ScmSoil soil = parse_scm_soil(j["Soil parameters"], path);
+  if (j.contains("Slip sinkage")) soil.slip_sinkage = parse_slip_sinkage(j["Slip sinkage"], path);
+  return soil;
 }
 
 double scm_memory_bytes(double grid, double footprint_area, double swept_area) {

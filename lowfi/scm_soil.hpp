@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/range.hpp"
+#include "lowfi/slip_sinkage.hpp"
 
 namespace terracal::lowfi {
 
@@ -17,6 +18,9 @@ struct ScmSoil {
   double Kc = 0, Kphi = 2e6, n = 1.1;
   double cohesion = 0, friction_deg = 30, janosi_k = 0.01;
   double elastic_stiffness = 4e7, damping = 3e4;
+  // The block "Slip sinkage" beside "Soil parameters" (Lyasko's S): read by the SCM effect
+  // slip_sinkage and by Wong-Reece's slip sinkage when they are on; Lyasko's relation if absent.
+  SlipSinkage slip_sinkage;
 
   // Bekker-Wong pressure at sinkage z for a contact of width b: (Kc/b + Kphi) z^n.
   double bekker_pressure(double z, double b) const { return z > 0 ? (Kc / b + Kphi) * std::pow(z, n) : 0.0; }
@@ -42,7 +46,8 @@ const std::array<ScmSoilKey, 8>& scm_soil_keys();
 // parameter outside its range: for sets built in code (a calibration's result) as the reader checks files.
 void validate(const ScmSoil& soil, const std::string& source);
 
-// Reads the "Soil parameters" block of a Chrono SCM JSON file (or of terracal's scm_params.json).
+// Reads the "Soil parameters" block of a Chrono SCM JSON file (or of terracal's scm_params.json),
+// and the optional block "Slip sinkage" beside it (lowfi/slip_sinkage.hpp).
 // Bekker Kphi, Kc, n, the Mohr limits and the Janosi coefficient are required; Elastic stiffness and
 // Damping default to Chrono's (4e7, 3e4). Throws InputError naming the file, the key, the value and
 // the allowed range.

@@ -309,20 +309,24 @@ void ScmTerrain::press(const Hit& hit, ScmNode& n, double b, double& displaced) 
   const double ke = soil_.elastic_stiffness;
   const double undisturbed = settings_.surface_height + n.level_offset;
   const double z = undisturbed - hit.level;  // total sinkage
-  // Elastic trial, capped at the Bekker yield; yielding moves the plastic sinkage down.
+  const BodyState& s = states_[hit.body];
+  const Vec3<double> p{hit.i * g, hit.j * g, hit.level};
+  const Vec3<double> r = p - s.position;
+  const Vec3<double> v = s.velocity + cross(s.omega, r);
+  const Vec3<double> nrm = hit.normal;
+  // Elastic trial, capped at the Bekker yield (or an effect's); yielding moves the plastic sinkage down.
   double sigma = ke * (z - n.plastic_sinkage);
-  const double yield = soil_.bekker_pressure(z, b);
+  double yield = soil_.bekker_pressure(z, b);
+  settings_.effects.named.for_each_named([&](auto tag) {
+    using E = typename decltype(tag)::type;
+    E::yield(settings_.effects.of<E>(), soil_, v, s.velocity, nrm, z, b, yield);
+  });
   if (sigma > yield) {
     const double zp = z - yield / ke;
     displaced += (zp - n.plastic_sinkage) * area;
     n.plastic_sinkage = zp;
     sigma = yield;
   }
-  const BodyState& s = states_[hit.body];
-  const Vec3<double> p{hit.i * g, hit.j * g, hit.level};
-  const Vec3<double> r = p - s.position;
-  const Vec3<double> v = s.velocity + cross(s.omega, r);
-  const Vec3<double> nrm = hit.normal;
   settings_.effects.named.for_each_named([&](auto tag) {
     using E = typename decltype(tag)::type;
     E::pressure(settings_.effects.of<E>(), soil_, v, nrm, sigma);

@@ -245,10 +245,12 @@ WongReeceResult wong_reece(const ScmSoil& soil, const WongReeceWheel& wheel, dou
   Workspace w(gsl_integration_workspace_alloc(kWorkspaceIntervals));
 
   const double r = wheel.radius, b = wheel.width;
+  // Slip sinkage: sigma = k (z / f)^n, f the stretch that gives Lyasko's ratio at this slip.
+  const double stretch = options.slip_sinkage ? pressure_sinkage_stretch(soil.slip_sinkage, slip, soil.n) : 1.0;
   Contact c{r,
             b,
             slip,
-            (soil.Kc / b + soil.Kphi) * std::pow(r, soil.n),
+            (soil.Kc / b + soil.Kphi) * std::pow(r / stretch, soil.n),
             soil.n,
             soil.cohesion,
             std::tan(soil.friction_deg * M_PI / 180.0),

@@ -40,6 +40,9 @@ struct WongReeceOptions {
   ShearDisplacement shear_displacement = ShearDisplacement::rim;
   // Relative tolerance of the entry-angle root and of each quadrature, in [1e-14, 1e-3].
   double rel_tol = 1e-9;
+  // Slip sinkage (lowfi/slip_sinkage.hpp, the soil's S): the pressure-sinkage law stretched by the
+  // wheel's slip, as the SCM effect slip_sinkage does per node. Off: the model as published.
+  bool slip_sinkage = false;
 };
 
 struct WongReeceResult {

@@ -26,6 +26,12 @@ struct ScmContactView {
 };
 
 struct ScmEffect {
+  // The yield pressure p of a pressed node at sinkage z under a contact of width b (the core's:
+  // Bekker's law), from the body's velocity v at the node, its translational velocity u and the
+  // outward normal n of its underside.
+  template <class S>
+  static void yield(const S&, const ScmSoil&, const Vec3<double>& /*v*/, const Vec3<double>& /*u*/,
+                    const Vec3<double>& /*n*/, double /*z*/, double /*b*/, double& /*p*/) {}
   // A term of the normal pressure sigma at a pressed node, from the body's velocity v there and the
   // outward normal n of its underside.
   template <class S>

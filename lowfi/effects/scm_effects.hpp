@@ -5,10 +5,11 @@
 #include "lowfi/effects/scm_bulldozing.hpp"
 #include "lowfi/effects/scm_damping.hpp"
 #include "lowfi/effects/scm_elastic_unloading.hpp"
+#include "lowfi/effects/scm_slip_sinkage.hpp"
 
 namespace terracal::lowfi {
 
-using ScmEffects = EffectList<ScmElasticUnloading, ScmDamping, ScmBulldozing>;
+using ScmEffects = EffectList<ScmElasticUnloading, ScmDamping, ScmBulldozing, ScmSlipSinkage>;
 using ScmEffectChoice = EffectChoice<ScmEffects>;
 
 }  // namespace terracal::lowfi
