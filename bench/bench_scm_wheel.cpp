@@ -1,6 +1,7 @@
 // The SCM single wheel (radius 0.47 m, width 0.25 m, 108 kg, 1 rad/s, slip 0.3) on
 // dry sand at a 0.01 m grid and a 1e-3 s step, on one core: simulated seconds per wall second
-// (target >= 20), the median of repeated runs (where the time goes: perf, see RESULTS.md).
+// (target >= 20), the median of repeated runs (where the time goes: perf, see RESULTS.md); and the
+// steady SCM wheel's wall per slip at the same settings.
 // Usage: bench_scm_wheel [repeats=5] [grid=0.01] [duration=5]
 #include <algorithm>
 #include <chrono>
@@ -11,6 +12,7 @@
 #include <omp.h>
 
 #include "bench/bench_stats.hpp"
+#include "lowfi/scm_steady_wheel.hpp"
 #include "lowfi/scm_terrain.hpp"
 #include "virtual_bevameter/wheel_rig.hpp"
 
@@ -47,5 +49,15 @@ int main(int argc, char** argv) {
       grid, s.time_step, duration, median(rates), *std::min_element(rates.begin(), rates.end()),
       *std::max_element(rates.begin(), rates.end()), repeats);
   std::printf("steady: DBP %.1f N, torque %.1f N m, sinkage %.4f m\n", last.dbp, last.torque, last.sinkage);
+  // The steady SCM wheel (the calibrator's forward model) at the same slip: wall per evaluation.
+  const int evaluations = 200;
+  lowfi::WongReeceResult q;
+  const auto t0 = Clock::now();
+  for (int k = 0; k < evaluations; ++k)
+    q = lowfi::scm_steady_wheel(sand, {wheel.radius, wheel.width}, last.load, 0.3 + 1e-9 * k);
+  const double each = std::chrono::duration<double>(Clock::now() - t0).count() / evaluations;
+  std::printf("steady SCM wheel (quadrature): %.3g s per slip (%d evaluations); DBP %.1f N, torque %.1f N m, "
+              "sinkage %.4f m\n",
+              each, evaluations, q.dbp, q.torque, q.sinkage);
   return 0;
 }

@@ -42,13 +42,27 @@ struct Contact {
   double k_bekker;  // (Kc/b + Kphi) r^n: sigma = k_bekker (cos θ_eq − cos θ1)^n
   double n, cohesion, tan_phi, janosi_k;
   ShearDisplacement displacement = ShearDisplacement::rim;
-  double theta1 = 0, theta_m = 0;
+  double ke = 0, damping_v = 0;  // rear rebound stiffness [Pa/m]; damping x carriage speed [Pa]
+  // With a patch width: k_bekker = (Kc / b + Kphi) rn, b from the patch (set_entry_angle).
+  bool patch_width = false;
+  double kc = 0, kphi = 0, rn = 0;
+  // Per-angle slip sinkage (WongReeceOptions::local_slip_sinkage): nullptr when off.
+  const SlipSinkage* local_stretch = nullptr;
+  double theta1 = 0, theta_m = 0, theta_r = 0;  // theta_r: where the rear lets go (0: no rear)
 
   // Bekker stress at the equivalent front angle te; the difference of cosines can round slightly
   // below zero at te = θ1, and pow of a negative base is NaN.
   double bekker(double te) const { return k_bekker * std::pow(std::max(0.0, std::cos(te) - std::cos(theta1)), n); }
   double sigma(double theta) const {
-    if (theta >= theta_m) return bekker(theta);
+    if (theta < 0) return std::max(0.0, bekker(0.0) - ke * r * (1.0 - std::cos(theta)));  // rear rebound
+    if (theta >= theta_m) {
+      double front = bekker(theta);
+      if (local_stretch && theta > 0)  // k (z / f(theta))^n over k (z / f(0))^n: rn holds f(0)
+        front *= std::pow(pressure_sinkage_stretch(*local_stretch, slip, n) /
+                              pressure_sinkage_stretch(*local_stretch, 1 - (1 - slip) * std::cos(theta), n),
+                          n);
+      return front + damping_v * std::sin(theta);
+    }
     // Rear: [0, θm] is mapped linearly onto [θ1, θm] of the front law, so that σ(0) = 0 and σ is
     // continuous at θm. Only reached when θm > 0 (the rear piece is empty otherwise).
     return bekker(theta1 - theta / theta_m * (theta1 - theta_m));
@@ -68,7 +82,7 @@ struct Contact {
   }
   // An upper bound of |σ| + |τ|, the scale for absolute quadrature tolerances (DBP can be ~0).
   double stress_scale() const {
-    const double sigma_max = bekker(0.0);
+    const double sigma_max = bekker(0.0) + damping_v;
     return sigma_max + cohesion + sigma_max * tan_phi;
   }
 };
@@ -101,16 +115,16 @@ struct WorkspaceFree {
 using Workspace = std::unique_ptr<gsl_integration_workspace, WorkspaceFree>;
 constexpr size_t kWorkspaceIntervals = 1000;
 
-// ∫_0^θ1 of the quantity's integrand (without the r b or r² b factor), the rear [0, θm] and the front
-// [θm, θ1] separately because σ has a kink at θm. QAGS copes with the algebraic end-point behaviour
-// of (cos θ − cos θ1)^n for n < 1.
+// ∫_-θr^θ1 of the quantity's integrand (without the r b or r² b factor), the elastic rear [-θr, 0],
+// the rear [0, θm] and the front [θm, θ1] separately because σ has kinks at 0 and θm. QAGS copes with
+// the algebraic end-point behaviour of (cos θ − cos θ1)^n for n < 1.
 double integrate(const Contact& c, Quantity q, double rel_tol, gsl_integration_workspace* w) {
   Integrand in{&c, q};
   gsl_function f{&integrand, &in};
   const double eps_abs = 0.1 * rel_tol * c.stress_scale() * c.theta1;
   double total = 0.0;
-  const double bounds[3] = {0.0, c.theta_m, c.theta1};
-  for (int piece = 0; piece < 2; ++piece) {
+  const double bounds[4] = {-c.theta_r, 0.0, c.theta_m, c.theta1};
+  for (int piece = 0; piece < 3; ++piece) {
     const double a = bounds[piece], b = bounds[piece + 1];
     if (!(b > a)) continue;  // θm = 0 or θm = θ1: one piece is empty
     double result = 0, abserr = 0;
@@ -130,6 +144,22 @@ void set_entry_angle(Contact& c, double theta1, const WongReeceOptions& o) {
   c.theta1 = theta1;
   // c1 + c2 s can leave [0, 1] (e.g. c1 + c2 s < 0 in deep skid): then the whole contact is front or rear.
   c.theta_m = std::clamp((o.c1 + o.c2 * c.slip) * theta1, 0.0, theta1);
+  // The elastic rear lets go where the rebound has taken back the bottom's pressure; with a patch
+  // width, that pressure and the patch's length depend on each other: a few fixed-point rounds (the
+  // rear is a small part of the patch).
+  c.theta_r = 0;
+  for (int round = 0; round < (c.patch_width ? 4 : 1); ++round) {
+    if (c.patch_width) {
+      const double length = c.r * (std::sin(theta1) + std::sin(c.theta_r));
+      const double bw = length * c.b / (length + c.b);  // 2 A / P of a length x width rectangle
+      c.k_bekker = (c.kc / bw + c.kphi) * c.rn;
+      if (!(c.k_bekker > 0))
+        throw RunError(fmt::format("wong_reece: Kc/b + Kphi = {:.4g} Pa/m^n <= 0 for the contact patch's Bekker "
+                                   "width b = {:.4g} m: the set's pressure-sinkage law has no strength there",
+                                   c.kc / bw + c.kphi, bw));
+    }
+    c.theta_r = c.ke > 0 ? std::acos(std::max(-1.0, 1.0 - c.bekker(0.0) / (c.ke * c.r))) : 0.0;
+  }
 }
 
 void require(bool ok, const char* name, double value, const char* range) {
@@ -154,6 +184,11 @@ void validate(const ScmSoil& soil, const WongReeceWheel& wheel, double load, dou
   require(std::isfinite(o.c1), "option c1", o.c1, "a finite value");
   require(std::isfinite(o.c2), "option c2", o.c2, "a finite value");
   require(o.rel_tol >= 1e-14 && o.rel_tol <= 1e-3, "option rel_tol", o.rel_tol, "in [1e-14, 1e-3]");
+  require(o.rear_stiffness >= 0 && std::isfinite(o.rear_stiffness), "option rear_stiffness", o.rear_stiffness,
+          "a finite value >= 0 Pa/m");
+  require(o.damping >= 0 && std::isfinite(o.damping), "option damping", o.damping, "a finite value >= 0 Pa s/m");
+  require(o.carriage_speed >= 0 && std::isfinite(o.carriage_speed), "option carriage_speed", o.carriage_speed,
+          "a finite value >= 0 m/s");
 }
 
 // What Brent's callback needs: the equilibrium residual, and a place for an exception that must not
@@ -255,7 +290,14 @@ WongReeceResult wong_reece(const ScmSoil& soil, const WongReeceWheel& wheel, dou
             soil.cohesion,
             std::tan(soil.friction_deg * M_PI / 180.0),
             soil.janosi_k,
-            options.shear_displacement};
+            options.shear_displacement,
+            options.rear_stiffness,
+            options.damping * options.carriage_speed,
+            options.patch_width,
+            soil.Kc,
+            soil.Kphi,
+            std::pow(r / stretch, soil.n),
+            options.slip_sinkage && options.local_slip_sinkage ? &soil.slip_sinkage : nullptr};
   Equilibrium eq{&c, &options, w.get(), load, nullptr};
   const double theta1 = solve_entry_angle(eq, options.rel_tol);
 

@@ -43,6 +43,19 @@ struct WongReeceOptions {
   // Slip sinkage (lowfi/slip_sinkage.hpp, the soil's S): the pressure-sinkage law stretched by the
   // wheel's slip, as the SCM effect slip_sinkage does per node. Off: the model as published.
   bool slip_sinkage = false;
+  // SCM's own assumptions beyond the peak at the bottom (c1 = c2 = 0) and the ground's shear
+  // displacement, for the steady SCM wheel (lowfi/scm_steady_wheel.hpp):
+  // - rear_stiffness [Pa/m] > 0: behind the bottom the soil rebounds elastically against the rising
+  //   rim, sigma = sigma(0) - Ke r (1 - cos theta), until it lets go (0: the rear carries nothing);
+  // - damping [Pa s/m] at carriage_speed [m/s]: the front's pressure gains R v sin(theta), the
+  //   damping effect's R v_n on a rim sinking into the soil.
+  double rear_stiffness = 0, damping = 0, carriage_speed = 0;
+  // - patch_width: the Bekker width b of Kc / b is SCM's 2 A / P of the contact patch (its length
+  //   from the rear's end to the entry, across the wheel's width) instead of the wheel's width.
+  bool patch_width = false;
+  // - local_slip_sinkage: with slip_sinkage, the stretch at each rim angle from the slip the ground
+  //   sees there, 1 - (1 - s) cos(theta) (SCM's per-node slip), not the wheel's s.
+  bool local_slip_sinkage = false;
 };
 
 struct WongReeceResult {
