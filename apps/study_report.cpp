@@ -7,6 +7,7 @@
 #include <fstream>
 #include <map>
 #include <set>
+#include <sstream>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -23,7 +24,42 @@ namespace {
 
 using Columns = std::map<std::string, std::vector<double>>;
 
-bool wheel_study(const StudySpec& s) { return study_command(s.solver) == "wheel"; }
+bool wheel_study(const StudySpec& s) { return study_command(s) == "wheel"; }
+bool plate_study(const StudySpec& s) { return study_command(s) == "bevameter"; }
+
+// The bevameter's plate.csv as one column: each plate's loading curve (phase "load") sampled at
+// kPlatePoints evenly spaced fractions of its sinkage span, plate after plate (every run of a study
+// has the same plates and stroke, so the samples line up).
+constexpr int kPlatePoints = 20;
+Columns plate_columns(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);  // plate_radius_m,sinkage_m,force_N,phase
+  std::map<double, std::vector<std::pair<double, double>>> curves;
+  while (std::getline(in, line)) {
+    std::stringstream ls(line);
+    std::string r, z, f, phase;
+    if (!std::getline(ls, r, ',') || !std::getline(ls, z, ',') || !std::getline(ls, f, ',')) continue;
+    std::getline(ls, phase, ',');
+    if (phase != "load") continue;
+    curves[std::stod(r)].push_back({std::stod(z), std::stod(f)});
+  }
+  Columns c;
+  auto& force = c["force_N"];
+  for (const auto& [radius, pts] : curves) {
+    if (pts.size() < 2) continue;
+    const double z0 = pts.front().first, z1 = pts.back().first;
+    std::size_t k = 1;
+    for (int i = 1; i <= kPlatePoints; ++i) {
+      const double z = z0 + (z1 - z0) * i / kPlatePoints;
+      while (k + 1 < pts.size() && pts[k].first < z) ++k;
+      const auto& [za, fa] = pts[k - 1];
+      const auto& [zb, fb] = pts[k];
+      force.push_back(zb > za ? fa + (fb - fa) * (z - za) / (zb - za) : fb);
+    }
+  }
+  return c;
+}
 
 // A step sweep's run that ends more than this far (largest RMSE in % of the base's largest value)
 // from the base run has drifted: the base's own step changes its results by far less.
@@ -34,6 +70,7 @@ struct Quantity {
   std::string column, name, stem;  // in the run's CSV, in tables, in the study's CSV
 };
 std::vector<Quantity> quantities(const StudySpec& s) {
+  if (plate_study(s)) return {{"force_N", "plate force", "force"}};
   if (wheel_study(s))
     return {{"dbp_N", "drawbar pull", "dbp"}, {"torque_Nm", "torque", "torque"}, {"sinkage_m", "sinkage", "sinkage"}};
   return {{"vx", "vx", "vx"}, {"yaw_rate", "yaw rate", "yaw_rate"}, {"ay", "ay", "ay"}, {"roll", "roll", "roll"}};
@@ -52,13 +89,13 @@ std::vector<RunResult> collect(const std::string& dir, const StudySpec& spec, co
                                const CampaignDb& db) {
   std::map<std::string, JobRow> rows;
   for (auto& r : db.rows()) rows[r.key] = r;
-  const std::string csv = wheel_study(spec) ? "wheel.csv" : "trajectory.csv";
+  const std::string csv = plate_study(spec) ? "plate.csv" : wheel_study(spec) ? "wheel.csv" : "trajectory.csv";
   std::vector<RunResult> out;
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     RunResult r{&spec.runs[i], rows[jobs[i].key], {}, NAN};
     if (r.row.state == "done") {
       const fs::path folder = fs::path(dir) / jobs[i].dir;
-      r.out = read_csv_columns((folder / csv).string());
+      r.out = plate_study(spec) ? plate_columns((folder / csv).string()) : read_csv_columns((folder / csv).string());
       try {
         std::ifstream in(folder / "run.json");
         const nlohmann::json j = nlohmann::json::parse(in);
@@ -167,8 +204,14 @@ std::string accuracy_cost(const std::string& dir, const StudySpec& spec, const s
                                   spec.merged["reference"].dump())
                     : "Each knob from coarse to fine with the others at their finest; the reference runs every knob "
                       "at its finest",
-      ref.wall, wheel_study(spec) ? "over the slips" : "over the manoeuvre's samples",
-      spec.solver == StudySolver::kCrm ? " and without settling the bed" : "", error_headers(spec), dashes(nq + 4));
+      ref.wall,
+      plate_study(spec)   ? "over each plate's loading curve, at 20 points of its stroke"
+      : wheel_study(spec) ? "over the slips"
+                          : "over the manoeuvre's samples",
+      spec.solver != StudySolver::kCrm ? ""
+      : plate_study(spec)              ? ", the bed's settling included (a bed per plate)"
+                                       : " and without settling the bed",
+      error_headers(spec), dashes(nq + 4));
   std::vector<std::vector<double>> err(rs.size());
   for (std::size_t i = 1; i < rs.size(); ++i) err[i] = errors(spec, rs[i].out, ref.out);
   // Pareto: no other run is at least as fast and at least as accurate, and better in one.
@@ -407,7 +450,7 @@ std::string vehicle_verdict(const std::string& state, const std::string& error,
 void write_study_report(const std::string& dir, const StudySpec& spec, const std::vector<CampaignJob>& jobs,
                         const CampaignDb& db) {
   const std::vector<RunResult> rs = collect(dir, spec, jobs, db);
-  const std::string command = study_command(spec.solver);
+  const std::string command = study_command(spec);
   std::string md = fmt::format("# Study {}: {}\n\nSpec: {} (as run: `spec.json`). Runs of `terracal {}`, each a job "
                                "of a campaign in this folder (`terracal campaign --status` on it lists them).\n\n",
                                study_kind_name(spec.kind), study_solver_name(spec.solver),

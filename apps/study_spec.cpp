@@ -79,6 +79,24 @@ Json default_crm() {
                                  kWheel, kCrmSoil, kGravities, kStiffness));
 }
 
+// The bevameter rig: plate tests (a 0.2 m plate to 0.2 m, as studies/bevameter_cost ran them),
+// compared on their loading curves.
+Json default_bevameter(StudySolver solver) {
+  if (solver == StudySolver::kCrm)
+    return Json::parse(fmt::format(R"({{
+    "soil": {},
+    "options": {{"test": "plate", "plates": [0.2], "max-sinkage": 0.2, "cache": ""}},
+    "knobs": {{"spacing": [0.04, 0.03, 0.02]}},
+    "effects": {{"no_hourglass_stiffness": {{"hourglass-stiffness": 0}}}}}})",
+                                   kCrmSoil));
+  return Json::parse(fmt::format(R"({{
+    "soil": {},
+    "options": {{"test": "plate", "plates": [0.2], "max-sinkage": 0.2}},
+    "knobs": {{"grid": [0.04, 0.02, 0.01, 0.005, 0.0025]}},
+    "effects": {{"none": {{"scm-effects": "none"}}, "elastic_unloading": {{"scm-effects": ["damping", "elastic_unloading"]}}}}}})",
+                                 kDrySand));
+}
+
 // The step steer of results/rom_accuracy_cost (ISO 7401: 0.15 at 1 s, 20 m/s, 5 s).
 constexpr const char* kStepSteer =
     R"({"type": "step_steer", "steering": 0.15, "step_time": 1, "initial_speed": 20, "end_time": 5})";
@@ -111,7 +129,7 @@ Json default_vehicle() {
 }
 
 // The options a study sets itself: its scene's and --out.
-const std::set<std::string> kStudySets = {"terrain", "wheel",   "scm",  "soil", "out", "help", "gravity",
+const std::set<std::string> kStudySets = {"terrain", "solver", "wheel", "scm",  "soil", "out", "help", "gravity",
                                           "no-plots", "vehicle", "maneuver", "inputs"};
 
 bool wheel_rig(StudySolver s) { return s == StudySolver::kCrm || s == StudySolver::kScm || s == StudySolver::kWongReece; }
@@ -190,7 +208,7 @@ void check_scene(const StudySpec& s, const Json& m) {
         throw InputError(fmt::format("{}: key '{}': expected an object, a file or (vehicle) a preset", s.source, k));
     return;
   }
-  rigs::parse_wheel(nlohmann::json::parse(m["wheel"].dump()), s.source + ": key 'wheel'");
+  if (s.rig != "bevameter") rigs::parse_wheel(nlohmann::json::parse(m["wheel"].dump()), s.source + ": key 'wheel'");
   const nlohmann::json plain = nlohmann::json::parse(m["soil"].dump());
   if (s.solver == StudySolver::kCrm) {
     parse_crm_soil(plain, s.source + ": key 'soil'");
@@ -204,6 +222,7 @@ void check_scene(const StudySpec& s, const Json& m) {
 
 // The scene of the base: option -> content.
 Json base_scene(const StudySpec& s) {
+  if (s.rig == "bevameter") return Json{{soil_option(s.solver), s.merged["soil"]}};
   if (wheel_rig(s.solver)) return Json{{"wheel", s.merged["wheel"]}, {soil_option(s.solver), s.merged["soil"]}};
   return Json{{"vehicle", s.merged["vehicle"]}, {"maneuver", s.merged["maneuver"]}};
 }
@@ -217,7 +236,7 @@ StudyRun run_of(const std::string& group, const std::string& label, const Json& 
 }
 
 void add_knob_runs(StudySpec& s, const Json& knobs, const Json& base, const Json& scene) {
-  const std::string command = study_command(s.solver);
+  const std::string command = study_command(s);
   if (!knobs.is_object() || knobs.empty())
     throw InputError(fmt::format("{}: key 'knobs': expected an object of knob -> values (coarse to fine)", s.source));
   // The reference: the spec's own, or every knob at its finest (the last value).
@@ -253,7 +272,7 @@ void add_knob_runs(StudySpec& s, const Json& knobs, const Json& base, const Json
 // any other name is an option of the command.
 void sweep_value(const StudySpec& s, const std::string& k, double x, Json& o, Json& scene) {
   const std::string key = "sweeps." + k;
-  const std::string command = study_command(s.solver);
+  const std::string command = study_command(s);
   if (k == "gravity") {
     if (!(x > 0 && x <= 100))
       throw InputError(fmt::format("{}: key '{}': value {} is not a gravity in (0, 100] m/s^2", s.source, key, x));
@@ -356,7 +375,7 @@ void add_effect_runs(StudySpec& s, const Json& effects, const Json& base, const 
       sc["vehicle"] = vehicle_with_effects(s, key + ".vehicle-effects", scene["vehicle"], own["vehicle-effects"]);
       own.erase("vehicle-effects");
     }
-    check_command_options(s.source, key + ".", study_command(s.solver), own, kStudySets);
+    check_command_options(s.source, key + ".", study_command(s), own, kStudySets);
     for (const auto& [k, v] : own.items()) o[k] = v;
     s.runs.push_back(run_of(name, name, Json(), o, sc));
   }
@@ -370,7 +389,10 @@ std::string study_command(StudySolver s) {
   return wheel_rig(s) ? "wheel" : s == StudySolver::kRom ? "rom" : "vehicle";
 }
 
-Json default_study_spec(StudySolver solver) {
+std::string study_command(const StudySpec& s) { return s.rig == "bevameter" ? "bevameter" : study_command(s.solver); }
+
+Json default_study_spec(StudySolver solver, const std::string& rig) {
+  if (rig == "bevameter") return default_bevameter(solver);
   switch (solver) {
     case StudySolver::kCrm:
       return default_crm();
@@ -391,14 +413,31 @@ StudySpec read_study_spec(StudyKind kind, StudySolver solver, const std::string&
   s.kind = kind;
   s.solver = solver;
   s.source = path.empty() ? fmt::format("the default {} spec", study_solver_name(solver)) : path;
-  s.merged = default_study_spec(solver);
-  const std::set<std::string> keys =
-      wheel_rig(solver) ? std::set<std::string>{"wheel", "soil", "options", "knobs", "reference", "sweeps", "effects"}
-                        : std::set<std::string>{"vehicle", "maneuver", "options", "knobs", "reference", "sweeps",
-                                                "effects"};
+  Json j;
   if (!path.empty()) {
-    const Json j = Json::parse(read_json_file(path, "study spec").dump());
+    j = Json::parse(read_json_file(path, "study spec").dump());
     if (!j.is_object()) throw InputError(fmt::format("{}: expected a JSON object", path));
+    if (j.contains("rig")) {
+      if (!(j["rig"] == "wheel" || j["rig"] == "bevameter") ||
+          !(solver == StudySolver::kCrm || solver == StudySolver::kScm))
+        throw InputError(fmt::format("{}: key 'rig': {} is no rig of the {} solver (crm and scm: \"wheel\" or "
+                                     "\"bevameter\")",
+                                     path, excerpt(j["rig"].dump()), study_solver_name(solver)));
+      s.rig = j["rig"].get<std::string>();
+      if (s.rig == "bevameter" && kind == StudyKind::kStability)
+        throw InputError(fmt::format("{}: key 'rig': the stability study runs the wheel rig (its verdicts are a "
+                                     "wheel's); the bevameter has accuracy-cost and effects",
+                                     path));
+    }
+  }
+  s.merged = default_study_spec(solver, s.rig);
+  const std::set<std::string> keys =
+      s.rig == "bevameter" ? std::set<std::string>{"rig", "soil", "options", "knobs", "reference", "effects"}
+      : wheel_rig(solver)  ? std::set<std::string>{"rig",       "wheel",  "soil",   "options",
+                                                  "knobs",     "reference", "sweeps", "effects"}
+                           : std::set<std::string>{"vehicle", "maneuver", "options", "knobs", "reference", "sweeps",
+                                                   "effects"};
+  if (!path.empty()) {
     refuse_unknown(path, "", j, keys);
     for (const auto& [k, v] : j.items()) {
       if (k == "options") {
@@ -406,14 +445,14 @@ StudySpec read_study_spec(StudyKind kind, StudySolver solver, const std::string&
         for (const auto& [o, x] : v.items()) s.merged["options"][o] = x;  // over the default's, key by key
       } else if (k == "wheel" || k == "soil" || k == "vehicle" || k == "maneuver") {
         s.merged[k] = scene_part(path, k, v);
-      } else {
+      } else if (k != "rig") {
         s.merged[k] = v;
       }
     }
   }
   check_scene(s, s.merged);
   const Json& base = s.merged["options"];
-  check_command_options(s.source, "options.", study_command(solver), base, kStudySets);
+  check_command_options(s.source, "options.", study_command(s), base, kStudySets);
   const Json scene = base_scene(s);
   switch (kind) {
     case StudyKind::kAccuracyCost:
@@ -441,8 +480,9 @@ std::vector<CampaignJob> study_jobs(const StudySpec& s) {
   std::vector<CampaignJob> jobs;
   const std::string stage = study_kind_name(s.kind);
   for (const StudyRun& r : s.runs) {
-    CampaignJob j{"", stage, r.label, "", study_command(s.solver), {}, {}, 0, {}, {}};
-    if (wheel_rig(s.solver)) j.args = {"--terrain", study_solver_name(s.solver)};
+    CampaignJob j{"", stage, r.label, "", study_command(s), {}, {}, 0, {}, {}};
+    if (s.rig == "bevameter") j.args = {"--solver", study_solver_name(s.solver)};
+    else if (wheel_rig(s.solver)) j.args = {"--terrain", study_solver_name(s.solver)};
     // Every scene file under its content's hash: runs that share a soil share its file.
     for (const auto& [option, content] : r.scene.items()) {
       if (content.is_string()) {  // a preset

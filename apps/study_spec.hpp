@@ -46,13 +46,19 @@ struct StudyRun {
 struct StudySpec {
   StudyKind kind = StudyKind::kAccuracyCost;
   StudySolver solver = StudySolver::kScm;
+  // crm and scm: the rig the runs use, "wheel" (the default) or "bevameter" (key `rig`: plate tests,
+  // compared on their loading curves).
+  std::string rig = "wheel";
   std::string source;            // the spec file, or "the embedded default"
   nlohmann::ordered_json merged;  // the default with the file's keys over it: what ran (DIR/spec.json)
   std::vector<StudyRun> runs;    // the reference / base first
 };
 
-// The embedded default spec of a solver.
-nlohmann::ordered_json default_study_spec(StudySolver solver);
+// The command the spec's runs are: study_command(solver), or "bevameter" for the bevameter rig.
+std::string study_command(const StudySpec& s);
+
+// The embedded default spec of a solver (and rig: "wheel" or, for crm and scm, "bevameter").
+nlohmann::ordered_json default_study_spec(StudySolver solver, const std::string& rig = "wheel");
 
 // Reads `path` (empty: the default alone) over the solver's default and makes the runs. Throws
 // InputError naming the file, the key and the value for an unknown key, a wheel option the wheel

@@ -25,6 +25,8 @@ timeout "${PIPELINE_TIMEOUT:-420}" "$exe" pipeline --soil "$here/bevameter_soil_
   --cache "$out/bed_cache" > "$out/pipeline.log" 2>&1
 echo "pipeline exit $?" >> "$out/pipeline.log"
 [ "${COST:-1}" = 1 ] || exit 0
-timeout "${COST_TIMEOUT:-150}" bash "$here/../bevameter_cost/run.sh" "$exe" "$out/cost" cuda \
-  "${COST_SPACINGS:-0.04 0.03 0.02}" "0.04 0.02 0.01 0.005 0.0025" > "$out/cost.log" 2>&1
+spacings=$(echo ${COST_SPACINGS:-0.04 0.03 0.02} | tr ' ' ',')
+echo "{\"rig\": \"bevameter\", \"options\": {\"device\": \"cuda\"}, \"knobs\": {\"spacing\": [$spacings]}}" > "$out/cost_spec.json"
+timeout "${COST_TIMEOUT:-150}" "$exe" study accuracy-cost --solver crm --spec "$out/cost_spec.json" --out "$out/cost" \
+  > "$out/cost.log" 2>&1
 echo "cost exit $?" >> "$out/cost.log"

@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# What accuracy costs in time for the bevameter: `terracal study accuracy-cost --solver SOLVER` on the
+# plate rig (spec studies/study/bevameter.json: a 0.2 m plate to 0.2 m; SCM grids 0.04 ... 0.0025 m, CRM
+# spacings 0.04, 0.03, 0.02 m), and for SCM the effects study. Usage: studies/study/bevameter.sh BIN
+# SOLVER... [OUT=results/bevameter_cost]. Work in /tmp/terracal_study/bevameter_<solver>/<study>; the
+# report, its CSV and plot and the spec as run are copied into OUT/study_<solver>/<study>/.
+set -uo pipefail
+cd "$(dirname "$0")/../.."
+bin=${1:?terracal program}; shift
+out=results/bevameter_cost
+for solver in "$@"; do
+  studies="accuracy-cost"
+  [ "$solver" = scm ] && studies="accuracy-cost effects"  # CRM's effects runs are at the finest spacing: hours
+  for study in $studies; do
+    work=/tmp/terracal_study/bevameter_$solver/$study
+    start=$(date +%s)
+    "$bin" study "$study" --solver "$solver" --spec studies/study/bevameter.json --out "$work" \
+      > "/tmp/terracal_study_bevameter_${solver}_$study.log" 2>&1
+    echo "bevameter $solver $study: exit $? in $(( $(date +%s) - start )) s"
+    mkdir -p "$out/study_$solver/$study"
+    cp "$work"/report.md "$work"/spec.json "$work"/*.csv "$out/study_$solver/$study"/
+    cp "$work"/*.png "$out/study_$solver/$study"/ 2>/dev/null || echo "  (no plot: gnuplot missing)"
+  done
+done
