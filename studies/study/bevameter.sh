@@ -6,19 +6,14 @@
 # report, its CSV and plot and the spec as run are copied into OUT/study_<solver>/<study>/.
 set -uo pipefail
 cd "$(dirname "$0")/../.."
+source studies/study/run_study.sh
 bin=${1:?terracal program}; shift
 out=results/bevameter_cost
 for solver in "$@"; do
   studies="accuracy-cost"
   [ "$solver" = scm ] && studies="accuracy-cost effects"  # CRM's effects runs are at the finest spacing: hours
   for study in $studies; do
-    work=/tmp/terracal_study/bevameter_$solver/$study
-    start=$(date +%s)
-    "$bin" study "$study" --solver "$solver" --spec studies/study/bevameter.json --out "$work" \
-      > "/tmp/terracal_study_bevameter_${solver}_$study.log" 2>&1
-    echo "bevameter $solver $study: exit $? in $(( $(date +%s) - start )) s"
-    mkdir -p "$out/study_$solver/$study"
-    cp "$work"/report.md "$work"/spec.json "$work"/*.csv "$out/study_$solver/$study"/
-    cp "$work"/*.png "$out/study_$solver/$study"/ 2>/dev/null || echo "  (no plot: gnuplot missing)"
+    run_study "$bin" "$study" "$solver" studies/study/bevameter.json /tmp/terracal_study/bevameter_$solver/$study \
+      "$out/study_$solver/$study"
   done
 done

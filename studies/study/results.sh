@@ -5,18 +5,12 @@
 # report, its CSV and plot and the spec as run are copied into results/.
 set -uo pipefail
 cd "$(dirname "$0")/../.."
+source studies/study/run_study.sh
 bin=${1:?terracal program}; shift
 for solver in "$@"; do
   studies="accuracy-cost stability effects"
   case "$solver" in wong-reece|vehicle) studies="accuracy-cost stability" ;; esac  # no effects to switch
   for study in $studies; do
-    work=/tmp/terracal_study/$solver/$study
-    dest=results/study_${solver//-/_}/$study
-    start=$(date +%s)
-    "$bin" study "$study" --solver "$solver" --out "$work" > "/tmp/terracal_study_${solver}_$study.log" 2>&1
-    echo "$solver $study: exit $? in $(( $(date +%s) - start )) s"
-    mkdir -p "$dest"
-    cp "$work"/report.md "$work"/spec.json "$work"/*.csv "$dest"/
-    cp "$work"/*.png "$dest"/ 2>/dev/null || echo "  (no plot: gnuplot missing)"
+    run_study "$bin" "$study" "$solver" "" /tmp/terracal_study/$solver/$study "results/study_${solver//-/_}/$study"
   done
 done

@@ -6,15 +6,11 @@
 # report, its CSV and plot and the spec as run are copied into OUT/<manoeuvre>/.
 set -uo pipefail
 cd "$(dirname "$0")/../.."
+source studies/study/run_study.sh
 bin=${1:?terracal program}
 out=${2:-results/rom_accuracy_cost}
 for m in dlc step_steer; do
-  work=/tmp/terracal_study/rom_grid/$m
   # One run at a time: the wall times are the comparison.
-  OMP_NUM_THREADS=1 "$bin" study accuracy-cost --solver rom --spec studies/study/rom_grid_$m.json --out "$work" \
-    > "/tmp/terracal_study_rom_grid_$m.log" 2>&1
-  echo "rom grid $m: exit $?"
-  mkdir -p "$out/$m"
-  cp "$work"/report.md "$work"/spec.json "$work"/*.csv "$out/$m"/
-  cp "$work"/*.png "$out/$m"/ 2>/dev/null || echo "  (no plot: gnuplot missing)"
+  OMP_NUM_THREADS=1 run_study "$bin" accuracy-cost rom studies/study/rom_grid_$m.json /tmp/terracal_study/rom_grid/$m \
+    "$out/$m"
 done
