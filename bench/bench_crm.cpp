@@ -2,7 +2,10 @@
 // device memory per particle, and the speed-up of active_domain for a single wheel in a 4 m bin.
 // Each figure is the median of `repeats` timed blocks of `steps` steps after a warm-up.
 // Usage: bench_crm cpu|cuda [particles=1e5,...] [steps=20] [repeats=5] [wheel]
-//   A bed of about N particles fills a square bin to a depth of 1/4 of its side (full domain).
+//   A bed of about N particles fills a square bin to a depth of 1/4 of its side (full domain). Two
+//   lines per size: `rigs`, the configuration the rigs run (h/d0 1.4, Wendland C2, the effects
+//   artificial_viscosity, hourglass_damping 0.4 and hourglass_stiffness 0.03, and a plate's markers
+//   pressing into the bed), and `bare`, the kernel alone (h/d0 1.2, artificial_viscosity, no body).
 //   `wheel`: the 4 m x 1 m bin at the same spacing as the first size, with a wheel, full vs active.
 #include <algorithm>
 #include <chrono>
@@ -75,23 +78,35 @@ int main(int argc, char** argv) {
   const int repeats = argc > 4 ? std::atoi(argv[4]) : 5;
   const bool wheel = argc > 5 && std::string(argv[5]) == "wheel";
   const double d0 = 0.01;
-  std::printf("%-12s %-12s %-10s %-16s %-14s %s\n", "particles", "markers", "bytes/p", "particle-steps/s", "ms/step",
-              "device");
-  for (double n : sizes) {
-    // Square bin of side L filled to L/4: n = (L/d0)^2 (L/4d0).
-    const int side = std::max(8, int(std::lround(std::cbrt(4 * n))));
-    const int depth = std::max(4, side / 4);
-    nlohmann::json j = {{"soil", soil()},
-                        {"bin", {{"size", {side * d0, side * d0, (depth + 4) * d0}}, {"fill_height", depth * d0}}},
-                        {"resolution", {{"spacing", d0}, {"h_over_d0", 1.2}, {"cpu_precision", "float"}}},
-                        {"effects", {"artificial_viscosity"}}};
-    // BENCH_GRID_REACH=1 times the plain 2h grid instead of the default cells of h.
-    if (const char* reach = std::getenv("BENCH_GRID_REACH")) j["resolution"]["grid_reach"] = std::atoi(reach);
-    const Timing t = time_scene(j, device, steps, repeats);
-    std::printf("%-12zu %-12zu %-10.1f %-16.4g %-14.3f %s\n", t.particles, t.markers, double(t.bytes) / t.particles,
-                t.rate, 1e3 * t.particles / t.rate, t.device.c_str());
-    std::fflush(stdout);
-  }
+  std::printf("%-6s %-12s %-12s %-10s %-16s %-14s %s\n", "config", "particles", "markers", "bytes/p",
+              "particle-steps/s", "ms/step", "device");
+  for (double n : sizes)
+    for (bool rigs : {true, false}) {
+      // Square bin of side L filled to L/4: n = (L/d0)^2 (L/4d0).
+      const int side = std::max(8, int(std::lround(std::cbrt(4 * n))));
+      const int depth = std::max(4, side / 4);
+      nlohmann::json j = {{"soil", soil()},
+                          {"bin", {{"size", {side * d0, side * d0, (depth + 4) * d0}}, {"fill_height", depth * d0}}},
+                          {"resolution", {{"spacing", d0}, {"h_over_d0", rigs ? 1.4 : 1.2}, {"cpu_precision", "float"}}},
+                          {"effects", {"artificial_viscosity"}}};
+      if (rigs) {
+        j["effects"] = {"artificial_viscosity", "hourglass_damping", "hourglass_stiffness"};
+        j["hourglass_damping"] = {{"alpha", 0.4}};
+        j["hourglass_stiffness"] = {{"beta", 0.03}};
+        // A plate (a sixth of the bin's side) pressing into the middle of the bed at 0.1 m/s, as the rig's.
+        const double radius = side * d0 / 6, thickness = 2 * d0;
+        j["bodies"] = {{{"name", "plate"},
+                        {"shape", {{"type", "disc"}, {"radius", radius}, {"thickness", thickness}}},
+                        {"position", {side * d0 / 2, side * d0 / 2, depth * d0 + thickness / 2}},
+                        {"motion", {{"type", "prescribed"}, {"linear_velocity", {0, 0, -0.1}}}}}};
+      }
+      // BENCH_GRID_REACH=1 times the plain 2h grid instead of the default cells of h.
+      if (const char* reach = std::getenv("BENCH_GRID_REACH")) j["resolution"]["grid_reach"] = std::atoi(reach);
+      const Timing t = time_scene(j, device, steps, repeats);
+      std::printf("%-6s %-12zu %-12zu %-10.1f %-16.4g %-14.3f %s\n", rigs ? "rigs" : "bare", t.particles, t.markers,
+                  double(t.bytes) / t.particles, t.rate, 1e3 * t.particles / t.rate, t.device.c_str());
+      std::fflush(stdout);
+    }
   if (wheel) {
     // A wheel (radius 0.25 m, width 0.15 m) crossing a 4 m x 1 m bin 0.3 m deep, at the first size's spacing.
     const double dw = 0.02;
