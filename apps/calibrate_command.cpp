@@ -19,7 +19,8 @@ struct CalibrateArgs {
 
 Command add_calibrate(CLI::App& app) {
   auto* sub = app.add_subcommand("calibrate",
-                                 "Fit SCM (Bekker-Wong-Janosi) parameters and their posterior to bevameter curves");
+                                 "Fit SCM (Bekker-Wong-Janosi) parameters and their posterior to bevameter curves "
+                                 "and, optionally, single-wheel curves");
   auto a = std::make_shared<CalibrateArgs>();
   CalibrationFiles& f = a->files;
   CalibrationSettings& s = a->settings;
@@ -28,6 +29,13 @@ Command add_calibrate(CLI::App& app) {
       ->check(CLI::ExistingFile);
   sub->add_option("--shear", f.shear_csv,
                   "annulus-shear curves: inner_radius_m,outer_radius_m,normal_load_N,angle_rad,torque_Nm")
+      ->check(CLI::ExistingFile);
+  sub->add_option("--wheel", f.wheel_csv,
+                  "single-wheel curves (wheel.csv of `terracal wheel`): slip,load_N,dbp_N,torque_Nm,sinkage_m; fits "
+                  "the slip-sinkage S as well")
+      ->check(CLI::ExistingFile);
+  sub->add_option("--wheel-spec", f.wheel_spec,
+                  "the wheel of --wheel (JSON, docs/formats.md 'Wheel'); default: the run.json beside it")
       ->check(CLI::ExistingFile);
   sub->add_option("--out", s.out_dir, "output folder (scm_params.json, posterior.h5, summary.txt, PNG plots)")
       ->required();

@@ -1,5 +1,6 @@
 #include "apps/calibration_run.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -14,6 +15,8 @@
 #include "core/checksum.hpp"
 #include "core/errors.hpp"
 #include "core/gnuplot.hpp"
+#include "core/json_file.hpp"
+#include "lowfi/slip_sinkage.hpp"
 #include "terracal_version.hpp"
 
 namespace terracal::app {
@@ -32,6 +35,13 @@ std::string data_text(const CalibrationData& d) {
     for (const auto& p : d.shear->points)
       s += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{};", p.inner_radius, p.outer_radius, p.normal_load,
                        p.angle, p.torque, p.developed);
+  s += "|";
+  if (d.wheel) {
+    const auto& w = d.wheel->wheel;
+    s += fmt::format("{:.17g},{:.17g},{:.17g};", w.radius, w.width, w.angular_velocity);
+    for (const auto& p : d.wheel->points)
+      s += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g};", p.slip, p.load, p.dbp, p.torque, p.sinkage);
+  }
   s += "|";
   for (const Prior& p : d.priors)
     s += fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g};", int(p.kind), p.lower, p.upper, p.mean, p.sd,
@@ -92,7 +102,8 @@ CalibrationOptions sampler_options(const CalibrationData& data, const Calibratio
 // Files of an earlier run in the same folder go first: the folder never mixes two runs' outputs.
 void remove_earlier_outputs(const std::string& dir) {
   for (const char* old : {"scm_params.json", "posterior.h5", "summary.txt", "plate_fit.png", "shear_fit.png",
-                          "shear_developed.png", "pairs.png"})
+                          "shear_developed.png", "pairs.png", "wheel_dbp_fit.png", "wheel_torque_fit.png",
+                          "wheel_sinkage_fit.png"})
     fs::remove(fs::path(dir) / old);
 }
 
@@ -101,10 +112,60 @@ void remove_earlier_outputs(const std::string& dir) {
 std::string sampler_name(SamplerKind kind) { return kind == SamplerKind::kDram ? "dram" : "ensemble"; }
 std::string noise_name(NoiseModel model) { return model == NoiseModel::kRelative ? "relative" : "absolute"; }
 
+WheelGeometry wheel_geometry(const rigs::WheelSpec& wheel, const std::string& where) {
+  if (wheel.grouser_count > 0)
+    spdlog::warn("{}: the wheel has {} grousers; the steady SCM wheel the calibration fits is a smooth rim of the "
+                 "same radius",
+                 where, wheel.grouser_count);
+  return WheelGeometry{wheel.radius, wheel.width, wheel.angular_velocity};
+}
+
+namespace {
+// The wheel a wheel.csv was run with: the wheel file given, or `terracal wheel`'s run.json beside it.
+WheelGeometry wheel_of_csv(const CalibrationFiles& files) {
+  if (!files.wheel_spec.empty()) return wheel_geometry(rigs::read_wheel_json(files.wheel_spec), files.wheel_spec);
+  const std::string run = (fs::path(files.wheel_csv).parent_path() / "run.json").string();
+  if (!fs::exists(run))
+    throw InputError(fmt::format("--wheel {}: the wheel's radius and width are needed: give --wheel-spec WHEEL.json, "
+                                 "or keep the run.json that `terracal wheel` wrote beside it ({} not found)",
+                                 files.wheel_csv, run));
+  const nlohmann::json j = read_json_file(run, "wheel run file");
+  if (!j.is_object() || !j.contains("wheel"))
+    throw InputError(fmt::format("{}: key 'wheel' missing (written by `terracal wheel` since it records its wheel); "
+                                 "give --wheel-spec WHEEL.json",
+                                 run));
+  return wheel_geometry(rigs::parse_wheel(j["wheel"], run + ": key 'wheel'"), run);
+}
+}  // namespace
+
 CalibrationData read_calibration_files(const CalibrationFiles& files) {
-  CalibrationData d{load_plate_csv(files.plate_csv), std::nullopt, default_priors()};
+  CalibrationData d{load_plate_csv(files.plate_csv), std::nullopt, default_priors(), std::nullopt};
   if (!files.shear_csv.empty()) d.shear = load_shear_csv(files.shear_csv);
+  if (!files.wheel_csv.empty()) d.wheel = load_wheel_csv(files.wheel_csv, wheel_of_csv(files));
+  if (files.wheel_csv.empty() && !files.wheel_spec.empty())
+    throw InputError(fmt::format("--wheel-spec {}: only with --wheel W.csv", files.wheel_spec));
   if (!files.priors_json.empty()) d.priors = load_priors(files.priors_json);
+  return d;
+}
+
+WheelData wheel_calibration_data(const std::vector<rigs::WheelResult>& runs, const rigs::WheelSpec& wheel,
+                                 const std::string& csv, const std::vector<double>& slips) {
+  std::vector<WheelPoint> points;
+  std::vector<std::size_t> rows;
+  std::vector<std::string> notes;
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const rigs::WheelResult& r = runs[i];
+    if (!slips.empty() && std::find(slips.begin(), slips.end(), r.slip) == slips.end()) continue;
+    if (const std::string why = rigs::unsteady_reason(r); !why.empty())
+      notes.push_back(fmt::format("{}:{}: calibrated on although {}", csv, i + 2, why));
+    points.push_back({r.slip, r.load, r.dbp, r.torque, r.sinkage, int(i) + 2});
+    rows.push_back(i);
+  }
+  const PointLocator where = [csv, rows](std::size_t k, const std::string& column) {
+    return fmt::format("{}:{}, column '{}'", csv, rows[k] + 2, column);
+  };
+  WheelData d = make_wheel_data(std::move(points), wheel_geometry(wheel, csv), csv, where);
+  d.notes = notes;
   return d;
 }
 
@@ -124,7 +185,7 @@ CalibrationData calibration_data(const BevameterCurves& curves, const std::strin
     plate.push_back({r.radius, r.sinkage, r.force, *phase, int(i) + 2});
   }
   CalibrationData d{make_plate_data(std::move(plate), dir + "/plate.csv", locator(dir + "/plate.csv")), std::nullopt,
-                    default_priors()};
+                    default_priors(), std::nullopt};
   if (!curves.shear.empty()) {
     std::vector<ShearPoint> shear;
     for (std::size_t i = 0; i < curves.shear.size(); ++i) {
@@ -140,14 +201,16 @@ CalibrationOutcome run_calibration(const CalibrationData& data, const Calibratio
   const auto t0 = std::chrono::steady_clock::now();
   validate(s);
   // Every input is checked before the output folder is touched.
-  const CalibrationProblem problem(data.plate, data.shear, data.priors, s.noise);
+  const CalibrationProblem problem(data.plate, data.shear, data.priors, s.noise, data.wheel);
   for (const auto& note : problem.notes()) spdlog::warn("{}", note);
   if (problem.dim() == 0) throw InputError("every parameter is fixed (by the priors and the data); nothing to infer");
 
   fs::create_directories(s.out_dir);
   const CalibrationOptions opt = sampler_options(data, s);
-  spdlog::info("calibrating: {} plate points{}", problem.set(0).size(),
-               data.shear ? fmt::format(", {} shear points", problem.set(1).size()) : std::string(", no shear data"));
+  spdlog::info("calibrating: {} plate points{}{}", problem.set(0).size(),
+               data.shear ? fmt::format(", {} shear points", problem.set(1).size()) : std::string(", no shear data"),
+               data.wheel ? fmt::format(", {} wheel rows (steady SCM wheel; S is fitted)", data.wheel->points.size())
+                          : std::string());
   const CalibrationResult res = calibrate(problem, opt);
   for (const auto& note : res.notes) spdlog::warn("{}", note);
 
@@ -155,6 +218,8 @@ CalibrationOutcome run_calibration(const CalibrationData& data, const Calibratio
   const OutputContext ctx{sampler_name(s.sampler), s.seed, opt.warmup};
   CalibrationOutcome out{res.converged, {}, scm_params_json(problem, res, ctx)};
   out.fitted = lowfi::parse_scm_soil(out.params["Soil parameters"], "the calibrated set");
+  if (out.params.contains("Slip sinkage"))
+    out.fitted.slip_sinkage = lowfi::parse_slip_sinkage(out.params["Slip sinkage"], "the calibrated set");
   write_scm_params_json(s.out_dir + "/scm_params.json", out.params);
   const InferenceData idata = make_inference_data(problem, res, s.seed);
   write_inference_data_h5(s.out_dir + "/posterior.h5", idata);

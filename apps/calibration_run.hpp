@@ -12,6 +12,7 @@
 #include "bayes/calibrator.hpp"
 #include "bayes/observations.hpp"
 #include "bayes/priors.hpp"
+#include "bayes/wheel_observations.hpp"
 #include "core/range.hpp"
 #include "lowfi/scm_soil.hpp"
 
@@ -40,22 +41,31 @@ struct CalibrationSettings {
   bool plots = true;
 };
 
-// What is calibrated: the plate data, optionally the shear data, and the priors.
+// What is calibrated: the plate data, optionally the shear data and single-wheel curves, and the priors.
 struct CalibrationData {
   bayes::PlateData plate;
   std::optional<bayes::ShearData> shear;
   bayes::Priors priors = bayes::default_priors();
+  std::optional<bayes::WheelData> wheel;
 };
 
-// The curve files of `calibrate`: plate (required), shear and priors (optional, "" = none).
+// The curve files of `calibrate`: plate (required), shear, wheel and priors (optional, "" = none).
+// The wheel's geometry comes from wheel_spec (a wheel file), or else from the run.json that
+// `terracal wheel` wrote beside wheel.csv.
 struct CalibrationFiles {
-  std::string plate_csv, shear_csv, priors_json;
+  std::string plate_csv, shear_csv, priors_json, wheel_csv, wheel_spec;
 };
 CalibrationData read_calibration_files(const CalibrationFiles& files);
 
 // The rigs' curves as they are in memory, validated as the files would be; `dir` is where the
 // pipeline wrote the same rows (plate.csv, shear.csv), which messages cite by line.
 CalibrationData calibration_data(const BevameterCurves& curves, const std::string& dir);
+// A wheel sweep's steady means in memory as calibration data (rows at `slips` only, when given), cited
+// as `csv` (where the same rows were written).
+bayes::WheelData wheel_calibration_data(const std::vector<rigs::WheelResult>& runs, const rigs::WheelSpec& wheel,
+                                        const std::string& csv, const std::vector<double>& slips = {});
+// The steady SCM wheel's geometry of a rig's wheel (grousers are not modelled; a warning says so).
+bayes::WheelGeometry wheel_geometry(const rigs::WheelSpec& wheel, const std::string& where);
 
 struct CalibrationOutcome {
   bool converged = false;

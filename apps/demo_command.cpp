@@ -35,7 +35,7 @@ int calibrate_embedded(const DemoArgs& a) {
   CalibrationSettings settings;
   settings.out_dir = a.out;
   settings.seed = a.seed;
-  const CalibrationData d = read_calibration_files({data + "/plate.csv", data + "/shear.csv", ""});
+  const CalibrationData d = read_calibration_files({data + "/plate.csv", data + "/shear.csv", "", "", ""});
   return run_calibration(d, settings).converged ? 0 : 1;
 }
 }  // namespace

@@ -1,5 +1,6 @@
 #include "apps/pipeline.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 
@@ -13,6 +14,7 @@
 #include "apps/soil_choice.hpp"
 #include "core/csv.hpp"
 #include "core/errors.hpp"
+#include "lowfi/effects/scm_slip_sinkage.hpp"
 #include "lowfi/scm_terrain.hpp"
 
 namespace terracal::app {
@@ -45,7 +47,7 @@ CalibrationSettings calibration_settings(const PipelinePlan& plan, const std::st
 
 // 2. The calibration, on the curves in memory, into OUT/calibration/.
 CalibrationOutcome calibration_stage(const PipelinePlan& plan, const CalibrationData& data, StageTimes& wall) {
-  spdlog::info("pipeline 2/4: calibrating SCM on the CRM curves");
+  spdlog::info("pipeline 2/4: calibrating SCM on the CRM {}", data.wheel ? "bevameter and wheel curves" : "bevameter curves");
   const auto t = Clock::now();
   CalibrationOutcome outcome = run_calibration(data, calibration_settings(plan, "calibration"));
   wall.calibration = since(t);
@@ -63,10 +65,14 @@ SoilChoice scm_choice(const PipelinePlan& plan, const lowfi::ScmSoil& set) {
   return scm;
 }
 
+// The SCM (and Wong-Reece) wheels' options: with a set calibrated on the wheel, slip sinkage is on.
 TerrainOptions scm_options(const PipelinePlan& plan) {
   TerrainOptions o = plan.terrain;
   o.grid = plan.scm_grid;
   o.step = 0;
+  const std::string slip_sinkage = lowfi::ScmSlipSinkage::kName;
+  if (plan.calibrate_on_wheel && std::find(o.scm_effects.begin(), o.scm_effects.end(), slip_sinkage) == o.scm_effects.end())
+    o.scm_effects.push_back(slip_sinkage);
   return o;
 }
 
@@ -97,22 +103,29 @@ std::vector<rigs::WheelResult> scm_wheel_stage(const PipelinePlan& plan, const C
   }
 }
 
-// 3. The wheel sweeps: CRM, SCM on the calibrated set, and Wong-Reece on the set the SCM wheel used;
-// the curves go to OUT/wheel_<model>/.
-void wheel_stage(const PipelinePlan& plan, const SoilChoice& crm, const CalibrationData& data, PipelineResults& r) {
-  spdlog::info("pipeline 3/4: single wheel, slips {}: CRM, SCM (calibrated) and Wong-Reece",
-               fmt::join(plan.slips, ", "));
-  auto t = Clock::now();
+// The CRM wheel sweep (before the calibration when the calibration uses it).
+void crm_wheel_stage(const PipelinePlan& plan, const SoilChoice& crm, PipelineResults& r) {
+  spdlog::info("pipeline: CRM single wheel, slips {}", fmt::join(plan.slips, ", "));
+  const auto t = Clock::now();
   r.wheel_crm = run_wheel_sweep(SoilModel::kCrm, crm, plan.terrain, plan.wheel, plan.slips, plan.crm_wheel_run,
                                 &r.crm_wheel_site);
   r.wall.crm_wheel = since(t);
-  t = Clock::now();
+  const std::string dir = plan.out + "/wheel_crm";
+  std::filesystem::create_directories(dir);
+  rigs::write_wheel_csv(dir + "/wheel.csv", r.wheel_crm);
+  rigs::write_wheel_series_csv(dir + "/wheel_series.csv", r.wheel_crm);
+}
+
+// 3. The wheel sweeps: SCM on the calibrated set, and Wong-Reece on the set the SCM wheel used; the
+// curves go to OUT/wheel_<model>/.
+void wheel_stage(const PipelinePlan& plan, const CalibrationData& data, PipelineResults& r) {
+  spdlog::info("pipeline 3/4: single wheel, slips {}: SCM (calibrated) and Wong-Reece", fmt::join(plan.slips, ", "));
+  const auto t = Clock::now();
   r.wheel_scm = scm_wheel_stage(plan, data, r);
   r.wall.scm_wheel = since(t);
   r.wheel_wong_reece = run_wheel_sweep(SoilModel::kWongReece, scm_choice(plan, r.wheel_set), scm_options(plan),
                                        plan.wheel, plan.slips, plan.scm_wheel_run);
-  for (const auto& [name, res] :
-       {std::pair{"crm", &r.wheel_crm}, std::pair{"scm", &r.wheel_scm}, std::pair{"wong_reece", &r.wheel_wong_reece}}) {
+  for (const auto& [name, res] : {std::pair{"scm", &r.wheel_scm}, std::pair{"wong_reece", &r.wheel_wong_reece}}) {
     const std::string dir = plan.out + "/wheel_" + name;
     std::filesystem::create_directories(dir);
     rigs::write_wheel_csv(dir + "/wheel.csv", *res);
@@ -152,6 +165,12 @@ void check_pipeline(const PipelinePlan& plan, const SoilChoice& crm) {
                     plan.scm_wheel_run);
   check_pipeline_checks(plan, crm);
   warn_about_sweep(plan.wheel, plan.slips);
+  for (double s : plan.calibration_slips)
+    if (std::find(plan.slips.begin(), plan.slips.end(), s) == plan.slips.end())
+      throw InputError(fmt::format("--calibration-slips: slip {} is not among --slips ({}); expected a subset", s,
+                                   fmt::join(plan.slips, ",")));
+  if (!plan.calibration_slips.empty() && !plan.calibrate_on_wheel)
+    throw InputError("--calibration-slips: only with --calibrate-on bevameter+wheel");
 }
 }  // namespace
 
@@ -166,10 +185,14 @@ int run_pipeline(const PipelinePlan& plan) {
 
   PipelineResults r;
   r.bevameter = bevameter_stage(plan, crm, r.wall);
-  const CalibrationData data = calibration_data(r.bevameter, plan.out + "/bevameter");
+  CalibrationData data = calibration_data(r.bevameter, plan.out + "/bevameter");
+  crm_wheel_stage(plan, crm, r);
+  if (plan.calibrate_on_wheel)
+    data.wheel = wheel_calibration_data(r.wheel_crm, plan.wheel, plan.out + "/wheel_crm/wheel.csv",
+                                        plan.calibration_slips);
   r.calibration = calibration_stage(plan, data, r.wall);
   plot_bevameter(plan.out, r.bevameter, &r.calibration.fitted);
-  wheel_stage(plan, crm, data, r);
+  wheel_stage(plan, data, r);
   if (!plan.checks.empty()) {
     spdlog::info("pipeline: bin-size and run-length checks");
     r.checks = run_checks(plan, crm, r.bevameter, r.wheel_crm);

@@ -17,6 +17,12 @@ struct PipelinePlan {
   BevameterPlan bevameter;
   rigs::WheelSpec wheel;
   std::vector<double> slips;  // of the wheel sweeps (the commands default to kDefaultSlips)
+  // Calibrate on the bevameter curves and the CRM wheel's (then the SCM and Wong-Reece wheels run
+  // with slip sinkage, whose S the wheel fits), or on the bevameter curves alone.
+  bool calibrate_on_wheel = true;
+  // The CRM wheel's slips the calibration sees (a subset of `slips`; empty: all of them). The others
+  // are held out: the report gives the error on them apart.
+  std::vector<double> calibration_slips;
   rigs::WheelRun crm_wheel_run, scm_wheel_run;
   double scm_grid = 0.01;
   std::uint64_t seed = 1;

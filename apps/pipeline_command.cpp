@@ -1,5 +1,6 @@
 // `terracal pipeline`: soil -> CRM bevameter -> calibrated SCM set -> single-wheel validation (CRM,
 // SCM, Wong-Reece) -> report (docs/architecture.md, "The data path").
+#include <map>
 #include <memory>
 
 #include <fmt/format.h>
@@ -15,7 +16,8 @@ namespace terracal::app {
 
 namespace {
 struct PipelineArgs {
-  std::string out, wheel, slips = kDefaultSlips;
+  std::string out, wheel, slips = kDefaultSlips, calibration_slips;
+  bool calibrate_on_wheel = true;
   double wheel_duration = 3.0;
   std::uint64_t seed = 1;
   std::string checks;  // "" = none, "all", or a comma list of plate, annulus, wheel
@@ -43,6 +45,15 @@ Command add_pipeline(CLI::App& app) {
   sub->add_option("--slips", a->slips, "slips of the wheel sweep")
       ->check(list_in_range(rigs::WheelRanges::kSlip))
       ->capture_default_str();
+  const std::map<std::string, bool> calibrate_on{{"bevameter", false}, {"bevameter+wheel", true}};
+  add_choice(sub, "--calibrate-on", a->calibrate_on_wheel, calibrate_on,
+             "curves the SCM set is fitted to: bevameter, or bevameter+wheel (the CRM wheel too, fitting slip "
+             "sinkage; default)")
+      ->default_str("bevameter+wheel");
+  sub->add_option("--calibration-slips", a->calibration_slips,
+                  "with bevameter+wheel: the CRM wheel's slips the calibration sees (default all of --slips); the "
+                  "others are held out")
+      ->check(list_in_range(rigs::WheelRanges::kSlip));
   sub->add_option("--wheel-duration", a->wheel_duration, "simulated seconds per slip")
       ->check(in_range(rigs::WheelRanges::kDuration))
       ->capture_default_str();
@@ -76,6 +87,8 @@ Command add_pipeline(CLI::App& app) {
                       a->terrain.settle_seed, a->check_realisations - 1, a->check_realisations - 1));
     p.scm_grid = a->terrain.grid;
     p.slips = parse_list(a->slips, "--slips");
+    p.calibrate_on_wheel = a->calibrate_on_wheel;
+    if (!a->calibration_slips.empty()) p.calibration_slips = parse_list(a->calibration_slips, "--calibration-slips");
     apply_bevameter_lists(a->lists, p.bevameter);
     if (!a->wheel.empty()) p.wheel = rigs::read_wheel_json(a->wheel);
     p.crm_wheel_run.duration = p.scm_wheel_run.duration = a->wheel_duration;

@@ -13,10 +13,32 @@ namespace terracal::app {
 namespace {
 using Field = double rigs::WheelResult::*;
 
-double rmse(const std::vector<rigs::WheelResult>& a, const std::vector<rigs::WheelResult>& ref, Field f) {
+// RMSE over the rows `rows` (empty: all rows).
+double rmse(const std::vector<rigs::WheelResult>& a, const std::vector<rigs::WheelResult>& ref, Field f,
+            const std::vector<std::size_t>& rows = {}) {
   double s = 0;
-  for (std::size_t i = 0; i < ref.size(); ++i) s += (a[i].*f - ref[i].*f) * (a[i].*f - ref[i].*f);
-  return std::sqrt(s / double(ref.size()));
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < ref.size(); ++i) {
+    if (!rows.empty() && std::find(rows.begin(), rows.end(), i) == rows.end()) continue;
+    s += (a[i].*f - ref[i].*f) * (a[i].*f - ref[i].*f);
+    ++n;
+  }
+  return std::sqrt(s / double(n));
+}
+
+bool calibrated_on(const PipelinePlan& plan, double slip) {
+  if (!plan.calibrate_on_wheel) return false;
+  return plan.calibration_slips.empty() ||
+         std::find(plan.calibration_slips.begin(), plan.calibration_slips.end(), slip) != plan.calibration_slips.end();
+}
+
+// The sweep's rows the calibration did not see (empty when it saw every one, or none).
+std::vector<std::size_t> held_out_rows(const PipelinePlan& plan) {
+  std::vector<std::size_t> rows;
+  if (!plan.calibrate_on_wheel) return rows;
+  for (std::size_t i = 0; i < plan.slips.size(); ++i)
+    if (!calibrated_on(plan, plan.slips[i])) rows.push_back(i);
+  return rows;
 }
 
 double spread(const std::vector<rigs::WheelResult>& ref, Field f) {
@@ -49,7 +71,16 @@ std::string calibration_section(const PipelineResults& r) {
     };
     md += fmt::format("| {} | {:.4g} | {} | {} | {} |\n", key, value.get<double>(), num("sd"), num("q05"), num("q95"));
   }
-  md += fmt::format("\nCalibration: {} (calibration/summary.txt).\n\n",
+  if (params.contains("Slip sinkage")) {
+    const auto& post = params["Posterior"]["Slip sinkage S"];
+    md += fmt::format("| Slip sinkage S (Lyasko) | {:.4g} | {:.4g} | {:.4g} | {:.4g} |\n",
+                      params["Slip sinkage"]["S"].get<double>(), post["sd"].get<double>(), post["q05"].get<double>(),
+                      post["q95"].get<double>());
+  }
+  md += fmt::format("\nCalibrated on {}. Calibration: {} (calibration/summary.txt).\n\n",
+                    params.contains("Slip sinkage") ? "the bevameter curves and the CRM wheel (the steady SCM wheel, "
+                                                      "with slip sinkage)"
+                                                    : "the bevameter curves",
                     r.calibration.converged ? "converged" : "NOT converged");
   if (!r.scm_note.empty()) md += "**Note.** " + r.scm_note + "\n\n";
   return md;
@@ -93,19 +124,26 @@ std::string wheel_section(const PipelinePlan& plan, const PipelineResults& r) {
       "sinkage SCM | sinkage W-R |\n";
   md += "|---|---|---|---|---|---|---|---|---|---|\n";
   for (std::size_t i = 0; i < plan.slips.size(); ++i)
-    md += fmt::format("| {} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} |\n",
-                      plan.slips[i], crm[i].dbp, scm[i].dbp, wr[i].dbp, crm[i].torque, scm[i].torque, wr[i].torque,
+    md += fmt::format("| {}{} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} |\n",
+                      plan.slips[i], calibrated_on(plan, plan.slips[i]) ? " (c)" : "", crm[i].dbp, scm[i].dbp, wr[i].dbp, crm[i].torque, scm[i].torque, wr[i].torque,
                       crm[i].sinkage, scm[i].sinkage, wr[i].sinkage);
   md += "\n" + rigs::steadiness_summary("CRM", crm) + " " + rigs::steadiness_summary("SCM", scm) + "\n";
-  md += "\n## Error against CRM (RMSE over the slips; in brackets, relative to CRM's range over the slips)\n\n";
-  md += "| model | DBP [N] | torque [N m] | sinkage [m] |\n|---|---|---|---|\n";
+  if (plan.calibrate_on_wheel) md += "\n(c): a slip the calibration saw.\n";
+  md += "\n## Error against CRM (RMSE over the slips; in brackets, relative to CRM's range over all the slips)\n\n";
+  md += "| model | slips | DBP [N] | torque [N m] | sinkage [m] |\n|---|---|---|---|---|\n";
+  const std::vector<std::size_t> held_out = held_out_rows(plan);
   for (const auto& [name, res] : {std::pair{"SCM (calibrated)", &scm}, std::pair{"Wong-Reece (calibrated)", &wr}}) {
-    auto cell = [&](Field f) {
-      const double e = rmse(*res, crm, f), range = spread(crm, f);
-      return range > 0 ? fmt::format("{:.4g} ({:.0f} %)", e, 100 * e / range) : fmt::format("{:.4g}", e);
-    };
-    md += fmt::format("| {} | {} | {} | {} |\n", name, cell(&rigs::WheelResult::dbp), cell(&rigs::WheelResult::torque),
-                      cell(&rigs::WheelResult::sinkage));
+    for (const bool only_held_out : {false, true}) {
+      if (only_held_out && held_out.empty()) continue;
+      const std::vector<std::size_t> rows = only_held_out ? held_out : std::vector<std::size_t>{};
+      auto cell = [&](Field f) {
+        const double e = rmse(*res, crm, f, rows), range = spread(crm, f);
+        return range > 0 ? fmt::format("{:.4g} ({:.0f} %)", e, 100 * e / range) : fmt::format("{:.4g}", e);
+      };
+      md += fmt::format("| {} | {} | {} | {} | {} |\n", name, only_held_out ? "held out" : "all",
+                        cell(&rigs::WheelResult::dbp), cell(&rigs::WheelResult::torque),
+                        cell(&rigs::WheelResult::sinkage));
+    }
   }
   return md;
 }
@@ -128,10 +166,11 @@ std::string checks_and_cost_section(const PipelineResults& r) {
   return md;
 }
 
-nlohmann::json errors_json(const std::vector<rigs::WheelResult>& model, const std::vector<rigs::WheelResult>& crm) {
-  return {{"dbp_N", rmse(model, crm, &rigs::WheelResult::dbp)},
-          {"torque_Nm", rmse(model, crm, &rigs::WheelResult::torque)},
-          {"sinkage_m", rmse(model, crm, &rigs::WheelResult::sinkage)}};
+nlohmann::json errors_json(const std::vector<rigs::WheelResult>& model, const std::vector<rigs::WheelResult>& crm,
+                           const std::vector<std::size_t>& rows = {}) {
+  return {{"dbp_N", rmse(model, crm, &rigs::WheelResult::dbp, rows)},
+          {"torque_Nm", rmse(model, crm, &rigs::WheelResult::torque, rows)},
+          {"sinkage_m", rmse(model, crm, &rigs::WheelResult::sinkage, rows)}};
 }
 
 nlohmann::json summary_json(const PipelinePlan& plan, const PipelineResults& r) {
@@ -151,6 +190,13 @@ nlohmann::json summary_json(const PipelinePlan& plan, const PipelineResults& r) 
   for (const auto& c : r.checks)
     checks.push_back({{"rig", c.rig}, {"check", c.what}, {"relative_change", c.change}, {"bounded", c.bounded}});
   summary["checks"] = checks;
+  summary["calibrated_on"] = plan.calibrate_on_wheel ? "bevameter+wheel" : "bevameter";
+  if (const auto held_out = held_out_rows(plan); !held_out.empty()) {
+    std::vector<double> slips;
+    for (std::size_t i : held_out) slips.push_back(plan.slips[i]);
+    summary["held_out_slips"] = slips;
+    summary["rmse_scm_vs_crm_held_out"] = errors_json(r.wheel_scm, r.wheel_crm, held_out);
+  }
   return summary;
 }
 

@@ -90,6 +90,7 @@ Command add_wheel(CLI::App& app) {
     for (const auto& r : results) wall += r.wall_seconds;
     nlohmann::json j = {{"terrain", soil_model_name(a->terrain)},
                         {"site", site},
+                        {"wheel", rigs::wheel_json(wheel)},
                         {"wall_seconds", wall},
                         {"simulated_seconds_per_slip", run.duration}};
     write_text_atomically(a->out + "/run.json", j.dump(2) + "\n");

@@ -9,11 +9,23 @@
 
 #include "bayes/plots.hpp"
 #include "core/atomic_file.hpp"
+#include "lowfi/slip_sinkage.hpp"
 
 namespace terracal::bayes {
 namespace {
 
 using ordered_json = nlohmann::ordered_json;
+
+// S is a parameter of the outputs only where wheel curves identified it; otherwise the set has no
+// "Slip sinkage" block, as before wheel curves could be given.
+bool reported(const CalibrationProblem& pb, int i) { return i != kSlipSinkage || pb.has_wheel(); }
+
+// The noise sd's key in scm_params.json: the type and its unit.
+std::string noise_key(const ObservationSet& s) {
+  if (s.name == "plate") return "plate_N";
+  if (s.name == "shear") return "shear_Nm";
+  return s.name + "_" + (s.unit == "N m" ? std::string("Nm") : s.unit);
+}
 
 // Index of parameter i among the result's free variables, or -1 if it is fixed.
 int free_slot(const CalibrationProblem& pb, int i) {
@@ -86,12 +98,15 @@ nlohmann::ordered_json scm_params_json(const CalibrationProblem& pb, const Calib
   ordered_json j;
   j["Type"] = "SCM";
   ordered_json soil;
-  for (int i = 0; i < kNumParams; ++i) soil[std::string(kChronoNames[i])] = res.point.map[i];
+  for (int i = 0; i < kNumParams; ++i)
+    if (i != kSlipSinkage) soil[std::string(kChronoNames[i])] = res.point.map[i];
   soil["Elastic stiffness"] = pb.elastic().ke;
   soil["Damping"] = kDefaultDamping;
   j["Soil parameters"] = soil;
+  if (pb.has_wheel()) j["Slip sinkage"] = lowfi::slip_sinkage_json({res.point.map[kSlipSinkage]});
   ordered_json post;
   for (int i = 0; i < kNumParams; ++i) {
+    if (!reported(pb, i)) continue;
     const int v = free_slot(pb, i);
     if (v < 0) {
       const double x = pb.fixed_values()[i];
@@ -107,15 +122,21 @@ nlohmann::ordered_json scm_params_json(const CalibrationProblem& pb, const Calib
   j["Posterior"] = post;
   ordered_json noise, relative;
   for (int t = 0; t < pb.num_types(); ++t) {
-    const std::string key = pb.set(t).name == "plate" ? "plate_N" : "shear_Nm";
-    noise[key] = noise_sd_in_units(pb, res, t);
-    relative[pb.set(t).name] = std::sqrt(res.point.noise_var[t]);
+    noise[noise_key(pb.set(t))] = noise_sd_in_units(pb, res, t);
+    if (!pb.set(t).is_wheel()) relative[pb.set(t).name] = std::sqrt(res.point.noise_var[t]);
   }
   ordered_json fit;
   fit["point_estimate"] = "MAP";
   fit["residual_sum_squares"] = res.point.weighted_rss;
   fit["noise_sd"] = noise;
   fit["noise_model"] = pb.noise_model() == NoiseModel::kRelative ? "relative" : "absolute";
+  if (pb.has_wheel()) {
+    fit["wheel_noise_model"] = "absolute";
+    fit["wheel"] = {{"radius_m", pb.wheel().radius},
+                    {"width_m", pb.wheel().width},
+                    {"angular_velocity_rad_s", pb.wheel().angular_velocity},
+                    {"model", "steady SCM wheel (lowfi/scm_steady_wheel.hpp), effects damping and slip_sinkage"}};
+  }
   if (pb.noise_model() == NoiseModel::kRelative) fit["noise_relative_sd"] = relative;
   fit["draws"] = res.draws;
   fit["chains"] = res.chains;
@@ -156,11 +177,14 @@ InferenceData make_inference_data(const CalibrationProblem& pb, const Calibratio
   for (int t = 0; t < pb.num_types(); ++t) {
     const ObservationSet& s = pb.set(t);
     const std::string obs_dim = s.name + "_obs";
-    const std::string yname = s.name == "plate" ? "plate_force" : "shear_torque";
+    const std::string yname = s.name == "plate" ? "plate_force" : s.name == "shear" ? "shear_torque" : s.name;
     observed.variables.push_back({yname, {obs_dim}, {s.size()}, s.y, s.unit});
     if (s.name == "plate") {
       constant.variables.push_back({"plate_radius", {obs_dim}, {s.size()}, s.r, "m"});
       constant.variables.push_back({"plate_sinkage", {obs_dim}, {s.size()}, s.x_axis, "m"});
+    } else if (s.is_wheel()) {
+      constant.variables.push_back({s.name + "_load", {obs_dim}, {s.size()}, s.load, "N"});
+      constant.variables.push_back({s.name + "_slip", {obs_dim}, {s.size()}, s.x_axis, "1"});
     } else {
       constant.variables.push_back({"shear_normal_load", {obs_dim}, {s.size()}, s.load, "N"});
       constant.variables.push_back({"shear_angle", {obs_dim}, {s.size()}, s.x_axis, "rad"});
@@ -216,6 +240,12 @@ std::vector<std::string> write_plots(const std::string& dir, const CalibrationPr
     if (s.name == "plate") {
       plot_fit(png, "Plate sinkage: data, MAP fit and 95 % posterior-predictive band", "sinkage z [m]", "force F [N]",
                curves);
+    } else if (s.is_wheel()) {
+      const std::string what = s.kind == ObservationSet::Kind::kWheelDbp      ? "drawbar pull [N]"
+                               : s.kind == ObservationSet::Kind::kWheelTorque ? "torque [N m]"
+                                                                              : "sinkage [m]";
+      plot_fit(png, "Single wheel (steady SCM wheel): data, MAP fit and 95 % posterior-predictive band", "slip",
+               what, curves);
     } else if (!curves.empty()) {
       plot_fit(png, "Annulus shear: data, MAP fit and 95 % posterior-predictive band", "shear angle [rad]",
                "torque [N m]", curves);
@@ -244,9 +274,9 @@ std::vector<std::string> write_plots(const std::string& dir, const CalibrationPr
 std::string summary_report(const CalibrationProblem& pb, const CalibrationResult& res, const OutputContext& ctx) {
   std::string r = "terracal calibrate: summary\n";
   for (int t = 0; t < pb.num_types(); ++t)
-    r +=
-        fmt::format("  data        {:<6} {} points in {} curves, noise model {}\n", pb.set(t).name, pb.set(t).size(),
-                    pb.set(t).curve_labels.size(), pb.noise_model() == NoiseModel::kRelative ? "relative" : "absolute");
+    r += fmt::format("  data        {:<6} {} points in {} curves, noise model {}\n", pb.set(t).name, pb.set(t).size(),
+                     pb.set(t).curve_labels.size(),
+                     pb.noise_model() == NoiseModel::kRelative && !pb.set(t).is_wheel() ? "relative" : "absolute");
   r += fmt::format("  stage 1     global search (NLopt CRS2 + BOBYQA): {} evaluations\n", res.point.global_evaluations);
   r += fmt::format("  stage 2     least squares (Ceres): {}\n", res.point.ceres_report);
   r += fmt::format("              covariance (DENSE_SVD): {}\n",
@@ -285,7 +315,7 @@ std::string summary_report(const CalibrationProblem& pb, const CalibrationResult
                      s.mean, s.sd, s.q05, s.q50, s.q95, s.rhat, s.ess_bulk);
   }
   for (int i = 0; i < kNumParams; ++i)
-    if (free_slot(pb, i) < 0) r += fmt::format("  {:<10} fixed at {:g}\n", kShortNames[i], pb.fixed_values()[i]);
+    if (free_slot(pb, i) < 0 && reported(pb, i)) r += fmt::format("  {:<10} fixed at {:g}\n", kShortNames[i], pb.fixed_values()[i]);
   if (!ke.fitted) r += fmt::format("  {:<10} fixed at {:g} (Chrono default, not fitted)\n", "Ke", ke.ke);
   for (const auto& n : pb.notes()) r += "  note: " + n + "\n";
   for (const auto& n : res.notes) r += "  note: " + n + "\n";

@@ -13,10 +13,6 @@
 
 namespace terracal::bayes {
 
-// Chrono's default SCM damping: quasi-static bevameter curves do not identify it. (The default
-// elastic stiffness, used when the plate data have no unloading, is in elastic_stiffness.hpp.)
-inline constexpr double kDefaultDamping = 3e4;  // Pa s/m
-
 struct OutputContext {
   std::string sampler;  // "dram" or "ensemble", as scm_params.json names it
   std::uint64_t seed = 0;

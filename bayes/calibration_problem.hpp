@@ -9,8 +9,15 @@
 // largest |y| of its curve) -- measurement error grows with the signal, and the floor keeps the
 // weight finite at zero force -- or absolute noise w_i = 1. The variances s_t^2 get the Jeffreys
 // prior p(s^2) ~ 1/s^2, so given theta they are inverse-gamma(N_t/2, SSE_t/2): a conjugate Gibbs step.
+//
+// Single-wheel curves (optional) add three test types, drawbar pull, torque and sinkage, each with
+// its own scale and absolute weights (a pull crosses zero near slip 0, where relative weights would
+// blow up). Their predictions come from the steady SCM wheel (lowfi/scm_steady_wheel.hpp), in double
+// only, once per parameter set for all three; they free Lyasko's slip-sinkage S, fixed otherwise.
 #include <optional>
+#include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -20,21 +27,28 @@
 #include "bayes/observations.hpp"
 #include "bayes/priors.hpp"
 #include "bayes/target.hpp"
+#include "bayes/wheel_observations.hpp"
+#include "lowfi/scm_soil.hpp"
 
 namespace terracal::bayes {
 
 enum class NoiseModel { kRelative, kAbsolute };
 
+// Chrono's default SCM damping: quasi-static bevameter curves do not identify it. (The default
+// elastic stiffness, used when the plate data have no unloading, is in elastic_stiffness.hpp.)
+inline constexpr double kDefaultDamping = 3e4;  // Pa s/m
+
 // The fitted observations of one test type, flattened.
 struct ObservationSet {
-  enum class Kind { kPlate, kShear };
+  enum class Kind { kPlate, kShear, kWheelDbp, kWheelTorque, kWheelSinkage };
   Kind kind = Kind::kPlate;
-  std::string name;          // "plate" or "shear"
-  std::string unit;          // "N" or "N m"
+  std::string name;          // "plate", "shear", "wheel_dbp", "wheel_torque", "wheel_sinkage"
+  std::string unit;          // "N", "N m" or "m"
   std::vector<double> y, w;  // observed value, noise weight
   // Plate rows: radius, log sinkage. Shear rows: radii, load, angle (developed rows: angle < 0).
+  // Wheel rows: load, slip (x_axis), in the order of CalibrationProblem::wheel_rows().
   std::vector<double> r, log_z, r_in, r_out, load, angle;
-  std::vector<double> x_axis;  // sinkage or angle, for plots
+  std::vector<double> x_axis;  // sinkage, angle or slip, for plots
   std::vector<int> curve;      // which curve (plate radius / shear load) a row belongs to
   std::vector<std::string> curve_labels;
   // Rows share kernels: plates repeat sinkages (z^n), shear tests repeat angles (the development
@@ -44,12 +58,22 @@ struct ObservationSet {
   std::vector<double> kernel_log_z, kernel_r_in, kernel_r_out, kernel_angle;
   std::size_t size() const { return y.size(); }
   std::size_t kernels() const { return kind == Kind::kPlate ? kernel_log_z.size() : kernel_angle.size(); }
+  bool is_wheel() const { return kind != Kind::kPlate && kind != Kind::kShear; }
+};
+
+// The steady SCM wheel's predictions at every wheel row, for one parameter set (NaN where the model
+// has no steady state, e.g. a wheel that would sink past its axle).
+struct WheelPrediction {
+  std::vector<double> dbp, torque, sinkage;
+  const std::vector<double>& channel(ObservationSet::Kind k) const {
+    return k == ObservationSet::Kind::kWheelDbp ? dbp : k == ObservationSet::Kind::kWheelTorque ? torque : sinkage;
+  }
 };
 
 class CalibrationProblem {
  public:
   CalibrationProblem(const PlateData& plate, const std::optional<ShearData>& shear, Priors priors,
-                     NoiseModel noise = NoiseModel::kRelative);
+                     NoiseModel noise = NoiseModel::kRelative, const std::optional<WheelData>& wheel = std::nullopt);
 
   // Free (inferred) parameters, in ParamVector order; the others are fixed.
   const std::vector<int>& free_indices() const { return free_; }
@@ -69,11 +93,32 @@ class CalibrationProblem {
   // (elastic_stiffness.hpp), solved once here; its notes are among notes().
   const ElasticFit& elastic() const { return elastic_; }
 
-  // Predictions of every row of test type t into out[0..size); p is a full parameter array (six
-  // values) of scalar T (double, or a Ceres Jet). Each distinct kernel is evaluated once.
+  // Wheel data: whether there are any, the wheel, and the SCM set a parameter vector stands for
+  // (with the fitted Ke, Chrono's damping, and S as its slip sinkage).
+  bool has_wheel() const { return wheel_.has_value(); }
+  const WheelGeometry& wheel() const { return wheel_->wheel; }
+  lowfi::ScmSoil soil_of(const ParamVector& p) const;
+  // The steady wheel at every wheel row; the last result is kept per thread, so that the three wheel
+  // types (and the Gibbs step after a density) pay for one evaluation.
+  const WheelPrediction& predict_wheel(const ParamVector& p) const;
+
+  // Predictions of every row of test type t into out[0..size); p is a full parameter array of scalar
+  // T (double, or a Ceres Jet for the bevameter types; the wheel types take double only). Each
+  // distinct kernel is evaluated once.
   template <typename T>
   void predict_set(int t, const T* p, T* out) const {
     const ObservationSet& s = sets_[t];
+    if (s.is_wheel()) {
+      if constexpr (std::is_same_v<T, double>) {
+        ParamVector pv;
+        for (int i = 0; i < kNumParams; ++i) pv[i] = p[i];
+        const std::vector<double>& f = predict_wheel(pv).channel(s.kind);
+        for (std::size_t i = 0; i < s.size(); ++i) out[i] = f[i];
+        return;
+      } else {
+        throw std::logic_error("the steady wheel has no automatic derivatives: differentiate it numerically");
+      }
+    }
     thread_local std::vector<T> kern;
     kern.resize(s.kernels());
     if (s.kind == ObservationSet::Kind::kPlate) {
@@ -106,6 +151,7 @@ class CalibrationProblem {
  private:
   void add_plate(const PlateData& plate);
   void add_shear(const ShearData& shear);
+  void add_wheel(const WheelData& wheel);
   void fix(int i, double value, const std::string& why);
   void set_weights(ObservationSet& s) const;
   static void index_kernels(ObservationSet& s);
@@ -118,6 +164,8 @@ class CalibrationProblem {
   ParamVector fixed_{};
   std::vector<std::string> notes_;
   ElasticFit elastic_;
+  std::optional<WheelData> wheel_;
+  long id_ = 0;  // tells this problem's cached wheel predictions from another's
 };
 
 }  // namespace terracal::bayes

@@ -43,6 +43,7 @@ class SearchSpace {
           std::min(pr[kCohesion].upper, std::max(pr[kCohesion].lower + 1.0, 3.0 * max_shear_stress())));
     if (is_free(kFriction)) add(pr[kFriction].lower, pr[kFriction].upper);
     if (is_free(kJanosi)) add(std::log(pr[kJanosi].lower), std::log(pr[kJanosi].upper));
+    if (is_free(kSlipSinkage)) add(pr[kSlipSinkage].lower, pr[kSlipSinkage].upper);
   }
 
   int dim() const { return static_cast<int>(lo_.size()); }
@@ -73,6 +74,7 @@ class SearchSpace {
     if (!pr[kCohesion].fixed()) p[kCohesion] = u[j++];
     if (!pr[kFriction].fixed()) p[kFriction] = u[j++];
     if (!pr[kJanosi].fixed()) p[kJanosi] = std::exp(u[j++]);
+    if (!pr[kSlipSinkage].fixed()) p[kSlipSinkage] = u[j++];
     return p;
   }
 
@@ -99,12 +101,14 @@ class SearchSpace {
   std::vector<double> lo_, hi_;
 };
 
-// Negative log posterior with the noise variances profiled out: sum_t N_t/2 log SSE_t - log prior.
-double profile_objective(const CalibrationProblem& pb, const ParamVector& p) {
+// Negative log posterior with the noise variances profiled out: sum_t N_t/2 log SSE_t - log prior
+// (without the wheel types when `wheel` is false).
+double profile_objective(const CalibrationProblem& pb, const ParamVector& p, bool wheel = true) {
   const double lp = pb.log_prior(p);
   if (!std::isfinite(lp)) return kHuge;
   double f = -lp;
   for (int t = 0; t < pb.num_types(); ++t) {
+    if (!wheel && pb.set(t).is_wheel()) continue;
     const double sse = pb.weighted_sse(t, p);
     if (!std::isfinite(sse)) return kHuge;
     f += 0.5 * static_cast<double>(pb.set(t).size()) * std::log(std::max(sse, 1e-300));
@@ -112,12 +116,30 @@ double profile_objective(const CalibrationProblem& pb, const ParamVector& p) {
   return f;
 }
 
+// With wheel curves the search is staged: the steady wheel costs milliseconds where the bevameter
+// models cost microseconds, so the random search explores on the bevameter curves alone, a scan
+// of S (which only the wheel sees) follows, and BOBYQA then converges on every curve.
+void scan_slip_sinkage(const CalibrationProblem& pb, const SearchSpace& space,
+                       const std::function<double(const std::vector<double>&)>& f, std::vector<double>& u) {
+  if (pb.priors()[kSlipSinkage].fixed()) return;
+  const int j = space.dim() - 1;  // S is the search space's last coordinate
+  double best = kHuge, best_s = u[j];
+  constexpr int kScan = 21;
+  for (int k = 0; k < kScan; ++k) {
+    u[j] = space.lower()[j] + (space.upper()[j] - space.lower()[j]) * k / (kScan - 1);
+    const double v = f(u);
+    if (v < best) best = v, best_s = u[j];
+  }
+  u[j] = best_s;
+}
+
 ParamVector global_search(const CalibrationProblem& pb, const PointEstimateOptions& opt, int& evaluations) {
   SearchSpace space(pb);
   if (space.dim() == 0) return pb.fixed_values();
+  bool wheel = !pb.has_wheel();  // the random search's objective (see scan_slip_sinkage)
   std::function<double(const std::vector<double>&)> f = [&](const std::vector<double>& u) {
     ++evaluations;
-    return profile_objective(pb, space.decode(u));
+    return profile_objective(pb, space.decode(u), wheel);
   };
   auto thunk = [](const std::vector<double>& u, std::vector<double>&, void* data) {
     return (*static_cast<std::function<double(const std::vector<double>&)>*>(data))(u);
@@ -137,6 +159,11 @@ ParamVector global_search(const CalibrationProblem& pb, const PointEstimateOptio
   try {
     crs.optimize(u, best);
   } catch (const std::exception&) { /* keep the best point found */
+  }
+  if (!wheel) {
+    wheel = true;
+    scan_slip_sinkage(pb, space, f, u);
+    best = f(u);
   }
   nlopt::opt local(nlopt::LN_BOBYQA, space.dim());
   local.set_lower_bounds(space.lower());
@@ -178,6 +205,30 @@ struct TypeResiduals {
     const ObservationSet& s = pb->set(t);
     pb->predict_set(t, p.data(), residuals);
     for (std::size_t i = 0; i < s.size(); ++i) residuals[i] = (s.y[i] - residuals[i]) / (noise_sd * s.w[i]);
+    return true;
+  }
+};
+
+// The wheel types' residuals, all three from one steady-wheel evaluation: that model is double only
+// (an adaptive quadrature), so Ceres differentiates it numerically. Its tolerance (1e-8) is far
+// below the relative step of 1e-4, so the differences see the model, not its round-off.
+struct WheelResiduals {
+  const CalibrationProblem* pb;
+  std::vector<int> types;
+  std::vector<double> noise_sd;
+  Scale scale;
+  bool operator()(double const* const* u, double* residuals) const {
+    ParamVector p;
+    for (int i = 0; i < kNumParams; ++i) p[i] = u[0][i] * scale[i];
+    const WheelPrediction& f = pb->predict_wheel(p);
+    for (std::size_t k = 0; k < types.size(); ++k) {
+      const ObservationSet& s = pb->set(types[k]);
+      const std::vector<double>& fk = f.channel(s.kind);
+      for (std::size_t i = 0; i < s.size(); ++i) {
+        if (!std::isfinite(fk[i])) return false;
+        *residuals++ = (s.y[i] - fk[i]) / (noise_sd[k] * s.w[i]);
+      }
+    }
     return true;
   }
 };
@@ -262,12 +313,31 @@ void polish(const CalibrationProblem& pb, PointEstimate& est) {
   for (int i = 0; i < kNumParams; ++i) u[i] = est.map[i] / scale[i];
   ceres::Problem problem;
   std::vector<ceres::ResidualBlockId> data_blocks;
+  auto* wheel = new WheelResiduals{&pb, {}, {}, scale};
+  int wheel_rows = 0;
   for (int t = 0; t < pb.num_types(); ++t) {
+    if (pb.set(t).is_wheel()) {
+      wheel->types.push_back(t);
+      wheel->noise_sd.push_back(std::sqrt(est.noise_var[t]));
+      wheel_rows += static_cast<int>(pb.set(t).size());
+      continue;
+    }
     auto* cost = new ceres::DynamicAutoDiffCostFunction<TypeResiduals, 8>(
         new TypeResiduals{&pb, t, std::sqrt(est.noise_var[t]), scale});
     cost->AddParameterBlock(kNumParams);
     cost->SetNumResiduals(static_cast<int>(pb.set(t).size()));
     data_blocks.push_back(problem.AddResidualBlock(cost, nullptr, u));
+  }
+  if (wheel_rows > 0) {
+    ceres::NumericDiffOptions nd;
+    nd.relative_step_size = 1e-4;
+    auto* cost = new ceres::DynamicNumericDiffCostFunction<WheelResiduals, ceres::CENTRAL>(wheel, ceres::TAKE_OWNERSHIP,
+                                                                                           nd);
+    cost->AddParameterBlock(kNumParams);
+    cost->SetNumResiduals(wheel_rows);
+    data_blocks.push_back(problem.AddResidualBlock(cost, nullptr, u));
+  } else {
+    delete wheel;
   }
   for (int i : pb.free_indices()) {
     const Prior& pr = pb.priors()[i];

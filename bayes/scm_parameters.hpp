@@ -1,21 +1,23 @@
 #pragma once
 // The Bekker-Wong-Janosi parameters that the calibrator infers, in Chrono's SCM units:
-// Kc [Pa/m^(n-1)], Kphi [Pa/m^n], n [-], cohesion c [Pa], friction angle phi [deg], Janosi k [m].
+// Kc [Pa/m^(n-1)], Kphi [Pa/m^n], n [-], cohesion c [Pa], friction angle phi [deg], Janosi k [m];
+// and Lyasko's slip-sinkage S [-] (the block "Slip sinkage", lowfi/slip_sinkage.hpp), which only
+// single-wheel curves identify: without them it is fixed and left out of every output.
 #include <array>
 #include <string_view>
 
 namespace terracal::bayes {
 
-enum Param : int { kKc = 0, kKphi, kN, kCohesion, kFriction, kJanosi, kNumParams };
+enum Param : int { kKc = 0, kKphi, kN, kCohesion, kFriction, kJanosi, kSlipSinkage, kNumParams };
 
 // Names exactly as in Chrono's SCM JSON "Soil parameters" block (docs/formats.md).
 inline constexpr std::array<std::string_view, kNumParams> kChronoNames = {
     "Bekker Kc",           "Bekker Kphi",         "Bekker n exponent",
-    "Mohr cohesive limit", "Mohr friction limit", "Janosi shear coefficient"};
+    "Mohr cohesive limit", "Mohr friction limit", "Janosi shear coefficient", "Slip sinkage S"};
 
 // Short names: priors files, the posterior file and the summary table.
-inline constexpr std::array<std::string_view, kNumParams> kShortNames = {"Kc", "Kphi", "n", "c", "phi", "k"};
-inline constexpr std::array<std::string_view, kNumParams> kUnits = {"Pa/m^(n-1)", "Pa/m^n", "1", "Pa", "deg", "m"};
+inline constexpr std::array<std::string_view, kNumParams> kShortNames = {"Kc", "Kphi", "n", "c", "phi", "k", "S"};
+inline constexpr std::array<std::string_view, kNumParams> kUnits = {"Pa/m^(n-1)", "Pa/m^n", "1", "Pa", "deg", "m", "1"};
 
 using ParamVector = std::array<double, kNumParams>;
 

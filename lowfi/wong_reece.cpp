@@ -4,6 +4,8 @@
 #include <cmath>
 #include <exception>
 #include <memory>
+#include <cstdio>
+#include <cstdlib>
 #include <mutex>
 
 #include <fmt/format.h>
@@ -18,22 +20,28 @@ namespace terracal::lowfi {
 namespace {
 
 // GSL's default error handler aborts the process (e.g. on a round-off warning from QAGS). Within a
-// call we want status codes instead, which we turn into RunError. The handler is process-global, so
-// calls hold a mutex while it is switched off and restore the previous handler afterwards.
+// call we want status codes instead, which we turn into RunError. The handler is process-global and
+// calls run on many threads at once (a calibration's chains), so one handler is installed for good:
+// it returns the status code on a thread inside such a call and behaves as GSL's default (report,
+// abort) everywhere else.
+thread_local int gsl_status_code_calls = 0;
+
+void gsl_handler(const char* reason, const char* file, int line, int gsl_errno) {
+  if (gsl_status_code_calls > 0) return;
+  std::fprintf(stderr, "gsl: %s:%d: ERROR: %s (error %d)\n", file, line, reason, gsl_errno);
+  std::abort();
+}
+
 class GslStatusCodes {
  public:
-  GslStatusCodes() : lock_(mutex()), previous_(gsl_set_error_handler_off()) {}
-  ~GslStatusCodes() { gsl_set_error_handler(previous_); }
+  GslStatusCodes() {
+    static std::once_flag installed;
+    std::call_once(installed, [] { gsl_set_error_handler(&gsl_handler); });
+    ++gsl_status_code_calls;
+  }
+  ~GslStatusCodes() { --gsl_status_code_calls; }
   GslStatusCodes(const GslStatusCodes&) = delete;
   GslStatusCodes& operator=(const GslStatusCodes&) = delete;
-
- private:
-  static std::mutex& mutex() {
-    static std::mutex m;
-    return m;
-  }
-  std::lock_guard<std::mutex> lock_;
-  gsl_error_handler_t* previous_;
 };
 
 // Stresses on the rim for one trial entry angle.
@@ -49,6 +57,7 @@ struct Contact {
   // Per-angle slip sinkage (WongReeceOptions::local_slip_sinkage): nullptr when off.
   const SlipSinkage* local_stretch = nullptr;
   double theta1 = 0, theta_m = 0, theta_r = 0;  // theta_r: where the rear lets go (0: no rear)
+  double patch_b = 0;                           // with a patch width: its Bekker width at theta1
 
   // Bekker stress at the equivalent front angle te; the difference of cosines can round slightly
   // below zero at te = θ1, and pow of a negative base is NaN.
@@ -152,11 +161,11 @@ void set_entry_angle(Contact& c, double theta1, const WongReeceOptions& o) {
     if (c.patch_width) {
       const double length = c.r * (std::sin(theta1) + std::sin(c.theta_r));
       const double bw = length * c.b / (length + c.b);  // 2 A / P of a length x width rectangle
-      c.k_bekker = (c.kc / bw + c.kphi) * c.rn;
-      if (!(c.k_bekker > 0))
-        throw RunError(fmt::format("wong_reece: Kc/b + Kphi = {:.4g} Pa/m^n <= 0 for the contact patch's Bekker "
-                                   "width b = {:.4g} m: the set's pressure-sinkage law has no strength there",
-                                   c.kc / bw + c.kphi, bw));
+      // A negative Kc leaves a narrow patch without strength: it carries no pressure, and the
+      // wheel sinks on to a wider patch (the entry angle's bracket starts from a sliver of a
+      // millimetre). Refused only where the equilibrium itself lies there (wong_reece()).
+      c.patch_b = bw;
+      c.k_bekker = std::max(0.0, (c.kc / bw + c.kphi) * c.rn);
     }
     c.theta_r = c.ke > 0 ? std::acos(std::max(-1.0, 1.0 - c.bekker(0.0) / (c.ke * c.r))) : 0.0;
   }
@@ -302,6 +311,10 @@ WongReeceResult wong_reece(const ScmSoil& soil, const WongReeceWheel& wheel, dou
   const double theta1 = solve_entry_angle(eq, options.rel_tol);
 
   set_entry_angle(c, theta1, options);
+  if (c.patch_width && !(c.kc / c.patch_b + c.kphi > 0))
+    throw RunError(fmt::format("wong_reece: Kc/b + Kphi = {:.4g} Pa/m^n <= 0 for the contact patch's Bekker "
+                               "width b = {:.4g} m: the set's pressure-sinkage law has no strength there",
+                               c.kc / c.patch_b + c.kphi, c.patch_b));
   WongReeceResult out;
   out.slip = slip;
   out.load = load;

@@ -27,6 +27,14 @@ void validate(const WheelSpec& w) {
                                  w.grouser_count, w.grouser_height, w.grouser_thickness));
 }
 
+nlohmann::json wheel_json(const WheelSpec& w) {
+  return {{"radius", w.radius},
+          {"width", w.width},
+          {"mass", w.mass},
+          {"angular_velocity", w.angular_velocity},
+          {"grousers", {{"count", w.grouser_count}, {"height", w.grouser_height}, {"thickness", w.grouser_thickness}}}};
+}
+
 WheelSpec parse_wheel(const nlohmann::json& j, const std::string& where) {
   if (!j.is_object()) throw InputError(fmt::format("{}: a wheel must be a JSON object", where));
   JsonObject o(j, where, "");

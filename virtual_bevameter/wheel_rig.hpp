@@ -22,6 +22,8 @@ struct WheelSpec {
   double grouser_height = 0, grouser_thickness = 0;
 };
 WheelSpec parse_wheel(const nlohmann::json& j, const std::string& where);
+// The wheel as parse_wheel reads it (run.json of `terracal wheel` records the wheel it ran).
+nlohmann::json wheel_json(const WheelSpec& w);
 WheelSpec read_wheel_json(const std::string& path);
 void validate(const WheelSpec& w);
 

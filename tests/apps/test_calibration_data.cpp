@@ -42,7 +42,7 @@ TEST_CASE("calibration data from curves in memory equal the data read from the w
   rigs::write_shear_csv(dir.str() + "/shear.csv", curves.shear);
   const app::CalibrationData memory = app::calibration_data(curves, dir.str());
   const app::CalibrationData files =
-      app::read_calibration_files({dir.str() + "/plate.csv", dir.str() + "/shear.csv", ""});
+      app::read_calibration_files({dir.str() + "/plate.csv", dir.str() + "/shear.csv", "", "", ""});
 
   REQUIRE(memory.plate.points.size() == files.plate.points.size());
   int unload = 0, fitted = 0;

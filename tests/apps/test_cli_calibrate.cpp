@@ -12,9 +12,13 @@
 #include <utility>
 #include <vector>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "bayes/posterior_h5.hpp"
+#include "core/gnuplot.hpp"
+#include "lowfi/scm_soil.hpp"
+#include "lowfi/scm_steady_wheel.hpp"
 #include "cli_runner.hpp"
 
 using namespace terracal::test;
@@ -71,6 +75,9 @@ TEST_CASE("calibrate writes the contract outputs, the same seed gives byte-ident
   CHECK(kphi["ess_bulk"].get<double>() >= 400);
   CHECK(j["Fit"]["seed"] == 11);
   CHECK(j["Fit"]["chains"] == 4);
+  // Without wheel curves the set is Chrono's block alone: no slip sinkage fitted or reported.
+  CHECK_FALSE(j.contains("Slip sinkage"));
+  CHECK_FALSE(j["Posterior"].contains("Slip sinkage S"));
 
   // posterior.h5: read back by dimension name.
   const auto idata = terracal::bayes::read_inference_data_h5(dir + "/a/posterior.h5");
@@ -207,4 +214,49 @@ TEST_CASE("hitting the draw cap is reported as not converged (exit 1, outputs wr
   const auto j = nlohmann::json::parse(read_file(dir + "/out/scm_params.json"));
   CHECK(j["Fit"]["converged"] == false);
   CHECK(j["Fit"]["draws"] == 50);
+}
+
+TEST_CASE("calibrate --wheel fits the slip sinkage with the soil, and the set drives SCM with it",
+          "[cli][calibrate][wheel]") {
+  const ScratchDir scratch("wheel");
+  const std::string dir = scratch.str();
+  // Wheel curves of the demo's soil (truth.json) with S = 2.5, from the steady SCM wheel, 1 % noise
+  // in a fixed pattern; the wheel's geometry in the run.json beside them, as `terracal wheel` writes it.
+  terracal::lowfi::ScmSoil truth = terracal::lowfi::read_scm_json(demo_data("truth.json"));
+  truth.slip_sinkage.S = 2.5;
+  terracal::lowfi::ScmSteadyWheelOptions opt;
+  opt.slip_sinkage = true;
+  std::string csv = "slip,load_N,dbp_N,torque_Nm,sinkage_m\n";
+  const double wiggle[] = {0.01, -0.008, 0.004, -0.012};
+  int k = 0;
+  for (double s : {0.1, 0.3, 0.5, 0.7}) {
+    const auto r = terracal::lowfi::scm_steady_wheel(truth, {0.47, 0.25}, 1059.48, s, opt);
+    const double e = wiggle[k++];
+    csv += fmt::format("{},{},{},{},{}\n", s, 1059.48, r.dbp * (1 + e), r.torque * (1 - e), r.sinkage * (1 + e));
+  }
+  fs::create_directories(dir + "/crm_wheel");
+  std::ofstream(dir + "/crm_wheel/wheel.csv") << csv;
+  std::ofstream(dir + "/crm_wheel/run.json")
+      << R"({"terrain": "crm", "wheel": {"radius": 0.47, "width": 0.25, "mass": 108, "angular_velocity": 1.0}})";
+
+  const CliResult r =
+      run_cli(calibrate_args(dir + "/fit", "--min-ess 200 --wheel " + dir + "/crm_wheel/wheel.csv"), dir);
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const auto j = nlohmann::json::parse(read_file(dir + "/fit/scm_params.json"));
+  REQUIRE(j.contains("Slip sinkage"));
+  CHECK(j["Slip sinkage"]["Model"] == "Lyasko");
+  CHECK(j["Slip sinkage"]["S"].get<double>() == Approx(2.5).epsilon(0.1));
+  const auto& s_post = j["Posterior"]["Slip sinkage S"];
+  CHECK(s_post["q05"].get<double>() < 2.5);
+  CHECK(s_post["q95"].get<double>() > 2.5);
+  for (const char* key : {"wheel_dbp_N", "wheel_torque_Nm", "wheel_sinkage_m"}) CHECK(j["Fit"]["noise_sd"].contains(key));
+  CHECK(j["Fit"]["wheel"]["radius_m"] == 0.47);
+  // The set reads back with its slip sinkage, as `wheel --scm-effects slip_sinkage` will use it.
+  CHECK(terracal::lowfi::read_scm_json(dir + "/fit/scm_params.json").slip_sinkage.S ==
+        j["Slip sinkage"]["S"].get<double>());
+  CHECK(r.out.find("wheel_sinkage") != std::string::npos);
+  if (terracal::gnuplot_available())
+    for (const char* png : {"wheel_dbp_fit.png", "wheel_torque_fit.png", "wheel_sinkage_fit.png"})
+      CHECK(fs::exists(dir + "/fit/" + png));
 }

@@ -120,6 +120,58 @@ std::vector<BadInput> priors_cases() {
   };
 }
 
+const std::string kWheelHeader = "slip,load_N,dbp_N,torque_Nm,sinkage_m\n";
+const std::string kWheelRows = "0.1,1000,300,200,0.03\n0.3,1000,350,250,0.05\n";
+const std::string kWheelSpec = R"({"radius": 0.47, "width": 0.25, "mass": 108})";
+
+// A wheel.csv case: the file and its wheel, then calibrate on it with the demo's bevameter curves.
+BadInput wheel(const std::string& name, const std::string& csv, std::vector<std::string> phrases) {
+  return {name,
+          {{"wheel.csv", csv}, {"wheel.json", kWheelSpec}},
+          "calibrate --plate {demo}/plate.csv --shear {demo}/shear.csv --wheel {dir}/wheel.csv --wheel-spec "
+          "{dir}/wheel.json --out {out}",
+          std::move(phrases)};
+}
+
+std::vector<BadInput> wheel_cases() {
+  return {
+      wheel("missing column", "slip,load_N,dbp_N,torque_Nm\n0.1,1000,300,200\n", {"{dir}/wheel.csv:1", "sinkage_m"}),
+      wheel("slip 1", kWheelHeader + kWheelRows + "1,1000,400,300,0.1\n",
+            {"{dir}/wheel.csv:4, column 'slip'", "outside [0, 1)"}),
+      wheel("skid", kWheelHeader + "-0.2,1000,-300,-100,0.03\n" + kWheelRows,
+            {"{dir}/wheel.csv:2, column 'slip'", "skids"}),
+      wheel("load 0", kWheelHeader + "0.1,0,300,200,0.03\n0.3,1000,350,250,0.05\n",
+            {"{dir}/wheel.csv:2, column 'load_N'", "must be > 0"}),
+      wheel("sinkage in millimetres", kWheelHeader + "0.1,1000,300,200,30\n0.3,1000,350,250,50\n",
+            {"{dir}/wheel.csv:2, column 'sinkage_m'", "millimetres"}),
+      wheel("the same slip twice", kWheelHeader + kWheelRows + "0.1,1000,310,205,0.031\n",
+            {"{dir}/wheel.csv:4, column 'slip'", "a second row for slip 0.1"}),
+      wheel("one row", kWheelHeader + "0.1,1000,300,200,0.03\n", {"{dir}/wheel.csv", "at least 2 slips"}),
+      wheel("non-numeric pull", kWheelHeader + "0.1,1000,abc,200,0.03\n0.3,1000,350,250,0.05\n",
+            {"{dir}/wheel.csv:2, column 'dbp_N'"}),
+      {"no wheel geometry",
+       {{"wheel.csv", kWheelHeader + kWheelRows}},
+       "calibrate --plate {demo}/plate.csv --wheel {dir}/wheel.csv --out {out}",
+       {"--wheel {dir}/wheel.csv", "--wheel-spec", "run.json"}},
+      {"run.json without its wheel",
+       {{"wheel.csv", kWheelHeader + kWheelRows}, {"run.json", R"({"terrain": "crm"})"}},
+       "calibrate --plate {demo}/plate.csv --wheel {dir}/wheel.csv --out {out}",
+       {"{dir}/run.json", "key 'wheel'"}},
+      {"run.json with a bad wheel",
+       {{"wheel.csv", kWheelHeader + kWheelRows}, {"run.json", R"({"wheel": {"radius": -1, "width": 0.25, "mass": 1}})"}},
+       "calibrate --plate {demo}/plate.csv --wheel {dir}/wheel.csv --out {out}",
+       {"{dir}/run.json", "radius", "-1"}},
+      {"--wheel-spec without --wheel",
+       {{"wheel.json", kWheelSpec}},
+       "calibrate --plate {demo}/plate.csv --wheel-spec {dir}/wheel.json --out {out}",
+       {"--wheel-spec {dir}/wheel.json: only with --wheel"}},
+      {"a prior for S outside its range",
+       {{"priors.json", R"({"S": {"type": "uniform", "lower": 0, "upper": 50}})"}},
+       "calibrate --plate {demo}/plate.csv --priors {dir}/priors.json --out {out}",
+       {"{dir}/priors.json", "S.upper", "50"}},
+  };
+}
+
 std::vector<BadInput> option_cases() {
   return {
       option("--chains 3", {"--chains 3: expected 4 to 256 chains"}),
@@ -152,3 +204,4 @@ TEST_CASE("bad input, calibrate: plate.csv", "[cli][bad_input]") { check_bad_inp
 TEST_CASE("bad input, calibrate: shear.csv", "[cli][bad_input]") { check_bad_inputs("bad_shear", shear_cases()); }
 TEST_CASE("bad input, calibrate: priors.json", "[cli][bad_input]") { check_bad_inputs("bad_priors", priors_cases()); }
 TEST_CASE("bad input, calibrate: options", "[cli][bad_input]") { check_bad_inputs("bad_calopt", option_cases()); }
+TEST_CASE("bad input, calibrate: wheel.csv", "[cli][bad_input]") { check_bad_inputs("bad_calwheel", wheel_cases()); }

@@ -1,0 +1,112 @@
+// Joint calibration on bevameter and single-wheel curves: the steady SCM wheel as the wheel's forward
+// model, Lyasko's S as a seventh parameter that only the wheel identifies.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "bayes/calibration_problem.hpp"
+#include "bayes/point_estimate.hpp"
+#include "bayes/synthetic_data.hpp"
+#include "lowfi/scm_steady_wheel.hpp"
+
+using namespace terracal;
+using namespace terracal::bayes;
+
+namespace {
+
+// Dry sand (Wong's Table 2.3, k = 0.025 m) with the slip sinkage of CRM's wheels (S = 3).
+ParamVector truth() { return {990, 1528430, 1.1, 1040, 28, 0.025, 3.0}; }
+
+// The steady SCM wheel of `soil` at the given slips and loads, with multiplicative noise of sd `noise`.
+WheelData synthesize_wheel(const ParamVector& p, const std::vector<double>& slips, const std::vector<double>& loads,
+                           double noise, Rng& rng) {
+  lowfi::ScmSoil soil;
+  soil.Kc = p[kKc], soil.Kphi = p[kKphi], soil.n = p[kN];
+  soil.cohesion = p[kCohesion], soil.friction_deg = p[kFriction], soil.janosi_k = p[kJanosi];
+  soil.elastic_stiffness = 4e7;  // the default the plate data (no unloading) leave in place
+  soil.damping = kDefaultDamping;
+  soil.slip_sinkage.S = p[kSlipSinkage];
+  lowfi::ScmSteadyWheelOptions opt;
+  opt.slip_sinkage = true;
+  WheelData d;
+  d.path = "synthetic wheel";
+  d.wheel = {0.47, 0.25, 1.0};
+  for (double load : loads)
+    for (double s : slips) {
+      const auto r = lowfi::scm_steady_wheel(soil, {0.47, 0.25}, load, s, opt);
+      d.points.push_back({s, load, r.dbp * (1 + noise * rng.normal()), r.torque * (1 + noise * rng.normal()),
+                          r.sinkage * (1 + noise * rng.normal()), 0});
+    }
+  return d;
+}
+
+double rel(double est, double truth) { return std::abs(est - truth) / std::abs(truth); }
+
+}  // namespace
+
+TEST_CASE("a joint calibration recovers S and the soil from bevameter and steady-wheel curves", "[bayes][wheel]") {
+  Rng rng(31);
+  const ParamVector t = truth();
+  SyntheticDesign design;
+  const PlateData plate = synthesize_plate(t, design, rng);
+  const ShearData shear = synthesize_shear(t, design, rng);
+  const WheelData wheel = synthesize_wheel(t, {0.1, 0.3, 0.5, 0.7}, {1059.48, 1600}, 0.02, rng);
+  const CalibrationProblem problem(plate, shear, default_priors(), NoiseModel::kRelative, wheel);
+  REQUIRE(problem.num_types() == 5);
+  REQUIRE(std::count(problem.free_indices().begin(), problem.free_indices().end(), kSlipSinkage) == 1);
+
+  // The model the problem predicts with is the steady wheel the data came from (no noise at the truth
+  // but the data's own): its residuals at the truth are of the noise's size.
+  const WheelPrediction& f = problem.predict_wheel(t);
+  for (std::size_t i = 0; i < wheel.points.size(); ++i) {
+    INFO("row " << i);
+    CHECK(rel(f.sinkage[i], wheel.points[i].sinkage) < 0.08);
+    CHECK(rel(f.torque[i], wheel.points[i].torque) < 0.08);
+  }
+
+  const PointEstimate est = estimate_point(problem, PointEstimateOptions{.seed = 5});
+  const ParamVector& p = est.map;
+  INFO("S " << p[kSlipSinkage] << ", Kphi " << p[kKphi] << ", n " << p[kN] << ", phi " << p[kFriction] << ", k "
+            << p[kJanosi] << "\n"
+            << est.ceres_report);
+  CHECK(rel(p[kSlipSinkage], t[kSlipSinkage]) < 0.05);
+  CHECK(rel(p[kN], t[kN]) < 0.05);
+  CHECK(rel(p[kFriction], t[kFriction]) < 0.05);
+  CHECK(rel(p[kJanosi], t[kJanosi]) < 0.05);
+  for (double r : design.plate_radii) CHECK(rel(p[kKc] / r + p[kKphi], t[kKc] / r + t[kKphi]) < 0.05);
+  CHECK(est.covariance_ok);
+}
+
+TEST_CASE("without wheel curves S is fixed and the bevameter fit is that of six parameters", "[bayes][wheel]") {
+  Rng rng(32);
+  const ParamVector t = truth();
+  const SyntheticDesign design;
+  const PlateData plate = synthesize_plate(t, design, rng);
+  const ShearData shear = synthesize_shear(t, design, rng);
+  const CalibrationProblem problem(plate, shear, default_priors());
+  CHECK(problem.num_types() == 2);
+  CHECK_FALSE(problem.has_wheel());
+  CHECK(problem.dim() == 6);
+  CHECK(problem.fixed_values()[kSlipSinkage] == 1.5);
+  for (const auto& note : problem.notes()) CHECK(note.find("S ") == std::string::npos);  // S is not the user's concern
+}
+
+TEST_CASE("a slip-sinkage S fitted to wheel data is what the wheel needs: S = 0 misses the sinkage",
+          "[bayes][wheel]") {
+  // The same data seen through a problem with S fixed at 0 (no slip sinkage): its best fit leaves the
+  // sinkage at slip 0.7 short by far more than the noise, so S carries information the other six do not.
+  Rng rng(33);
+  const ParamVector t = truth();
+  const SyntheticDesign design;
+  const PlateData plate = synthesize_plate(t, design, rng);
+  const ShearData shear = synthesize_shear(t, design, rng);
+  const WheelData wheel = synthesize_wheel(t, {0.1, 0.3, 0.5, 0.7}, {1059.48}, 0.0, rng);
+  Priors priors = default_priors();
+  priors[kSlipSinkage] = fixed_prior(0.0);
+  const CalibrationProblem problem(plate, shear, priors, NoiseModel::kRelative, wheel);
+  const PointEstimate est = estimate_point(problem, PointEstimateOptions{.seed = 5});
+  const WheelPrediction& f = problem.predict_wheel(est.map);
+  INFO("sinkage at slip 0.7: " << f.sinkage.back() << " m against " << wheel.points.back().sinkage << " m");
+  CHECK(f.sinkage.back() < 0.7 * wheel.points.back().sinkage);
+}
