@@ -61,6 +61,11 @@ Command add_calibrate(CLI::App& app) {
   const std::map<std::string, bayes::NoiseModel> noises{{"relative", bayes::NoiseModel::kRelative},
                                                         {"absolute", bayes::NoiseModel::kAbsolute}};
   add_choice(sub, "--noise", s.noise, noises, "noise model: relative (sd grows with the signal) or absolute");
+  const std::map<std::string, bool> correlations{{"white", false}, {"ar1", true}};
+  add_choice(sub, "--noise-correlation", s.correlated_noise, correlations,
+             "white (every row independent) or ar1 (each test type counts as N / tau rows, tau from its residuals' "
+             "lag-one correlation)")
+      ->default_str("white");
   sub->add_flag("!--no-plots", s.plots, "skip the PNG plots");
   return [a] {
     const OutDir out = prepare_out_dir("--out", a->settings.out_dir);

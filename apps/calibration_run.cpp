@@ -6,10 +6,12 @@
 #include <filesystem>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 #include "apps/memory_check.hpp"
 #include "bayes/calibration_outputs.hpp"
+#include "bayes/point_estimate.hpp"
 #include "bayes/posterior_h5.hpp"
 #include "core/atomic_file.hpp"
 #include "core/checksum.hpp"
@@ -52,8 +54,9 @@ std::string data_text(const CalibrationData& d) {
 // FNV-1a: a stable 64-bit fingerprint of the data and options, so that a checkpoint is resumed only
 // by the very same calibration.
 std::string fingerprint(const CalibrationData& d, const CalibrationSettings& s) {
-  const std::string text = fmt::format("{}|{}|{}|{}|{}|{}|{}|{}", TERRACAL_VERSION, data_text(d), s.seed, s.chains,
-                                       s.min_ess, s.max_draws, sampler_name(s.sampler), noise_name(s.noise));
+  const std::string text =
+      fmt::format("{}|{}|{}|{}|{}|{}|{}|{}{}", TERRACAL_VERSION, data_text(d), s.seed, s.chains, s.min_ess,
+                  s.max_draws, sampler_name(s.sampler), noise_name(s.noise), s.correlated_noise ? "|ar1" : "");
   return fnv1a64_hex(text);
 }
 
@@ -105,6 +108,21 @@ void remove_earlier_outputs(const std::string& dir) {
                           "shear_developed.png", "pairs.png", "wheel_dbp_fit.png", "wheel_torque_fit.png",
                           "wheel_sinkage_fit.png"})
     fs::remove(fs::path(dir) / old);
+}
+
+// --noise-correlation ar1: the residuals' correlation times at a first least-squares point (white
+// noise), after which the calibration runs on the tempered likelihood.
+void set_correlation_times(CalibrationProblem& problem, std::uint64_t seed) {
+  PointEstimateOptions o;
+  o.seed = seed;
+  const PointEstimate first = estimate_point(problem, o);
+  const std::vector<double> tau = problem.correlation_times(first.map);
+  problem.set_correlation_times(tau);
+  std::vector<std::string> text;
+  for (int t = 0; t < problem.num_types(); ++t)
+    text.push_back(fmt::format("{} {:.3g} ({} rows count as {:.3g})", problem.set(t).name, tau[t],
+                               problem.set(t).size(), problem.effective_rows(t)));
+  spdlog::info("residual correlation times: {}", fmt::join(text, ", "));
 }
 
 }  // namespace
@@ -201,9 +219,10 @@ CalibrationOutcome run_calibration(const CalibrationData& data, const Calibratio
   const auto t0 = std::chrono::steady_clock::now();
   validate(s);
   // Every input is checked before the output folder is touched.
-  const CalibrationProblem problem(data.plate, data.shear, data.priors, s.noise, data.wheel);
+  CalibrationProblem problem(data.plate, data.shear, data.priors, s.noise, data.wheel);
   for (const auto& note : problem.notes()) spdlog::warn("{}", note);
   if (problem.dim() == 0) throw InputError("every parameter is fixed (by the priors and the data); nothing to infer");
+  if (s.correlated_noise) set_correlation_times(problem, s.seed);
 
   fs::create_directories(s.out_dir);
   const CalibrationOptions opt = sampler_options(data, s);
@@ -221,6 +240,13 @@ CalibrationOutcome run_calibration(const CalibrationData& data, const Calibratio
   if (out.params.contains("Slip sinkage"))
     out.fitted.slip_sinkage = lowfi::parse_slip_sinkage(out.params["Slip sinkage"], "the calibrated set");
   write_scm_params_json(s.out_dir + "/scm_params.json", out.params);
+  const std::size_t nv = res.names.size();
+  for (int c = 0; c < res.chains; ++c)
+    for (std::size_t d : thinned_draws(res.draws, kPosteriorSets)) {
+      Eigen::VectorXd x(res.num_params);
+      for (int v = 0; v < res.num_params; ++v) x[v] = res.values[c][d * nv + v];
+      out.posterior_sets.push_back(problem.soil_of(problem.expand(x)));
+    }
   const InferenceData idata = make_inference_data(problem, res, s.seed);
   write_inference_data_h5(s.out_dir + "/posterior.h5", idata);
   const std::string report = summary_report(problem, res, ctx);

@@ -38,6 +38,9 @@ struct CalibrationSettings {
   long max_draws = 100000;
   bayes::SamplerKind sampler = bayes::SamplerKind::kDram;
   bayes::NoiseModel noise = bayes::NoiseModel::kRelative;
+  // Count each test type as N / tau rows, tau from its residuals' lag-one correlation at a first
+  // least-squares point (bayes/correlation_time.hpp); false: every row independent.
+  bool correlated_noise = false;
   bool plots = true;
 };
 
@@ -71,7 +74,11 @@ struct CalibrationOutcome {
   bool converged = false;
   lowfi::ScmSoil fitted;          // the MAP set, validated as an SCM soil
   nlohmann::ordered_json params;  // scm_params.json as written
+  // Posterior draws as SCM sets (with the fitted Ke, Chrono's damping and S), evenly thinned to at
+  // most kPosteriorSets per chain: what a predictive band runs through a fast model.
+  std::vector<lowfi::ScmSoil> posterior_sets;
 };
+inline constexpr int kPosteriorSets = 25;
 
 // Validates the settings before anything is written (bad input: InputError, no output files), then
 // runs the three stages and writes scm_params.json, posterior.h5, summary.txt and the plots. When

@@ -12,6 +12,7 @@
 #include "apps/pipeline_report.hpp"
 #include "apps/report_plots.hpp"
 #include "apps/soil_choice.hpp"
+#include "apps/wheel_band.hpp"
 #include "core/csv.hpp"
 #include "core/errors.hpp"
 #include "lowfi/effects/scm_slip_sinkage.hpp"
@@ -84,6 +85,7 @@ std::vector<rigs::WheelResult> scm_wheel_stage(const PipelinePlan& plan, const C
                                                PipelineResults& r) {
   SoilChoice scm = scm_choice(plan, r.calibration.fitted);
   r.wheel_set = r.calibration.fitted;
+  r.wheel_posterior = r.calibration.posterior_sets;
   try {
     return run_wheel_sweep(SoilModel::kScm, scm, scm_options(plan), plan.wheel, plan.slips, plan.scm_wheel_run,
                            &r.scm_wheel_site);
@@ -96,7 +98,9 @@ std::vector<rigs::WheelResult> scm_wheel_stage(const PipelinePlan& plan, const C
         e.what());
     CalibrationData kc0 = data;
     kc0.priors[bayes::kKc] = bayes::fixed_prior(0);
-    r.wheel_set = run_calibration(kc0, calibration_settings(plan, "calibration_kc0")).fitted;
+    const CalibrationOutcome kc0_outcome = run_calibration(kc0, calibration_settings(plan, "calibration_kc0"));
+    r.wheel_set = kc0_outcome.fitted;
+    r.wheel_posterior = kc0_outcome.posterior_sets;
     scm.scm = r.wheel_set;
     return run_wheel_sweep(SoilModel::kScm, scm, scm_options(plan), plan.wheel, plan.slips, plan.scm_wheel_run,
                            &r.scm_wheel_site);
@@ -131,9 +135,13 @@ void wheel_stage(const PipelinePlan& plan, const CalibrationData& data, Pipeline
     rigs::write_wheel_csv(dir + "/wheel.csv", *res);
     if (std::string(name) != "wong_reece") rigs::write_wheel_series_csv(dir + "/wheel_series.csv", *res);
   }
+  r.scm_band = scm_wheel_band(r.wheel_posterior, plan.wheel, plan.soil.gravity, plan.slips, plan.calibrate_on_wheel,
+                              scm_options(plan), plan.scm_wheel_run);
+  write_wheel_band_csv(plan.out + "/wheel_scm/band.csv", r.scm_band);
   plot_wheel_models(
       plan.out,
-      {{"CRM", r.wheel_crm}, {"SCM (calibrated)", r.wheel_scm}, {"Wong-Reece (calibrated)", r.wheel_wong_reece}});
+      {{"CRM", r.wheel_crm}, {"SCM (calibrated)", r.wheel_scm}, {"Wong-Reece (calibrated)", r.wheel_wong_reece}},
+      &r.scm_band);
 }
 }  // namespace
 
@@ -230,9 +238,13 @@ void replot_pipeline(const std::string& dir) {
     }
     return out;
   };
-  plot_wheel_models(dir, {{"CRM", wheel("wheel_crm")},
-                          {"SCM (calibrated)", wheel("wheel_scm")},
-                          {"Wong-Reece (calibrated)", wheel("wheel_wong_reece")}});
+  const std::string band_csv = dir + "/wheel_scm/band.csv";
+  const WheelBand band = std::filesystem::exists(band_csv) ? read_wheel_band_csv(band_csv) : WheelBand{};
+  plot_wheel_models(dir,
+                    {{"CRM", wheel("wheel_crm")},
+                     {"SCM (calibrated)", wheel("wheel_scm")},
+                     {"Wong-Reece (calibrated)", wheel("wheel_wong_reece")}},
+                    &band);
 }
 
 }  // namespace terracal::app

@@ -114,6 +114,22 @@ std::string crm_setup_notes(const PipelinePlan& plan) {
   return md;
 }
 
+// The SCM wheel's posterior band and its check against the time-stepping wheel.
+std::string band_section(const WheelBand& b) {
+  if (b.sets == 0) return "";
+  std::string md = fmt::format(
+      "\nThe plot's shaded band is SCM's 90 % posterior band: {} posterior sets through the steady SCM wheel{}. "
+      "Checked against the time-stepping SCM wheel at slip {}:\n\n",
+      b.sets, b.failed > 0 ? fmt::format(" ({} more had no steady state)", b.failed) : std::string(), b.check_slip);
+  md += "| set | DBP steady / time-stepping [N] | torque [N m] | sinkage [m] |\n|---|---|---|---|\n";
+  for (std::size_t k = 0; k < b.check_steady.size(); ++k) {
+    const auto &a = b.check_steady[k], &t = b.check_stepped[k];
+    md += fmt::format("| {} | {:.4g} / {:.4g} | {:.4g} / {:.4g} | {:.4g} / {:.4g} |\n", k + 1, a[0], t[0], a[1], t[1],
+                      a[2], t[2]);
+  }
+  return md;
+}
+
 std::string wheel_section(const PipelinePlan& plan, const PipelineResults& r) {
   const auto &crm = r.wheel_crm, &scm = r.wheel_scm, &wr = r.wheel_wong_reece;
   std::string md =
@@ -129,6 +145,7 @@ std::string wheel_section(const PipelinePlan& plan, const PipelineResults& r) {
                       crm[i].sinkage, scm[i].sinkage, wr[i].sinkage);
   md += "\n" + rigs::steadiness_summary("CRM", crm) + " " + rigs::steadiness_summary("SCM", scm) + "\n";
   if (plan.calibrate_on_wheel) md += "\n(c): a slip the calibration saw.\n";
+  md += band_section(r.scm_band);
   md += "\n## Error against CRM (RMSE over the slips; in brackets, relative to CRM's range over all the slips)\n\n";
   md += "| model | slips | DBP [N] | torque [N m] | sinkage [m] |\n|---|---|---|---|---|\n";
   const std::vector<std::size_t> held_out = held_out_rows(plan);
@@ -191,6 +208,18 @@ nlohmann::json summary_json(const PipelinePlan& plan, const PipelineResults& r) 
     checks.push_back({{"rig", c.rig}, {"check", c.what}, {"relative_change", c.change}, {"bounded", c.bounded}});
   summary["checks"] = checks;
   summary["calibrated_on"] = plan.calibrate_on_wheel ? "bevameter+wheel" : "bevameter";
+  if (r.scm_band.sets > 0) {
+    double worst = 0;  // the largest steady-vs-time-stepping difference, in % of the time-stepped value
+    for (std::size_t k = 0; k < r.scm_band.check_steady.size(); ++k)
+      for (int c = 0; c < 3; ++c)
+        worst = std::max(worst, 100 * std::abs(r.scm_band.check_steady[k][c] - r.scm_band.check_stepped[k][c]) /
+                                    std::max(std::abs(r.scm_band.check_stepped[k][c]), 1e-12));
+    summary["scm_band"] = {{"sets", r.scm_band.sets},
+                           {"failed", r.scm_band.failed},
+                           {"check_slip", r.scm_band.check_slip},
+                           {"checks", r.scm_band.check_steady.size()},
+                           {"largest_check_difference_percent", worst}};
+  }
   if (const auto held_out = held_out_rows(plan); !held_out.empty()) {
     std::vector<double> slips;
     for (std::size_t i : held_out) slips.push_back(plan.slips[i]);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "apps/calibration_run.hpp"
+#include "apps/wheel_band.hpp"
 #include "apps/pipeline.hpp"
 #include "apps/pipeline_checks.hpp"
 
@@ -22,6 +23,8 @@ struct PipelineResults {
   lowfi::ScmSoil wheel_set;        // the set the SCM and Wong-Reece wheels ran on
   std::string scm_note;            // why that is not the calibrated set, if it is not
   std::vector<rigs::WheelResult> wheel_crm, wheel_scm, wheel_wong_reece;
+  std::vector<lowfi::ScmSoil> wheel_posterior;  // posterior sets of the calibration the SCM wheel used
+  WheelBand scm_band;                           // those sets through the steady SCM wheel
   std::string crm_wheel_site, scm_wheel_site;
   std::vector<PipelineCheck> checks;
   StageTimes wall;

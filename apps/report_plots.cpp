@@ -135,7 +135,8 @@ void plot_bevameter(const std::string& dir, const BevameterCurves& c, const lowf
 }
 
 void plot_wheel_models(const std::string& dir,
-                       const std::vector<std::pair<std::string, std::vector<rigs::WheelResult>>>& models) {
+                       const std::vector<std::pair<std::string, std::vector<rigs::WheelResult>>>& models,
+                       const WheelBand* band) {
   const std::string work = dir + "/.plot_wheel";
   std::filesystem::create_directories(work);
   std::string s =
@@ -147,8 +148,20 @@ void plot_wheel_models(const std::string& dir,
     for (const auto& r : models[m].second) d += fmt::format("{} {} {} {}\n", r.slip, r.dbp, r.torque, r.sinkage);
     write_text_atomically(fmt::format("{}/m{}.dat", work, m), d);
   }
-  for (const auto& col : columns) {
+  const bool banded = band && !band->q05[0].empty();
+  if (banded) {
+    std::string d;
+    for (std::size_t i = 0; i < band->q05[0].size(); ++i)
+      d += fmt::format("{} {} {} {} {} {} {}\n", band->slips[i], band->q05[0][i], band->q95[0][i], band->q05[1][i],
+                       band->q95[1][i], band->q05[2][i], band->q95[2][i]);
+    write_text_atomically(work + "/band.dat", d);
+  }
+  for (std::size_t k = 0; k < 3; ++k) {
+    const auto& col = columns[k];
     s += fmt::format("set ylabel '{}'\nset title '{}'\nplot ", col[1], col[1]);
+    if (banded)
+      s += fmt::format("'band.dat' using 1:{}:{} with filledcurves fc rgb '#c8d8f0' title 'SCM 90 % posterior band', ",
+                       2 + 2 * k, 3 + 2 * k);
     for (std::size_t m = 0; m < models.size(); ++m)
       s += fmt::format("'m{}.dat' using 1:{} with linespoints lw 2 pt 7 lc rgb '{}' title '{}', ", m, col[0],
                        kColours[m % 9], models[m].first);

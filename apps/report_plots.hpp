@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "apps/rig_runs.hpp"
+#include "apps/wheel_band.hpp"
 
 namespace terracal::app {
 
@@ -19,9 +20,11 @@ void draw_plot(const std::string& dir, const std::string& png, const std::string
 // `fit`, the SCM laws of that parameter set as lines.
 void plot_bevameter(const std::string& dir, const BevameterCurves& curves, const lowfi::ScmSoil* fit);
 
-// DIR/wheel.png: DBP, torque and sinkage against slip, one line per named model.
+// DIR/wheel.png: DBP, torque and sinkage against slip, one line per named model; with `band`, the
+// SCM wheel's 90 % posterior band (steady model) shaded behind them.
 void plot_wheel_models(const std::string& dir,
-                       const std::vector<std::pair<std::string, std::vector<rigs::WheelResult>>>& models);
+                       const std::vector<std::pair<std::string, std::vector<rigs::WheelResult>>>& models,
+                       const WheelBand* band = nullptr);
 // DIR/trajectory.png from DIR/trajectory.csv: path, speeds, yaw rate and roll, accelerations,
 // engine speed and gear.
 void plot_trajectory(const std::string& dir, const std::string& title);

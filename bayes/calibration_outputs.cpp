@@ -130,6 +130,14 @@ nlohmann::ordered_json scm_params_json(const CalibrationProblem& pb, const Calib
   fit["residual_sum_squares"] = res.point.weighted_rss;
   fit["noise_sd"] = noise;
   fit["noise_model"] = pb.noise_model() == NoiseModel::kRelative ? "relative" : "absolute";
+  bool correlated = false;
+  for (int t = 0; t < pb.num_types(); ++t) correlated = correlated || pb.correlation_time(t) > 1;
+  if (correlated) {
+    ordered_json tau;
+    for (int t = 0; t < pb.num_types(); ++t) tau[pb.set(t).name] = pb.correlation_time(t);
+    fit["noise_correlation"] = "ar1";
+    fit["correlation_times"] = tau;
+  }
   if (pb.has_wheel()) {
     fit["wheel_noise_model"] = "absolute";
     fit["wheel"] = {{"radius_m", pb.wheel().radius},
@@ -274,9 +282,12 @@ std::vector<std::string> write_plots(const std::string& dir, const CalibrationPr
 std::string summary_report(const CalibrationProblem& pb, const CalibrationResult& res, const OutputContext& ctx) {
   std::string r = "terracal calibrate: summary\n";
   for (int t = 0; t < pb.num_types(); ++t)
-    r += fmt::format("  data        {:<6} {} points in {} curves, noise model {}\n", pb.set(t).name, pb.set(t).size(),
+    r += fmt::format("  data        {:<6} {} points in {} curves, noise model {}{}\n", pb.set(t).name, pb.set(t).size(),
                      pb.set(t).curve_labels.size(),
-                     pb.noise_model() == NoiseModel::kRelative && !pb.set(t).is_wheel() ? "relative" : "absolute");
+                     pb.noise_model() == NoiseModel::kRelative && !pb.set(t).is_wheel() ? "relative" : "absolute",
+                     pb.correlation_time(t) > 1 ? fmt::format(", correlation time {:.3g} (counts as {:.3g} rows)",
+                                                              pb.correlation_time(t), pb.effective_rows(t))
+                                                : std::string());
   r += fmt::format("  stage 1     global search (NLopt CRS2 + BOBYQA): {} evaluations\n", res.point.global_evaluations);
   r += fmt::format("  stage 2     least squares (Ceres): {}\n", res.point.ceres_report);
   r += fmt::format("              covariance (DENSE_SVD): {}\n",

@@ -8,6 +8,8 @@
 
 #include <fmt/format.h>
 
+#include "bayes/correlation_time.hpp"
+#include "core/errors.hpp"
 #include "lowfi/scm_steady_wheel.hpp"
 
 namespace terracal::bayes {
@@ -47,7 +49,7 @@ CalibrationProblem::CalibrationProblem(const PlateData& plate, const std::option
       fix(kJanosi, kDefaultJanosi,
           fmt::format("{}: only fully developed torques (no angle): the Janosi k is not identified; fixed at {} m",
                       shear->path, kDefaultJanosi));
-  } else {
+  } else if (!wheel) {  // wheel curves identify c, phi and k too
     if (!priors_[kCohesion].fixed())
       fix(kCohesion, kDefaultCohesion, fmt::format("no shear data: cohesion fixed at {} Pa", kDefaultCohesion));
     if (!priors_[kFriction].fixed())
@@ -69,6 +71,7 @@ CalibrationProblem::CalibrationProblem(const PlateData& plate, const std::option
   for (int i = 0; i < kNumParams; ++i)
     if (!priors_[i].fixed()) free_.push_back(i);
   elastic_ = fit_elastic_stiffness(plate, noise_ == NoiseModel::kRelative);
+  tau_.assign(sets_.size(), 1.0);
   notes_.insert(notes_.end(), elastic_.notes.begin(), elastic_.notes.end());
 }
 
@@ -289,7 +292,7 @@ double CalibrationProblem::log_posterior(const ParamVector& p, const Eigen::Vect
   for (int t = 0; t < num_types(); ++t) {
     const double n = static_cast<double>(sets_[t].size());
     // Jeffreys prior on s^2 contributes -log s^2.
-    ll += -0.5 * weighted_sse(t, p) / noise_var[t] - (0.5 * n + 1.0) * std::log(noise_var[t]);
+    ll += -0.5 * weighted_sse(t, p) / (tau_[t] * noise_var[t]) - (0.5 * n / tau_[t] + 1.0) * std::log(noise_var[t]);
   }
   return ll;
 }
@@ -298,8 +301,29 @@ void CalibrationProblem::draw_noise(const ParamVector& p, Eigen::VectorXd& noise
   for (int t = 0; t < num_types(); ++t) {
     // s^2 | theta ~ InvGamma(N/2, SSE/2): draw Gamma(N/2, 1) g and set s^2 = (SSE/2) / g.
     const double sse = weighted_sse(t, p);
-    noise_var[t] = 0.5 * sse / rng.gamma(0.5 * static_cast<double>(sets_[t].size()));
+    noise_var[t] = 0.5 * sse / tau_[t] / rng.gamma(0.5 * effective_rows(t));
   }
+}
+
+std::vector<double> CalibrationProblem::correlation_times(const ParamVector& p) const {
+  std::vector<double> tau(sets_.size());
+  for (int t = 0; t < num_types(); ++t) {
+    const ObservationSet& s = sets_[t];
+    const std::vector<double> f = predict_all(t, p);
+    std::vector<double> r(s.size());
+    for (std::size_t i = 0; i < s.size(); ++i) r[i] = (s.y[i] - f[i]) / s.w[i];
+    tau[t] = bayes::correlation_time(r, s.curve);
+  }
+  return tau;
+}
+
+void CalibrationProblem::set_correlation_times(const std::vector<double>& tau) {
+  if (tau.size() != sets_.size()) throw InputError("calibration: one correlation time per test type");
+  for (std::size_t t = 0; t < tau.size(); ++t)
+    if (!(std::isfinite(tau[t]) && tau[t] >= 1))
+      throw InputError(fmt::format("calibration: test type {}: correlation time {} must be finite and >= 1",
+                                   sets_[t].name, tau[t]));
+  tau_ = tau;
 }
 
 Target CalibrationProblem::target() const {

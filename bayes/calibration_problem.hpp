@@ -9,6 +9,8 @@
 // largest |y| of its curve) -- measurement error grows with the signal, and the floor keeps the
 // weight finite at zero force -- or absolute noise w_i = 1. The variances s_t^2 get the Jeffreys
 // prior p(s^2) ~ 1/s^2, so given theta they are inverse-gamma(N_t/2, SSE_t/2): a conjugate Gibbs step.
+// With correlation times tau_t (set_correlation_times; bayes/correlation_time.hpp) type t counts as
+// N_t / tau_t rows: its likelihood is raised to 1 / tau_t, s_t^2 | theta ~ IG(N_t/(2 tau_t), SSE_t/(2 tau_t)).
 //
 // Single-wheel curves (optional) add three test types, drawbar pull, torque and sinkage, each with
 // its own scale and absolute weights (a pull crosses zero near slip 0, where relative weights would
@@ -138,6 +140,12 @@ class CalibrationProblem {
 
   // Sum of squared weighted residuals ((y - f)/w)^2 of test type t (NaN if a prediction is not finite).
   double weighted_sse(int t, const ParamVector& p) const;
+  // Each type's residual correlation time at p (1 <= tau <= N/10), and setting them (default all 1:
+  // white noise). effective_rows(t) = N_t / tau_t.
+  std::vector<double> correlation_times(const ParamVector& p) const;
+  void set_correlation_times(const std::vector<double>& tau);
+  double correlation_time(int t) const { return tau_[t]; }
+  double effective_rows(int t) const { return static_cast<double>(sets_[t].size()) / tau_[t]; }
   // Inside every prior's support, and Kc/r + Kphi > 0 for every plate radius in the data.
   bool feasible(const ParamVector& p) const;
   double log_prior(const ParamVector& p) const;
@@ -166,6 +174,7 @@ class CalibrationProblem {
   ElasticFit elastic_;
   std::optional<WheelData> wheel_;
   long id_ = 0;  // tells this problem's cached wheel predictions from another's
+  std::vector<double> tau_;  // per type: residual correlation time (1: white noise)
 };
 
 }  // namespace terracal::bayes

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "bayes/correlation_time.hpp"
 #include "core/errors.hpp"
 
 namespace terracal::bayes {
@@ -48,16 +49,9 @@ Eigen::VectorXd ModelProblem::correlation_times(const Eigen::VectorXd& x) const 
   Eigen::VectorXd tau(num_channels());
   for (int c = 0; c < num_channels(); ++c) {
     const ModelChannel& ch = channels_[c];
-    double lag0 = 0, lag1 = 0;
-    for (std::size_t i = 0; i < ch.size(); ++i) {
-      const double r = ch.y[i] - f[0][offset_[c] + i];
-      lag0 += r * r;
-      if (i + 1 < ch.size() && ch.curve[i + 1] == ch.curve[i])
-        lag1 += r * (ch.y[i + 1] - f[0][offset_[c] + i + 1]);
-    }
-    const double rho = lag0 > 0 ? std::clamp(lag1 / lag0, 0.0, 1.0) : 0.0;
-    const double most = std::max(1.0, static_cast<double>(ch.size()) / 10.0);
-    tau[c] = rho < 1 ? std::clamp((1 + rho) / (1 - rho), 1.0, most) : most;
+    std::vector<double> r(ch.size());
+    for (std::size_t i = 0; i < ch.size(); ++i) r[i] = ch.y[i] - f[0][offset_[c] + i];
+    tau[c] = bayes::correlation_time(r, ch.curve);
   }
   return tau;
 }

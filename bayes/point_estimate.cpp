@@ -111,7 +111,7 @@ double profile_objective(const CalibrationProblem& pb, const ParamVector& p, boo
     if (!wheel && pb.set(t).is_wheel()) continue;
     const double sse = pb.weighted_sse(t, p);
     if (!std::isfinite(sse)) return kHuge;
-    f += 0.5 * static_cast<double>(pb.set(t).size()) * std::log(std::max(sse, 1e-300));
+    f += 0.5 * pb.effective_rows(t) * std::log(std::max(sse, 1e-300));
   }
   return f;
 }
@@ -267,10 +267,10 @@ void estimate_covariance(const CalibrationProblem& pb, ceres::Problem& problem,
     Eigen::Matrix<double, kNumParams, kNumParams, Eigen::RowMajor> full;
     covariance.GetCovarianceBlock(u, u, full.data());
     // Scaled by the residual variance of the data (the prior residuals are not noise).
-    int n_total = 0;
+    double n_total = 0;  // rows, each type's counted as N_t / tau_t
     ceres::Problem::EvaluateOptions data_only;
     data_only.residual_blocks = data_blocks;
-    for (int t = 0; t < pb.num_types(); ++t) n_total += static_cast<int>(pb.set(t).size());
+    for (int t = 0; t < pb.num_types(); ++t) n_total += pb.effective_rows(t);
     double cost = 0;
     problem.Evaluate(data_only, &cost, nullptr, nullptr, nullptr);
     const double variance_factor = n_total > d ? 2.0 * cost / (n_total - d) : 1.0;
@@ -318,12 +318,12 @@ void polish(const CalibrationProblem& pb, PointEstimate& est) {
   for (int t = 0; t < pb.num_types(); ++t) {
     if (pb.set(t).is_wheel()) {
       wheel->types.push_back(t);
-      wheel->noise_sd.push_back(std::sqrt(est.noise_var[t]));
+      wheel->noise_sd.push_back(std::sqrt(pb.correlation_time(t) * est.noise_var[t]));
       wheel_rows += static_cast<int>(pb.set(t).size());
       continue;
     }
     auto* cost = new ceres::DynamicAutoDiffCostFunction<TypeResiduals, 8>(
-        new TypeResiduals{&pb, t, std::sqrt(est.noise_var[t]), scale});
+        new TypeResiduals{&pb, t, std::sqrt(pb.correlation_time(t) * est.noise_var[t]), scale});
     cost->AddParameterBlock(kNumParams);
     cost->SetNumResiduals(static_cast<int>(pb.set(t).size()));
     data_blocks.push_back(problem.AddResidualBlock(cost, nullptr, u));

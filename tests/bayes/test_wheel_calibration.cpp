@@ -78,6 +78,18 @@ TEST_CASE("a joint calibration recovers S and the soil from bevameter and steady
   CHECK(est.covariance_ok);
 }
 
+TEST_CASE("wheel curves without shear curves leave c, phi and k free: the wheel's shear identifies them",
+          "[bayes][wheel]") {
+  Rng rng(34);
+  const ParamVector t = truth();
+  const PlateData plate = synthesize_plate(t, SyntheticDesign{}, rng);
+  const WheelData wheel = synthesize_wheel(t, {0.1, 0.3, 0.5, 0.7}, {1059.48}, 0.02, rng);
+  const CalibrationProblem with_wheel(plate, std::nullopt, default_priors(), NoiseModel::kRelative, wheel);
+  CHECK(with_wheel.dim() == 7);
+  const CalibrationProblem plate_only(plate, std::nullopt, default_priors());
+  CHECK(plate_only.dim() == 3);
+}
+
 TEST_CASE("without wheel curves S is fixed and the bevameter fit is that of six parameters", "[bayes][wheel]") {
   Rng rng(32);
   const ParamVector t = truth();
