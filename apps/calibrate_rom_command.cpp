@@ -43,7 +43,7 @@ Command add_calibrate_rom(CLI::App& app) {
              "independence (t proposal from the least-squares fit, one batch per step) or ensemble (affine-invariant)");
   sub->add_option("--chains", s.chains,
                   "chains run side by side, one batch per step (ensemble: walkers, even, at least 2 x parameters + 2); "
-                  "0: 32 (ensemble: that minimum)")
+                  "0: 4 (ensemble: that minimum)")
       ->check(whole_in(0, 100000))
       ->capture_default_str();
   sub->add_option("--min-ess", s.min_ess, "bulk effective sample size required for every parameter")

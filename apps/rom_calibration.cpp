@@ -228,26 +228,28 @@ RomCalibrationOutcome run_rom_calibration(const RomCalibrationSettings& s) {
                fmt::join(out.parameters, ", "), fmt::join(channel_names, ", "), refs.size());
 
   bayes::CalibrationResult& res = out.result;
-  res.point = bayes::estimate_model_point(pb, {.seed = s.seed, .global_points = s.global_points});
-  std::string at;
-  for (int j = 0; j < pb.dim(); ++j)
-    at += fmt::format("{}{} = {:.4g} +- {:.2g}", j ? ", " : "", out.parameters[j], res.point.x[j],
-                      std::sqrt(res.point.covariance(j, j)));
-  spdlog::info("calibrate-rom: point estimate after {} runs: {} ({})", pb.runs(), at, res.point.ceres_report);
+  const bayes::ModelPointOptions po{.seed = s.seed, .global_points = s.global_points};
+  res.point = bayes::estimate_model_point(pb, po);
   if (s.correlated_noise) {
     pb.set_correlation_times(pb.correlation_times(res.point.x));
+    bayes::laplace_covariance(pb, po, res.point);  // the width the correlated likelihood has
     std::string taus;
     for (int c = 0; c < pb.num_channels(); ++c)
       taus += fmt::format("{}{} {:.3g}", c ? ", " : "", channels[c].name, pb.correlation_time(c));
     spdlog::info("calibrate-rom: residual correlation times (rows per independent one): {}", taus);
   }
+  std::string at;
+  for (int j = 0; j < pb.dim(); ++j)
+    at += fmt::format("{}{} = {:.4g} +- {:.2g}", j ? ", " : "", out.parameters[j], res.point.x[j],
+                      std::sqrt(res.point.covariance(j, j)));
+  spdlog::info("calibrate-rom: point estimate after {} runs: {} ({})", pb.runs(), at, res.point.ceres_report);
   res.names = out.parameters;
   res.num_params = pb.dim();
   for (const auto& c : channels) res.names.push_back("sigma2_" + c.name);
   bayes::CalibrationOptions o;
   o.seed = s.seed;
   o.sampler = s.sampler;
-  o.chains = s.chains > 0 ? s.chains : s.sampler == bayes::SamplerKind::kEnsemble ? 2 * (pb.dim() + 1) : 32;
+  o.chains = s.chains > 0 ? s.chains : s.sampler == bayes::SamplerKind::kEnsemble ? 2 * (pb.dim() + 1) : 4;
   o.min_ess = s.min_ess;
   o.max_rhat = s.max_rhat;
   o.warmup = s.warmup;

@@ -22,7 +22,7 @@ struct RomCalibrationSettings {
   std::string out;
   std::uint64_t seed = 1;
   bayes::SamplerKind sampler = bayes::SamplerKind::kIndependence;  // or kEnsemble
-  int chains = 0;        // chains (ensemble: walkers); 0: 32 (ensemble: 2 (parameters + 1))
+  int chains = 0;        // chains (ensemble: walkers); 0: 4 (ensemble: 2 (parameters + 1))
   double min_ess = 400;  // bulk ESS per parameter
   double max_rhat = 1.01;
   long max_draws = 20000;  // per walker

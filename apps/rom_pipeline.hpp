@@ -20,7 +20,7 @@ struct RomPipelineSettings {
   rom::RomModel model = rom::RomModel::k18Dof;
   std::string out;
   std::uint64_t seed = 1;
-  long max_draws = 600;  // calibration: draws per chain at most (each draw: two batches of runs)
+  long max_draws = 3000;  // calibration: draws per chain at most (each draw: two batches of runs of 4 chains)
   long draws = 1000;      // validation: posterior-predictive draws
   rom::BatchDevice device = rom::BatchDevice::kCpu;
   bool plots = true;

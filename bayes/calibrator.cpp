@@ -23,6 +23,8 @@
 namespace terracal::bayes {
 namespace {
 
+constexpr double kMaxStartLogit = 3.0;  // the independence proposal's start, in box coordinates
+
 // Draws recorded per chain: values row-major (draw, variable), log density, moved or not.
 struct ChainRecord {
   std::vector<double> values, lp, accepted;
@@ -115,17 +117,21 @@ class Ensemble : public MultiChain {
 };
 
 // Independence chains: the Laplace proposal, refitted to the chains' pooled states after each
-// quarter of the warm-up (from that quarter's states); fixed while draws are kept.
+// quarter of the warm-up (from that quarter's states) unless importance sampling already fitted it
+// to the posterior; fixed while draws are kept. A quarter of a short warm-up holds few, strongly
+// correlated states: refitting an adapted proposal to them made it worse (on the full-vehicle
+// references with 8 chains, bulk ESS 31 against 661 after 1,151 draws; docs/decisions.md).
 class Independence : public MultiChain {
  public:
   // With a box, the target, starts and proposal are in its unbounded coordinates; draws are
   // recorded in the original ones (and their log density without the Jacobian).
   Independence(const Target& target, const std::vector<Eigen::VectorXd>& starts, const Eigen::VectorXd& noise0,
                const Eigen::VectorXd& mean, const Eigen::MatrixXd& covariance, std::uint64_t seed,
-               const BoxTransform* box, bool local_moves)
+               const BoxTransform* box, bool local_moves, bool refit_in_warmup)
       : sampler_(target, IndependenceOptions{.local_moves = local_moves}, mean, covariance, starts,
                  std::vector<Eigen::VectorXd>(starts.size(), noise0), Rng::for_stream(seed, 98)),
-        box_(box) {}
+        box_(box),
+        refit_in_warmup_(refit_in_warmup) {}
   int chains() const override { return static_cast<int>(sampler_.size()); }
   void advance(int iterations, bool adapt, std::vector<ChainRecord>* record) override {
     std::vector<Eigen::VectorXd> pool;
@@ -133,7 +139,7 @@ class Independence : public MultiChain {
       std::vector<long> before(sampler_.size());
       for (std::size_t k = 0; k < sampler_.size(); ++k) before[k] = sampler_.stats()[k].accepted;
       sampler_.step();
-      if (adapt) {
+      if (adapt && refit_in_warmup_) {
         pool.insert(pool.end(), sampler_.states().begin(), sampler_.states().end());
         const int every = std::max(1, iterations / 4);
         if ((i + 1) % every == 0 || i + 1 == iterations) {
@@ -161,6 +167,7 @@ class Independence : public MultiChain {
  private:
   IndependenceSampler sampler_;
   const BoxTransform* box_;
+  bool refit_in_warmup_;
 };
 
 // Starting points dispersed around the MAP: MAP + 2 L z (L the Cholesky factor of the Laplace
@@ -361,11 +368,17 @@ void sample_posterior(const Target& target, const CalibrationOptions& opt, Calib
   Target unbounded;
   const Target* sampled = &target;
   PointEstimate proposal = res.point;
+  bool refit_in_warmup = true;
   if (opt.sampler == SamplerKind::kIndependence && target.lower.size() == dim && target.upper.size() == dim) {
     box = std::make_unique<BoxTransform>(target.lower, target.upper);
     unbounded = in_unbounded_coordinates(target, *box);
     sampled = &unbounded;
     proposal.x = box->to_u(res.point.x);
+    // A least-squares point on a bound lies 10-20 logit units out, many proposal widths from the
+    // posterior's mass where the data hardly pin that parameter (a roll damping at its lower bound
+    // left importance sampling at tempering exponent 0.24 after 12 rounds, and the chains stuck):
+    // the proposal starts at most 3 units out (within 5 % of the box's edge) and adapts from there.
+    proposal.x = proposal.x.cwiseMax(-kMaxStartLogit).cwiseMin(kMaxStartLogit);
     proposal.covariance = box->covariance_to_u(proposal.x, res.point.covariance);
     // A coordinate that the Laplace approximation leaves wider than its whole box (a logistic over the
     // box has variance pi^2 / 3) starts at that width instead.
@@ -385,6 +398,7 @@ void sample_posterior(const Target& target, const CalibrationOptions& opt, Calib
         adapt_proposal(*sampled, proposal.x, proposal.covariance, res.point.noise_var, ao, rng);
     proposal.x = a.mean;
     proposal.covariance = a.covariance;
+    refit_in_warmup = !a.reached_posterior;
     if (!a.reached_posterior)
       res.notes.push_back(
           fmt::format("the independence proposal did not reach the posterior in {} rounds of importance sampling "
@@ -401,7 +415,7 @@ void sample_posterior(const Target& target, const CalibrationOptions& opt, Calib
       return std::make_unique<DramChains>(target, starts, res.point.noise_var, res.point.covariance, opt.seed);
     if (opt.sampler == SamplerKind::kIndependence)
       return std::make_unique<Independence>(*sampled, starts, res.point.noise_var, proposal.x, proposal.covariance,
-                                            opt.seed, box.get(), opt.local_moves);
+                                            opt.seed, box.get(), opt.local_moves, refit_in_warmup);
     return std::make_unique<Ensemble>(target, starts, res.point.noise_var, opt.seed);
   };
   std::unique_ptr<MultiChain> sampler = make_sampler();

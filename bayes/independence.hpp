@@ -10,9 +10,10 @@
 // (p(x, n) = p(x) p(n | x)) whose x-moves do not depend on the nuisance's current draw, which with few
 // effective observations per channel varies by factors and would otherwise narrow the acceptance.
 //
-// The proposal starts as the Laplace approximation (MAP, least-squares covariance) and, after
-// warm-up, is refitted once to the pooled warm-up draws (mean and covariance); it is fixed while
-// draws are kept, so the kept chains are plain Metropolis-Hastings chains with an exact target. The
+// The proposal starts as the Laplace approximation (MAP, least-squares covariance) or the one
+// adapted by importance sampling (proposal_adaptation.hpp); `refit` fits it to pooled draws (mean
+// and covariance), which the calibrator does during warm-up only where adaptation fell short. It is
+// fixed while draws are kept, so the kept chains are plain Metropolis-Hastings chains with an exact target. The
 // t's heavy tails (df 4) and a covariance inflated by `scale`^2 keep the ratio pi/q bounded where the
 // Gaussian approximation is too narrow.
 #include <vector>

@@ -205,16 +205,22 @@ void polish(const ModelProblem& pb, const ModelPointOptions& o, PointEstimate& e
     est.x = candidate;
 }
 
-// (J^T J)^-1 of the weighted residuals at est.x. In scaled coordinates (unit: the parameter's size)
+}  // namespace
+
+// (J^T J)^-1 of the weighted residuals at est.x, each channel's residuals divided by its noise
+// scale sqrt(noise_var tau) (tau its correlation time: each row then carries 1/tau of a row's
+// information, as in the likelihood). In scaled coordinates (unit: the parameter's size)
 // a direction's variance is kept within [1e-14, 1]: data from a simulation can pin a parameter far
 // more tightly than bevameter curves pin a soil (a floor of 1e-6 would make proposals 1000 times too
 // wide), and a direction the data leave open (information below 1e-12 of the largest) is counted
 // and given the prior's scale.
-void covariance(const ModelProblem& pb, const ModelPointOptions& o, PointEstimate& est) {
+void laplace_covariance(const ModelProblem& pb, const ModelPointOptions& o, PointEstimate& est) {
   const int d = pb.dim();
   const Eigen::VectorXd scale = scales(pb, est.x);
   const Eigen::VectorXd u = est.x.cwiseQuotient(scale);
-  BatchResiduals res(pb, scale, est.noise_var.cwiseSqrt(), o.relative_step);
+  Eigen::VectorXd sd(pb.num_channels());
+  for (int c = 0; c < pb.num_channels(); ++c) sd[c] = std::sqrt(est.noise_var[c] * pb.correlation_time(c));
+  BatchResiduals res(pb, scale, sd, o.relative_step);
   Eigen::VectorXd r(pb.rows());
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> J(pb.rows(), d);
   const double* params[] = {u.data()};
@@ -239,8 +245,6 @@ void covariance(const ModelProblem& pb, const ModelPointOptions& o, PointEstimat
   est.covariance = scale.asDiagonal() * cov_u * scale.asDiagonal();
 }
 
-}  // namespace
-
 PointEstimate estimate_model_point(const ModelProblem& pb, const ModelPointOptions& o) {
   PointEstimate est;
   est.x = global_search(pb, o, est.global_evaluations);
@@ -253,7 +257,7 @@ PointEstimate estimate_model_point(const ModelProblem& pb, const ModelPointOptio
     update_noise(pb, est);
     if (((est.noise_var - before).array().abs() <= 1e-9 * before.array()).all()) break;
   }
-  covariance(pb, o, est);
+  laplace_covariance(pb, o, est);
   return est;
 }
 

@@ -29,4 +29,10 @@ struct ModelPointOptions {
 // Throws RunError when no point of the global search runs.
 PointEstimate estimate_model_point(const ModelProblem& problem, const ModelPointOptions& options);
 
+// Stage 3 alone: est.covariance (and its flags) at est.x, each channel weighted by its noise variance
+// times its correlation time. estimate_model_point calls it; call it again after
+// ModelProblem::set_correlation_times, else the proposal and the chains' starts keep the white-noise
+// width (narrower by sqrt(tau): 16 times on the full-vehicle references).
+void laplace_covariance(const ModelProblem& problem, const ModelPointOptions& options, PointEstimate& est);
+
 }  // namespace terracal::bayes
