@@ -374,20 +374,25 @@ void sample_posterior(const Target& target, const CalibrationOptions& opt, Calib
     unbounded = in_unbounded_coordinates(target, *box);
     sampled = &unbounded;
     proposal.x = box->to_u(res.point.x);
+    proposal.covariance = box->covariance_to_u(proposal.x, res.point.covariance);
     // A least-squares point on a bound lies 10-20 logit units out, many proposal widths from the
     // posterior's mass where the data hardly pin that parameter (a roll damping at its lower bound
     // left importance sampling at tempering exponent 0.24 after 12 rounds, and the chains stuck):
-    // the proposal starts at most 3 units out (within 5 % of the box's edge) and adapts from there.
-    proposal.x = proposal.x.cwiseMax(-kMaxStartLogit).cwiseMin(kMaxStartLogit);
-    proposal.covariance = box->covariance_to_u(proposal.x, res.point.covariance);
+    // the proposal starts at most 3 units out (within 5 % of the box's edge) and adapts from there,
+    // at least one unit wide there (the Laplace width at the bound says nothing about the box's middle).
     // A coordinate that the Laplace approximation leaves wider than its whole box (a logistic over the
     // box has variance pi^2 / 3) starts at that width instead.
-    for (int j = 0; j < dim; ++j)
-      if (const double v = proposal.covariance(j, j); v > 4.0) {
-        const double f = std::sqrt(4.0 / v);
+    for (int j = 0; j < dim; ++j) {
+      const bool clamped = std::abs(proposal.x[j]) > kMaxStartLogit;
+      proposal.x[j] = std::clamp(proposal.x[j], -kMaxStartLogit, kMaxStartLogit);
+      const double v = proposal.covariance(j, j);
+      const double target = v > 4.0 ? 4.0 : clamped && v < 1.0 ? 1.0 : v;
+      if (target != v && v > 0) {
+        const double f = std::sqrt(target / v);
         proposal.covariance.row(j) *= f;
         proposal.covariance.col(j) *= f;
       }
+    }
   }
   if (opt.sampler == SamplerKind::kIndependence && opt.adaptation_rounds > 0) {
     Rng rng = Rng::for_stream(opt.seed, 97);
