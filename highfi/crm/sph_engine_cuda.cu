@@ -189,15 +189,18 @@ struct CudaBackend {
   }
   static void fill_begin(int* begin, int count, int value) { parallel_for_cuda(count, FillInt{begin, value}); }
 
+  // Sorts in the caller's double buffers (CUB's DoubleBuffer form), so that its scratch holds only
+  // its histograms, not another copy of the keys and values; the result is in either buffer.
   static const int* sort_cells(int n, int bins, int* keys, int* vals, int* keys_alt, int* vals_alt, int* begin) {
     int end_bit = 1;
     while ((1 << end_bit) <= bins && end_bit < 31) ++end_bit;
+    cub::DoubleBuffer<int> k(keys, keys_alt), v(vals, vals_alt);
     std::size_t bytes = 0;
-    TERRACAL_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, bytes, keys, keys_alt, vals, vals_alt, n, 0, end_bit));
+    TERRACAL_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, bytes, k, v, n, 0, end_bit));
     void* tmp = cub_scratch().ensure(bytes);
-    TERRACAL_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(tmp, bytes, keys, keys_alt, vals, vals_alt, n, 0, end_bit));
-    parallel_for_cuda(long(bins) + 1, CellBegin{keys_alt, n, begin});
-    return vals_alt;
+    TERRACAL_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(tmp, bytes, k, v, n, 0, end_bit));
+    parallel_for_cuda(long(bins) + 1, CellBegin{k.Current(), n, begin});
+    return v.Current();
   }
 
   template <typename T>

@@ -78,6 +78,18 @@ struct SoilBuffers {
   }
 };
 
+// The four int arrays of a sort by cell (keys, values and their alternates, n each), laid over an
+// array of n Vec4 records that is free while the sort and its gathers run: a record holds four ints.
+struct SortArrays {
+  int *keys, *vals, *keys_alt, *vals_alt;
+  template <typename T>
+  static SortArrays in(Vec4<T>* records, std::size_t n) {
+    static_assert(sizeof(Vec4<T>) >= 4 * sizeof(int));
+    int* p = reinterpret_cast<int*>(records);
+    return {p, p + n, p + 2 * n, p + 3 * n};
+  }
+};
+
 template <typename T, typename B>
 class SphEngineImpl final : public SphEngine {
  public:
@@ -96,10 +108,6 @@ class SphEngineImpl final : public SphEngine {
     A_.allocate(nn, effects_);
     B_.allocate(nn, effects_);
     ids_ = B::template alloc<int>(nn);
-    keys_ = B::template alloc<int>(std::max(nn, mm));
-    vals_ = B::template alloc<int>(std::max(nn, mm));
-    keys_alt_ = B::template alloc<int>(std::max(nn, mm));
-    vals_alt_ = B::template alloc<int>(std::max(nn, mm));
     const std::size_t cells = std::size_t(grid_.cells()) + 2;
     soil_begin_ = B::template alloc<int>(cells);
     marker_begin_ = B::template alloc<int>(cells);
@@ -128,7 +136,7 @@ class SphEngineImpl final : public SphEngine {
   ~SphEngineImpl() override {
     A_.release();
     B_.release();
-    for (int* p : {ids_, keys_, vals_, keys_alt_, vals_alt_, soil_begin_, marker_begin_}) B::release(p);
+    for (int* p : {ids_, soil_begin_, marker_begin_}) B::release(p);
     Vec4<T>* const marker_fields[] = {mk_.pos,   mk_.vel,    mk_.s0,     mk_.s1,       mk_.local,       mk_.wall_vel,
                                       mk_.force, mk_.normal, canon_.pos, canon_.local, canon_.wall_vel, canon_.normal};
     for (Vec4<T>* p : marker_fields) B::release(p);
@@ -141,7 +149,7 @@ class SphEngineImpl final : public SphEngine {
   std::size_t soil_count() const override { return n_; }
   std::size_t marker_count() const override { return nm_; }
   std::size_t device_bytes() const override {
-    const std::size_t per_soil = 2 * (4 + std::size_t(records_)) * sizeof(Vec4<T>) + 5 * sizeof(int);
+    const std::size_t per_soil = 2 * (4 + std::size_t(records_)) * sizeof(Vec4<T>) + sizeof(int);
     const std::size_t per_marker = (needs_wall_normals(k_.marker_velocity) ? 12 : 10) * sizeof(Vec4<T>);
     return n_ * per_soil + nm_ * per_marker + 2 * (std::size_t(grid_.cells()) + 2) * sizeof(int) + B::scratch_bytes();
   }
@@ -180,25 +188,31 @@ class SphEngineImpl final : public SphEngine {
     B::parallel_for(long(n_), MarkActive<T>{boxes_, int(std::max<std::size_t>(b.size(), 1)), A_.a});
   }
 
+  // The sort's four key and value arrays live in memory that is free while it runs (SortArrays), so
+  // that sorting costs no memory of its own: the soil's in B's s1, the markers' in their forces.
   void begin_step() override {
     if (n_ == 0) {
       B::fill_begin(soil_begin_, grid_.cells() + 2, 0);
       return;
     }
-    B::parallel_for(long(n_), SoilCellKey<T>{grid_, A_.a, room_lo_, room_hi_, keys_, vals_});
-    const int* perm = B::sort_cells(int(n_), grid_.cells() + 1, keys_, vals_, keys_alt_, vals_alt_, soil_begin_);
-    // Gather A into B in sorted order, then swap: B is scratch between steps.
-    B::parallel_for(long(n_), Gather<Vec4<T>>{A_.a.pos, B_.a.pos, perm});
+    // B is scratch between steps (it held the midpoint state), and its s1 holds the sort's arrays.
+    const SortArrays sa = SortArrays::in(B_.a.s1, n_);
+    B::parallel_for(long(n_), SoilCellKey<T>{grid_, A_.a, room_lo_, room_hi_, sa.keys, sa.vals});
+    const int* sorted = B::sort_cells(int(n_), grid_.cells() + 1, sa.keys, sa.vals, sa.keys_alt, sa.vals_alt, soil_begin_);
+    // Gather A into B in sorted order, then swap. Once A's positions are gathered their memory is
+    // free: the permutation moves there, out of the way of the gather into B's s1.
+    B::parallel_for(long(n_), Gather<Vec4<T>>{A_.a.pos, B_.a.pos, sorted});
+    const SortArrays moved = SortArrays::in(A_.a.pos, n_);
+    B::copy(moved.keys, sorted, n_);
+    const int* perm = moved.keys;
     B::parallel_for(long(n_), Gather<Vec4<T>>{A_.a.vel, B_.a.vel, perm});
     B::parallel_for(long(n_), Gather<Vec4<T>>{A_.a.s0, B_.a.s0, perm});
     B::parallel_for(long(n_), Gather<Vec4<T>>{A_.a.s1, B_.a.s1, perm});
     for_each_named_record(effects_, [&](int r) {
       B::parallel_for(long(n_), Gather<Vec4<T>>{A_.a.record[r], B_.a.record[r], perm});
     });
-    // ids: gathered through the key buffer that the sort no longer needs.
-    int* spare = perm == vals_ ? keys_alt_ : keys_;
-    B::parallel_for(long(n_), Gather<int>{ids_, spare, perm});
-    B::copy(ids_, spare, n_);
+    B::parallel_for(long(n_), Gather<int>{ids_, moved.vals, perm});
+    B::copy(ids_, moved.vals, n_);
     std::swap(A_, B_);
   }
 
@@ -271,8 +285,10 @@ class SphEngineImpl final : public SphEngine {
       markers_sorted_ = true;
       return;
     }
-    B::parallel_for(long(nm_), MarkerCellKey<T>{grid_, canon_, keys_, vals_});
-    const int* perm = B::sort_cells(int(nm_), grid_.cells() + 1, keys_, vals_, keys_alt_, vals_alt_, marker_begin_);
+    // The markers' forces are rewritten by every stage before they are read, so the sort borrows them.
+    const SortArrays sa = SortArrays::in(mk_.force, nm_);
+    B::parallel_for(long(nm_), MarkerCellKey<T>{grid_, canon_, sa.keys, sa.vals});
+    const int* perm = B::sort_cells(int(nm_), grid_.cells() + 1, sa.keys, sa.vals, sa.keys_alt, sa.vals_alt, marker_begin_);
     B::parallel_for(long(nm_), Gather<Vec4<T>>{canon_.pos, mk_.pos, perm});
     B::parallel_for(long(nm_), Gather<Vec4<T>>{canon_.local, mk_.local, perm});
     B::parallel_for(long(nm_), Gather<Vec4<T>>{canon_.wall_vel, mk_.wall_vel, perm});
@@ -316,7 +332,7 @@ class SphEngineImpl final : public SphEngine {
   SoilBuffers<T, B> A_, B_;
   MarkerArrays<T> mk_;
   MarkerArrays<T> canon_;  // construction order: pos, local, wall_vel, normal
-  int *ids_ = nullptr, *keys_ = nullptr, *vals_ = nullptr, *keys_alt_ = nullptr, *vals_alt_ = nullptr;
+  int* ids_ = nullptr;
   int *soil_begin_ = nullptr, *marker_begin_ = nullptr;
   BodyPose<T>* poses_ = nullptr;
   ActiveBox<T>* boxes_ = nullptr;
