@@ -30,10 +30,18 @@ struct MarkerStage {
   SoilArrays<T> soil;  // the state the stage is evaluated at
   MarkerArrays<T> mk;
   const BodyPose<T>* poses;  // to turn the wall normals of MarkerVelocity::kMirrorImage into the world frame
+  // The active domain's boxes (count 0: none). A marker farther than the kernel's support from all
+  // of them has only frozen neighbours, which read nothing: it is skipped, and exerts no force.
+  const ActiveBox<T>* boxes;
+  int box_count;
 
   TERRACAL_HD void operator()(long m) const {
     const Vec3<T> xm = mk.pos[m].xyz();
     const T support2 = k.kernel.support2();
+    if (!near_active(boxes, box_count, xm, std::sqrt(support2))) {
+      mk.force[m] = Vec4<T>{T(0), T(0), T(0), T(0)};
+      return;
+    }
     // visit(f) calls f(j) for every soil particle j within the support of the marker, twice per
     // marker (extrapolation, then force).
 #if defined(__CUDA_ARCH__)

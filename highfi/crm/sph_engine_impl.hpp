@@ -179,6 +179,7 @@ class SphEngineImpl final : public SphEngine {
     std::vector<ActiveBox<T>> b(boxes.size());
     for (std::size_t q = 0; q < boxes.size(); ++q) b[q] = {to_t<T>(boxes[q].lo), to_t<T>(boxes[q].hi)};
     if (!b.empty()) B::upload(boxes_, b.data(), b.size());
+    active_boxes_ = int(b.size());
     if (b.empty()) {
       // Everyone active: a single box that covers the whole grid.
       ActiveBox<T> all{grid_.origin,
@@ -267,7 +268,8 @@ class SphEngineImpl final : public SphEngine {
   void run_stage(const SoilArrays<T>& eval, const SoilArrays<T>& out, T dt) {
     if (nm_ > 0)
       with_named<InMarkerLoop>(effects_, [&](auto mx) {
-        B::parallel_for_heavy(long(nm_), MarkerStage<T, decltype(mx)>{k_, ec_, grid_, soil_begin_, eval, mk_, poses_});
+        B::parallel_for_heavy(long(nm_), MarkerStage<T, decltype(mx)>{k_, ec_, grid_, soil_begin_, eval, mk_, poses_, boxes_,
+                                                                    active_boxes_});
       });
     if (n_ == 0) return;
     with_named<InSoilLoop>(effects_, [&](auto fx) {
@@ -329,6 +331,7 @@ class SphEngineImpl final : public SphEngine {
   int bodies_;
   Vec3<T> room_lo_, room_hi_;
   bool markers_sorted_ = false;
+  int active_boxes_ = 0;  // the active domain's boxes (0: every particle is active)
   SoilBuffers<T, B> A_, B_;
   MarkerArrays<T> mk_;
   MarkerArrays<T> canon_;  // construction order: pos, local, wall_vel, normal

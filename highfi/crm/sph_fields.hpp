@@ -134,6 +134,21 @@ TERRACAL_HD inline void add_marker_wrench(const MarkerArrays<T>& mk, long m, con
 template <typename T>
 struct ActiveBox {
   Vec3<T> lo{}, hi{};
+  // Whether x lies within distance `reach` of the box (per axis).
+  TERRACAL_HD bool near(const Vec3<T>& x, T reach) const {
+    return x.x >= lo.x - reach && x.x <= hi.x + reach && x.y >= lo.y - reach && x.y <= hi.y + reach &&
+           x.z >= lo.z - reach && x.z <= hi.z + reach;
+  }
 };
+
+// Whether a marker at x can be a neighbour of an active particle: within the kernel's support of
+// one of the active domain's boxes. count 0: no active domain, every marker counts.
+template <typename T>
+TERRACAL_HD inline bool near_active(const ActiveBox<T>* boxes, int count, const Vec3<T>& x, T support) {
+  if (count == 0) return true;
+  for (int b = 0; b < count; ++b)
+    if (boxes[b].near(x, support)) return true;
+  return false;
+}
 
 }  // namespace terracal

@@ -78,9 +78,7 @@ struct MarkActive {
     if (v.w == T(kParticleLost)) return;
     const Vec3<T> x = s.pos[i].xyz();
     bool active = false;
-    for (int b = 0; b < count && !active; ++b)
-      active = x.x >= boxes[b].lo.x && x.x <= boxes[b].hi.x && x.y >= boxes[b].lo.y && x.y <= boxes[b].hi.y &&
-               x.z >= boxes[b].lo.z && x.z <= boxes[b].hi.z;
+    for (int b = 0; b < count && !active; ++b) active = boxes[b].near(x, T(0));
     const T status = active ? T(kParticleActive) : T(kParticleFrozen);
     if (v.w != status) s.vel[i] = {active ? v.x : T(0), active ? v.y : T(0), active ? v.z : T(0), status};
   }
