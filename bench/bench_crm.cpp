@@ -1,12 +1,13 @@
 // CRM particle-steps per second (soil particles x full steps / wall second),
 // device memory per particle, and the speed-up of active_domain for a single wheel in a 4 m bin.
 // Each figure is the median of `repeats` timed blocks of `steps` steps after a warm-up.
-// Usage: bench_crm cpu|cuda [particles=1e5,...] [steps=20] [repeats=5] [wheel]
+// Usage: bench_crm cpu|cuda [particles=1e5,...] [steps=20] [repeats=5] [wheel[=d0]]
 //   A bed of about N particles fills a square bin to a depth of 1/4 of its side (full domain). Two
 //   lines per size: `rigs`, the configuration the rigs run (h/d0 1.4, Wendland C2, the effects
 //   artificial_viscosity, hourglass_damping 0.4 and hourglass_stiffness 0.03, and a plate's markers
 //   pressing into the bed), and `bare`, the kernel alone (h/d0 1.2, artificial_viscosity, no body).
-//   `wheel`: the 4 m x 1 m bin at the same spacing as the first size, with a wheel, full vs active.
+//   `wheel`: a wheel crossing a 4 m x 1 m bin, full domain vs active_domain, at d0 = 0.02 m (150 000
+//   particles) or the spacing given; with the wheel's mean force over the timed steps.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -42,6 +43,7 @@ struct Timing {
   double rate;  // particle-steps per second
   std::size_t particles, markers, bytes;
   std::string device;
+  Vec3<double> force;  // the first body's mean force over the timed steps
 };
 
 static Timing time_scene(const nlohmann::json& j, CrmDevice device, int steps, int repeats) {
@@ -49,9 +51,13 @@ static Timing time_scene(const nlohmann::json& j, CrmDevice device, int steps, i
   CrmSolver s(sc, device);
   for (int i = 0; i < 3; ++i) s.step();
   std::vector<double> rates;
+  Vec3<double> force{};
   for (int r = 0; r < repeats; ++r) {
     const auto t0 = Clock::now();
-    for (int i = 0; i < steps; ++i) s.step();
+    for (int i = 0; i < steps; ++i) {
+      s.step();
+      if (!s.wrenches().empty()) force += (1.0 / (steps * repeats)) * s.wrenches()[0].force;
+    }
     (void)s.stats();  // synchronises the device
     const double sec = std::chrono::duration<double>(Clock::now() - t0).count();
     rates.push_back(double(s.engine().soil_count()) * steps / sec);
@@ -59,12 +65,12 @@ static Timing time_scene(const nlohmann::json& j, CrmDevice device, int steps, i
   const SoilStats st = s.stats();
   if (st.nonfinite > 0) std::fprintf(stderr, "warning: %ld non-finite particles\n", st.nonfinite);
   return {median(rates), s.engine().soil_count(), s.engine().marker_count(), s.engine().device_bytes(),
-          s.engine().description()};
+          s.engine().description(), force};
 }
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: bench_crm cpu|cuda [particles=1e5,...] [steps=20] [repeats=5] [wheel]\n");
+    std::fprintf(stderr, "usage: bench_crm cpu|cuda [particles=1e5,...] [steps=20] [repeats=5] [wheel[=d0]]\n");
     return 2;
   }
   const CrmDevice device = std::string(argv[1]) == "cuda" ? CrmDevice::kCuda : CrmDevice::kCpu;
@@ -76,7 +82,13 @@ int main(int argc, char** argv) {
   }
   const int steps = argc > 3 ? std::atoi(argv[3]) : 20;
   const int repeats = argc > 4 ? std::atoi(argv[4]) : 5;
-  const bool wheel = argc > 5 && std::string(argv[5]) == "wheel";
+  const std::string wheel_arg = argc > 5 ? argv[5] : "";
+  const bool wheel = wheel_arg.rfind("wheel", 0) == 0;
+  const double dw = wheel_arg.rfind("wheel=", 0) == 0 ? std::stod(wheel_arg.substr(6)) : 0.02;
+  if (wheel && !(dw >= 0.005 && dw <= 0.1)) {
+    std::fprintf(stderr, "bench_crm: wheel spacing %g m outside [0.005, 0.1]\n", dw);
+    return 2;
+  }
   const double d0 = 0.01;
   std::printf("%-6s %-12s %-12s %-10s %-16s %-14s %s\n", "config", "particles", "markers", "bytes/p",
               "particle-steps/s", "ms/step", "device");
@@ -108,8 +120,7 @@ int main(int argc, char** argv) {
       std::fflush(stdout);
     }
   if (wheel) {
-    // A wheel (radius 0.25 m, width 0.15 m) crossing a 4 m x 1 m bin 0.3 m deep, at the first size's spacing.
-    const double dw = 0.02;
+    // A wheel (radius 0.25 m, width 0.15 m) crossing a 4 m x 1 m bin 0.3 m deep.
     for (bool active : {false, true}) {
       nlohmann::json j = {
           {"soil", soil()},
@@ -125,8 +136,10 @@ int main(int argc, char** argv) {
               {{"type", "prescribed"}, {"linear_velocity", {0.5, 0, 0}}, {"angular_velocity", {0, 2.0, 0}}}}}}}};
       if (active) j["active_domain"] = {{"margin", 0.1}};
       const Timing t = time_scene(j, device, steps, repeats);
-      std::printf("wheel bin 4 m, d0 %.3f, active_domain %-3s: %zu particles, %.4g particle-steps/s (%.3f ms/step)\n",
-                  dw, active ? "on" : "off", t.particles, t.rate, 1e3 * t.particles / t.rate);
+      std::printf(
+          "wheel bin 4 m, d0 %.3f, active_domain %-3s: %zu particles, %.4g particle-steps/s (%.3f ms/step); wheel "
+          "force (%.2f, %.2f) N\n",
+          dw, active ? "on" : "off", t.particles, t.rate, 1e3 * t.particles / t.rate, t.force.x, t.force.z);
     }
   }
   return 0;

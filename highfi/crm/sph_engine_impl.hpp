@@ -206,13 +206,7 @@ class SphEngineImpl final : public SphEngine {
     const SortArrays moved = SortArrays::in(A_.a.pos, n_);
     B::copy(moved.keys, sorted, n_);
     const int* perm = moved.keys;
-    B::parallel_for(long(n_), Gather<Vec4<T>>{A_.a.vel, B_.a.vel, perm});
-    B::parallel_for(long(n_), Gather<Vec4<T>>{A_.a.s0, B_.a.s0, perm});
-    B::parallel_for(long(n_), Gather<Vec4<T>>{A_.a.s1, B_.a.s1, perm});
-    for_each_named_record(effects_, [&](int r) {
-      B::parallel_for(long(n_), Gather<Vec4<T>>{A_.a.record[r], B_.a.record[r], perm});
-    });
-    B::parallel_for(long(n_), Gather<int>{ids_, moved.vals, perm});
+    B::parallel_for(long(n_), GatherSoil<T>{A_.a, B_.a, ids_, moved.vals, perm});
     B::copy(ids_, moved.vals, n_);
     std::swap(A_, B_);
   }
@@ -291,11 +285,7 @@ class SphEngineImpl final : public SphEngine {
     const SortArrays sa = SortArrays::in(mk_.force, nm_);
     B::parallel_for(long(nm_), MarkerCellKey<T>{grid_, canon_, sa.keys, sa.vals});
     const int* perm = B::sort_cells(int(nm_), grid_.cells() + 1, sa.keys, sa.vals, sa.keys_alt, sa.vals_alt, marker_begin_);
-    B::parallel_for(long(nm_), Gather<Vec4<T>>{canon_.pos, mk_.pos, perm});
-    B::parallel_for(long(nm_), Gather<Vec4<T>>{canon_.local, mk_.local, perm});
-    B::parallel_for(long(nm_), Gather<Vec4<T>>{canon_.wall_vel, mk_.wall_vel, perm});
-    if (needs_wall_normals(k_.marker_velocity))
-      B::parallel_for(long(nm_), Gather<Vec4<T>>{canon_.normal, mk_.normal, perm});
+    B::parallel_for(long(nm_), GatherMarkers<T>{canon_, mk_, needs_wall_normals(k_.marker_velocity), perm});
     markers_sorted_ = true;
   }
 

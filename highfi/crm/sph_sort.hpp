@@ -67,6 +67,40 @@ struct Gather {
   TERRACAL_HD void operator()(long i) const { dst[i] = src[perm[i]]; }
 };
 
+// Gathers a soil state but its positions (gathered first: their memory then holds perm) and the
+// ids into sorted order, in one pass (one launch instead of one per array).
+template <typename T>
+struct GatherSoil {
+  SoilArrays<T> src, dst;
+  const int* ids_src;
+  int* ids_dst;
+  const int* perm;
+  TERRACAL_HD void operator()(long i) const {
+    const int p = perm[i];
+    dst.vel[i] = src.vel[p];
+    dst.s0[i] = src.s0[p];
+    dst.s1[i] = src.s1[p];
+    for (int r = 0; r < kCrmRecordSlots; ++r)
+      if (src.record[r]) dst.record[r][i] = src.record[r][p];
+    ids_dst[i] = ids_src[p];
+  }
+};
+
+// Gathers the markers' canonical arrays (normals where the marker rule keeps them) into sorted order.
+template <typename T>
+struct GatherMarkers {
+  MarkerArrays<T> src, dst;
+  bool normals;
+  const int* perm;
+  TERRACAL_HD void operator()(long i) const {
+    const int p = perm[i];
+    dst.pos[i] = src.pos[p];
+    dst.local[i] = src.local[p];
+    dst.wall_vel[i] = src.wall_vel[p];
+    if (normals) dst.normal[i] = src.normal[p];
+  }
+};
+
 // Active domain: particles outside every box (moving bodies' bounds plus a margin) are frozen.
 template <typename T>
 struct MarkActive {
