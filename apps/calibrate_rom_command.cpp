@@ -43,7 +43,12 @@ Command add_calibrate_rom(CLI::App& app) {
              "independence (t proposal from the least-squares fit, one batch per step) or ensemble (affine-invariant)");
   sub->add_option("--chains", s.chains,
                   "chains run side by side, one batch per step (ensemble: walkers, even, at least 2 x parameters + 2); "
-                  "0: 4 (ensemble: that minimum)")
+                  "0: 4, 32 with tries > 1 (ensemble: that minimum)")
+      ->check(whole_in(0, 100000))
+      ->capture_default_str();
+  sub->add_option("--tries", s.tries,
+                  "independence sampler: points per chain and step; 1: Metropolis-Hastings, more: i-SIR (chains x "
+                  "(tries - 1) runs per batch); 0: 1 on the CPU, 64 on a GPU")
       ->check(whole_in(0, 100000))
       ->capture_default_str();
   sub->add_option("--min-ess", s.min_ess, "bulk effective sample size required for every parameter")
@@ -52,8 +57,9 @@ Command add_calibrate_rom(CLI::App& app) {
   sub->add_option("--max-draws", s.max_draws, "draw cap per walker; reaching it is reported as not converged")
       ->check(whole_in(10, 100000000))
       ->capture_default_str();
-  sub->add_option("--warmup", s.warmup, "steps per chain discarded before the draws (the proposal adapts in them)")
-      ->check(whole_in(0, 1000000))
+  sub->add_option("--warmup", s.warmup,
+                  "steps per chain discarded before the draws (the proposal adapts in them); -1: 40, 10 with tries > 1")
+      ->check(whole_in(-1, 1000000))
       ->capture_default_str();
   sub->add_option("--global-points", s.global_points, "random points of the global search")
       ->check(whole_in(0, 10000000))

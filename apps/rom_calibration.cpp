@@ -249,11 +249,21 @@ RomCalibrationOutcome run_rom_calibration(const RomCalibrationSettings& s) {
   bayes::CalibrationOptions o;
   o.seed = s.seed;
   o.sampler = s.sampler;
-  o.chains = s.chains > 0 ? s.chains : s.sampler == bayes::SamplerKind::kEnsemble ? 2 * (pb.dim() + 1) : 4;
+  const bool independence = s.sampler == bayes::SamplerKind::kIndependence;
+  o.tries = !independence ? 1 : s.tries > 0 ? s.tries : s.device == rom::BatchDevice::kCuda ? 64 : 1;
+  o.chains = s.chains > 0 ? s.chains : !independence ? 2 * (pb.dim() + 1) : o.tries > 1 ? 32 : 4;
   o.min_ess = s.min_ess;
   o.max_rhat = s.max_rhat;
-  o.warmup = s.warmup;
-  o.block = s.sampler == bayes::SamplerKind::kEnsemble ? 200 : 25;
+  o.warmup = s.warmup >= 0 ? s.warmup : o.tries > 1 ? 10 : 40;
+  if (o.tries > 1) {
+    // No random-walk move: a second launch per step, and on the full-vehicle references it did not
+    // shorten the runs (seed 1: 55 against 60 s; seed 3: 82 against 65 s; docs/decisions.md,
+    // "ROM calibration on a GPU"). Importance sampling fills a step's batch per round.
+    o.local_moves = false;
+    o.adaptation_points = std::max(o.adaptation_points, o.chains * (o.tries - 1));
+  }
+  // Convergence checks every 25 steps, every 10 with i-SIR, whose steps are few and long (a GPU launch each).
+  o.block = s.sampler == bayes::SamplerKind::kEnsemble ? 200 : o.tries > 1 ? 10 : 25;
   o.max_draws = s.max_draws;
   o.progress = [&](const bayes::CalibrationProgress& p) {
     if (p.stage == "adapted") spdlog::info("calibrate-rom: proposal adapted to the posterior: {}", p.message);
@@ -262,7 +272,9 @@ RomCalibrationOutcome run_rom_calibration(const RomCalibrationSettings& s) {
                    p.draws_per_chain, p.max_rhat, p.min_ess, pb.runs());
   };
   bayes::sample_posterior(pb.target(), o, res);
-  spdlog::info("calibrate-rom: {} (acceptance rate {:.3g})", res.termination, res.acceptance_rate);
+  spdlog::info("calibrate-rom: {} ({} chains, {} per step; acceptance rate {:.3g})", res.termination, o.chains,
+               o.tries > 1 ? fmt::format("i-SIR with {} tries", o.tries) : std::string("Metropolis-Hastings"),
+               res.acceptance_rate);
   out.runs = pb.runs();
   out.failed_runs = pb.failed_runs();
   out.forward_seconds = forward.stats().wall_seconds;
@@ -305,6 +317,7 @@ RomCalibrationOutcome run_rom_calibration(const RomCalibrationSettings& s) {
               {"rmse", rmse_json},
               {"sampler", s.sampler == bayes::SamplerKind::kEnsemble ? "ensemble" : "independence"},
               {"chains", res.chains},
+              {"tries", o.tries},
               {"draws", res.draws},
               {"seed", s.seed},
               {"converged", res.converged},

@@ -127,8 +127,8 @@ class Independence : public MultiChain {
   // recorded in the original ones (and their log density without the Jacobian).
   Independence(const Target& target, const std::vector<Eigen::VectorXd>& starts, const Eigen::VectorXd& noise0,
                const Eigen::VectorXd& mean, const Eigen::MatrixXd& covariance, std::uint64_t seed,
-               const BoxTransform* box, bool local_moves, bool refit_in_warmup)
-      : sampler_(target, IndependenceOptions{.local_moves = local_moves}, mean, covariance, starts,
+               const BoxTransform* box, const IndependenceOptions& options, bool refit_in_warmup)
+      : sampler_(target, options, mean, covariance, starts,
                  std::vector<Eigen::VectorXd>(starts.size(), noise0), Rng::for_stream(seed, 98)),
         box_(box),
         refit_in_warmup_(refit_in_warmup) {}
@@ -351,6 +351,7 @@ CalibrationResult calibrate(const CalibrationProblem& pb, const CalibrationOptio
 
 void sample_posterior(const Target& target, const CalibrationOptions& opt, CalibrationResult& res) {
   if (opt.chains < 2) throw InputError(fmt::format("chains {}: at least 2 chains are needed for R-hat", opt.chains));
+  if (opt.tries < 1) throw InputError(fmt::format("tries {}: expected at least 1 point per chain and step", opt.tries));
   const int dim = target.dim;
   int count = opt.chains;
   if (opt.sampler == SamplerKind::kEnsemble)
@@ -398,7 +399,7 @@ void sample_posterior(const Target& target, const CalibrationOptions& opt, Calib
     Rng rng = Rng::for_stream(opt.seed, 97);
     ProposalAdaptationOptions ao;
     ao.max_rounds = opt.adaptation_rounds;
-    ao.points = std::max(ao.points, 2 * dim + 2);
+    ao.points = std::max(opt.adaptation_points, 2 * dim + 2);
     const AdaptedProposal a =
         adapt_proposal(*sampled, proposal.x, proposal.covariance, res.point.noise_var, ao, rng);
     proposal.x = a.mean;
@@ -420,7 +421,11 @@ void sample_posterior(const Target& target, const CalibrationOptions& opt, Calib
       return std::make_unique<DramChains>(target, starts, res.point.noise_var, res.point.covariance, opt.seed);
     if (opt.sampler == SamplerKind::kIndependence)
       return std::make_unique<Independence>(*sampled, starts, res.point.noise_var, proposal.x, proposal.covariance,
-                                            opt.seed, box.get(), opt.local_moves, refit_in_warmup);
+                                            opt.seed, box.get(),
+                                            IndependenceOptions{.scale = opt.proposal_scale,
+                                                                .local_moves = opt.local_moves,
+                                                                .tries = opt.tries},
+                                            refit_in_warmup);
     return std::make_unique<Ensemble>(target, starts, res.point.noise_var, opt.seed);
   };
   std::unique_ptr<MultiChain> sampler = make_sampler();

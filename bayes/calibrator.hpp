@@ -52,6 +52,11 @@ struct CalibrationOptions {
   // good least-squares point); from a point with parameters on their bounds it took 27.
   int adaptation_rounds = 30;
   bool local_moves = true;  // independence sampler: a random-walk move after each independence move
+  // Independence sampler: points per chain and step (1: Metropolis-Hastings; more: i-SIR, one batch of
+  // chains x (tries - 1) runs per step, for a GPU; bayes/independence.hpp).
+  int tries = 1;
+  int adaptation_points = 256;  // runs per round of importance sampling (one batch)
+  double proposal_scale = 1.3;  // independence sampler: proposal covariance = scale^2 x the adapted one
   std::function<void(const CalibrationProgress&)> progress;  // called after warm-up and each block
 };
 

@@ -1,5 +1,6 @@
 #include "bayes/independence.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -17,6 +18,7 @@ IndependenceSampler::IndependenceSampler(const Target& target, const Independenc
     : target_(&target), opt_(opt), x_(std::move(starts)), nuisance_(std::move(nuisances)), rng_(std::move(rng)) {
   check_target(target);
   if (!(opt_.df > 0) || !(opt_.scale > 0)) throw std::invalid_argument("IndependenceOptions: df and scale must be > 0");
+  if (opt_.tries < 1) throw std::invalid_argument("IndependenceOptions: tries must be >= 1");
   if (x_.empty() || nuisance_.size() != x_.size())
     throw std::invalid_argument("IndependenceSampler: one nuisance vector per chain, at least one chain");
   if (mean.size() != target.dim || covariance.rows() != target.dim || covariance.cols() != target.dim)
@@ -62,36 +64,39 @@ Eigen::VectorXd IndependenceSampler::draw() {
   return mean_ + chol_ * z / std::sqrt(w);
 }
 
-// The log densities the moves accept on, of one proposal per chain, as one batch where the target
-// has one; failures counted per chain.
-void IndependenceSampler::evaluate(const std::vector<Eigen::VectorXd>& ys, std::vector<double>& lps) {
+// The log densities the moves accept on, of `per` proposals per chain (chain k's are ys[k per ..
+// (k + 1) per)), as one batch where the target has one; failures counted per chain.
+void IndependenceSampler::evaluate(const std::vector<Eigen::VectorXd>& ys, std::size_t per, std::vector<double>& lps) {
   const std::size_t n = ys.size();
   lps.assign(n, 0.0);
   if (target_->log_marginal_batch || target_->log_density_batch) {
     try {
-      if (collapsed())
+      if (collapsed()) {
         target_->log_marginal_batch(ys, lps);
-      else
-        target_->log_density_batch(ys, nuisance_, lps);
+      } else {
+        std::vector<Eigen::VectorXd> nv;
+        for (std::size_t i = 0; i < n; ++i) nv.push_back(nuisance_[i / per]);
+        target_->log_density_batch(ys, nv, lps);
+      }
     } catch (const std::exception&) {
       lps.assign(n, std::numeric_limits<double>::quiet_NaN());
     }
     if (lps.size() != n) throw std::logic_error("Target.log_density_batch: wrong number of results");
-    for (std::size_t k = 0; k < n; ++k) lps[k] = checked_log_density(lps[k], stats_[k]);
+    for (std::size_t i = 0; i < n; ++i) lps[i] = checked_log_density(lps[i], stats_[i / per]);
   } else {
-    for (std::size_t k = 0; k < n; ++k) lps[k] = safe_log_density(*target_, ys[k], nuisance_[k], stats_[k]);
+    for (std::size_t i = 0; i < n; ++i) lps[i] = safe_log_density(*target_, ys[i], nuisance_[i / per], stats_[i / per]);
   }
 }
 
-void IndependenceSampler::step() {
+// Metropolis-Hastings with the independence proposal: one run per chain.
+std::vector<char> IndependenceSampler::metropolis_move() {
   const std::size_t n = x_.size();
   std::vector<Eigen::VectorXd> ys(n);
   for (auto& y : ys) y = draw();
   std::vector<double> lps(n);
-  evaluate(ys, lps);
+  evaluate(ys, 1, lps);
   std::vector<char> moved(n, 0);
   for (std::size_t k = 0; k < n; ++k) {
-    ++stats_[k].iterations;
     const double lq = log_q(ys[k]);
     // pi(y) q(x) / (pi(x) q(y))
     if (!accept(log_density_ratio(lps[k], logp_[k]) + logq_[k] - lq, rng_)) continue;
@@ -100,6 +105,53 @@ void IndependenceSampler::step() {
     logq_[k] = lq;
     moved[k] = 1;
   }
+  return moved;
+}
+
+// Iterated sampling importance resampling (i-SIR; Andrieu, Lee & Vihola 2018, "Uniform ergodicity of
+// the iterated conditional SMC and geometric ergodicity of particle Gibbs samplers", Bernoulli 24(2)):
+// the chain's state and tries - 1 fresh proposals form a set, and the next state is drawn from it with
+// probability proportional to the importance weight pi / q. The kernel leaves pi invariant for any
+// number of tries; the more tries, the less likely the chain stays, so many chains' tries fill one
+// large batch and the chains need few sequential steps (a GPU runs a large batch in about the time of
+// a small one). A failed run has no weight.
+std::vector<char> IndependenceSampler::resample_move() {
+  const std::size_t n = x_.size(), fresh = static_cast<std::size_t>(opt_.tries - 1);
+  std::vector<Eigen::VectorXd> ys(n * fresh);
+  for (auto& y : ys) y = draw();
+  std::vector<double> lps;
+  evaluate(ys, fresh, lps);
+  std::vector<char> moved(n, 0);
+  std::vector<double> log_w(fresh + 1), lq(fresh);
+  for (std::size_t k = 0; k < n; ++k) {
+    log_w[0] = logp_[k] - logq_[k];
+    double top = log_w[0];
+    for (std::size_t j = 0; j < fresh; ++j) {
+      lq[j] = log_q(ys[k * fresh + j]);
+      const double lp = lps[k * fresh + j];
+      log_w[j + 1] = lp == kMinusInf ? kMinusInf : lp - lq[j];
+      top = std::max(top, log_w[j + 1]);
+    }
+    double total = 0;
+    for (double& w : log_w) total += (w = std::exp(w - top));
+    double u = rng_.uniform() * total;
+    std::size_t pick = 0;
+    while (pick < fresh && u >= log_w[pick]) u -= log_w[pick++];
+    if (pick == 0 || log_w[pick] == 0) continue;  // the state stays (a zero weight is never picked)
+    x_[k] = std::move(ys[k * fresh + pick - 1]);
+    logp_[k] = lps[k * fresh + pick - 1];
+    logq_[k] = lq[pick - 1];
+    moved[k] = 1;
+  }
+  return moved;
+}
+
+void IndependenceSampler::step() {
+  const std::size_t n = x_.size();
+  for (auto& s : stats_) ++s.iterations;
+  std::vector<char> moved = opt_.tries > 1 ? resample_move() : metropolis_move();
+  std::vector<Eigen::VectorXd> ys(n);
+  std::vector<double> lps(n);
   if (opt_.local_moves) {
     // The local move: x + (2.38 / sqrt(d)) L z, symmetric, so the ratio is pi(y) / pi(x).
     const double step = 2.38 / std::sqrt(double(mean_.size())) / opt_.scale;
@@ -108,7 +160,7 @@ void IndependenceSampler::step() {
       for (Eigen::Index j = 0; j < z.size(); ++j) z[j] = rng_.normal();
       ys[k] = x_[k] + step * (chol_ * z);
     }
-    evaluate(ys, lps);
+    evaluate(ys, 1, lps);
     for (std::size_t k = 0; k < n; ++k) {
       if (!accept(log_density_ratio(lps[k], logp_[k]), rng_)) continue;
       x_[k] = std::move(ys[k]);
@@ -118,6 +170,15 @@ void IndependenceSampler::step() {
     }
   }
   for (std::size_t k = 0; k < n; ++k) stats_[k].accepted += moved[k];
+  if (target_->nuisance_dim > 0 && collapsed()) {
+    // The states as one batch first: a simulation-backed target then serves the Gibbs updates, which
+    // need each state's residuals, from its cache, instead of running the states it evicted one by one.
+    std::vector<double> ignored;
+    try {
+      target_->log_marginal_batch(x_, ignored);
+    } catch (const std::exception&) {
+    }
+  }
   if (target_->nuisance_dim > 0)
     for (std::size_t k = 0; k < n; ++k) {
       target_->gibbs(x_[k], nuisance_[k], rng_);

@@ -33,6 +33,10 @@ struct IndependenceOptions {
   // covariance's Cholesky factor (a second batch of runs): a chain that the independence move leaves
   // stuck where the posterior outweighs the proposal (its tails, a curved ridge) still moves.
   bool local_moves = false;
+  // Points per chain and step: 1, Metropolis-Hastings (one run per chain); more, i-SIR, the next
+  // state drawn from the current one and tries - 1 proposals by importance weight (one batch of
+  // chains x (tries - 1) runs per step).
+  int tries = 1;
 };
 
 class IndependenceSampler {
@@ -42,8 +46,8 @@ class IndependenceSampler {
   IndependenceSampler(const Target& target, const IndependenceOptions& opt, const Eigen::VectorXd& mean,
                       const Eigen::MatrixXd& covariance, std::vector<Eigen::VectorXd> starts,
                       std::vector<Eigen::VectorXd> nuisances, Rng rng);
-  // One independence move for every chain (all proposals evaluated as one batch), then the Gibbs
-  // update of every chain's nuisance.
+  // One independence move for every chain (all proposals evaluated as one batch: Metropolis-Hastings
+  // or, with tries > 1, i-SIR), then the Gibbs update of every chain's nuisance.
   void step();
   // Refits the proposal to the given draws (rows: points); kept as is when they are too few or
   // their covariance is not positive definite.
@@ -64,7 +68,9 @@ class IndependenceSampler {
  private:
   void set_proposal(const Eigen::VectorXd& mean, const Eigen::MatrixXd& covariance);
   double log_q(const Eigen::VectorXd& x) const;  // the proposal's log density, up to a constant
-  void evaluate(const std::vector<Eigen::VectorXd>& ys, std::vector<double>& lps);
+  void evaluate(const std::vector<Eigen::VectorXd>& ys, std::size_t per, std::vector<double>& lps);
+  std::vector<char> metropolis_move();
+  std::vector<char> resample_move();
   Eigen::VectorXd draw();
 
   const Target* target_;

@@ -135,11 +135,15 @@ std::vector<Eigen::VectorXd> ModelProblem::sse(const std::vector<Eigen::VectorXd
   }
   if (todo.empty()) return out;
   const auto f = predict(todo);
+  for (std::size_t k = 0; k < todo.size(); ++k) out[where[k]] = sse_of(f[k]);
   std::lock_guard<std::mutex> lock(cache_mutex_);
-  if (cache_.size() + todo.size() > kCacheLimit) cache_.clear();
-  for (std::size_t k = 0; k < todo.size(); ++k) {
-    out[where[k]] = sse_of(f[k]);
-    cache_[key_of(todo[k])] = out[where[k]];
+  if (cache_.size() + todo.size() > kCacheLimit) {
+    // Full: start again from this call's points, hits included (a sampler asks for its chains'
+    // states right after their proposals, and must find them).
+    cache_.clear();
+    for (std::size_t i = 0; i < xs.size(); ++i) cache_[key_of(xs[i])] = out[i];
+  } else {
+    for (std::size_t k = 0; k < todo.size(); ++k) cache_[key_of(todo[k])] = out[where[k]];
   }
   return out;
 }

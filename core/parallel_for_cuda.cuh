@@ -20,6 +20,26 @@ void parallel_for_cuda(long n, const F& f, cudaStream_t stream = nullptr) {
   TERRACAL_CUDA_CHECK(cudaGetLastError());
 }
 
+// For loops of few long iterations (a ROM batch: one thread steps one vehicle through thousands of
+// steps), whose time is one thread's latency, not throughput: blocks small enough (down to one warp)
+// that every SM gets a share, instead of 256-thread blocks that pile a few thousand threads onto a
+// quarter of the SMs.
+template <typename F>
+void parallel_for_cuda_spread(long n, const F& f) {
+  if (n <= 0) return;
+  static const int sms = [] {
+    int device = 0, count = 0;
+    TERRACAL_CUDA_CHECK(cudaGetDevice(&device));
+    TERRACAL_CUDA_CHECK(cudaDeviceGetAttribute(&count, cudaDevAttrMultiProcessorCount, device));
+    return std::max(count, 1);
+  }();
+  const long per_sm = (n + sms - 1) / sms;
+  const int threads = static_cast<int>(std::clamp<long>((per_sm + 31) / 32 * 32, 32, 256));
+  const long blocks = std::min<long>((n + threads - 1) / threads, 65535L * 8);
+  parallel_for_kernel<<<static_cast<unsigned>(blocks), threads>>>(n, f);
+  TERRACAL_CUDA_CHECK(cudaGetLastError());
+}
+
 // For register-heavy functors: __launch_bounds__ asks the compiler to fit `MinBlocks` blocks of 256
 // threads per SM (more warps in flight to hide memory latency, at the price of fewer registers).
 template <int MinBlocks, typename F>

@@ -25,6 +25,15 @@ void check_batch(const std::vector<RomVehicle>& vehicles, const std::vector<cons
     throw InputError(fmt::format("batch: {} parameter sets for {} vehicles (expected 1 or {})", vehicles.size(), n, n));
   if (drivers.size() != 1 && static_cast<long>(drivers.size()) != n)
     throw InputError(fmt::format("batch: {} drivers for {} vehicles (expected 1 or {})", drivers.size(), n, n));
+  for (const auto* per : {&o.initial_speeds, &o.end_times})
+    if (!per->empty() && per->size() != drivers.size())
+      throw InputError(fmt::format("batch: {} per-driver {} for {} drivers (expected none or {})", per->size(),
+                                   per == &o.end_times ? "end times" : "initial speeds", drivers.size(),
+                                   drivers.size()));
+  for (double t : o.end_times)
+    if (!(t > 0 && std::isfinite(t))) throw InputError(fmt::format("batch: end time {}: expected > 0 s", t));
+  for (double v : o.initial_speeds)
+    if (!std::isfinite(v)) throw InputError(fmt::format("batch: initial speed {}: expected a finite number", v));
   if (o.output_rate > 0 && std::fabs(std::round(1.0 / (o.output_rate * o.step)) * o.output_rate * o.step - 1.0) > 1e-9)
     throw InputError(fmt::format("--output-rate {} Hz: the output interval must be a whole number of steps of {} s",
                                  o.output_rate, o.step));
@@ -36,6 +45,9 @@ void run_cpu(const std::vector<RomVehicle>& vehicles, const std::vector<DriverSe
   BatchKernel<M> k = configure_batch<M>(o, static_cast<long>(vehicles.size()), static_cast<long>(views.size()), n, r);
   k.vehicles = vehicles.data();
   k.drivers = views.data();
+  const std::vector<long> steps = batch_steps(o);
+  if (!o.end_times.empty()) k.driver_steps = steps.data();
+  if (!o.initial_speeds.empty()) k.initial_speeds = o.initial_speeds.data();
   k.count = n;
   k.metrics = r.metrics.data();
   k.channels = r.channels.data();

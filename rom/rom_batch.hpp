@@ -44,6 +44,11 @@ struct BatchOptions {
   std::vector<BatchChannel> channels;
   BatchDevice device = BatchDevice::kCpu;
   long max_chunk = 0;  // vehicles per launch; 0: as many as memory allows
+  // Per driver (one entry per driver given), or empty: initial_speed and end_time for every vehicle.
+  // Runs of different manoeuvres then share one launch, whose length is the longest run's instead
+  // of the sum of all (a GPU thread steps one vehicle, so a launch lasts as long as its longest
+  // run). Channel samples past a run's own end are left at 0.
+  std::vector<double> initial_speeds, end_times;
 };
 
 struct BatchResult {

@@ -101,6 +101,11 @@ void run_device(const std::vector<RomVehicle>& vehicles, const std::vector<const
   BatchKernel<M> k = configure_batch<M>(o, static_cast<long>(vehicles.size()), static_cast<long>(views.size()), n, r);
   k.vehicles = d_vehicles.p;
   k.drivers = d_views.p;
+  const std::vector<long> steps = batch_steps(o);
+  DeviceArray<long> d_steps(steps.data(), o.end_times.empty() ? 0 : steps.size());
+  DeviceArray<double> d_speeds(o.initial_speeds.data(), o.initial_speeds.size());
+  k.driver_steps = d_steps.p;  // null where empty: the shared values
+  k.initial_speeds = d_speeds.p;
 
   // Outputs per vehicle; the chunk is what fits in 80 % of the free memory (or max_chunk).
   const std::size_t out_doubles = kBatchMetricCount + static_cast<std::size_t>(k.n_channels) * k.samples + M::kStates;
@@ -121,7 +126,7 @@ void run_device(const std::vector<RomVehicle>& vehicles, const std::vector<const
     k.metrics = d_out.p;
     k.channels = d_out.p + kBatchMetricCount * count;
     k.final_state = k.channels + static_cast<std::size_t>(k.n_channels) * k.samples * count;
-    parallel_for_cuda(count, k);
+    parallel_for_cuda_spread(count, k);
     TERRACAL_CUDA_CHECK(cudaDeviceSynchronize());
     // [quantity][count] blocks of this chunk into [quantity][n] of the whole batch.
     auto fetch = [&](const double* from, std::vector<double>& to, std::size_t rows) {

@@ -3,7 +3,9 @@
 // the half-implicit scheme, keeping its state in registers, and writes its summary metrics, its
 // final state and its sampled channels once. Compiled for the CPU (OpenMP) and the GPU (one thread
 // per vehicle) from this one source.
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "core/host_device.hpp"
 #include "core/vehicle/driver_inputs.hpp"
@@ -23,6 +25,9 @@ struct BatchKernel {
   double step = 1e-3;
   long steps = 0;
   double initial_speed = 0;
+  // Per driver (n_drivers entries), or null: initial_speed and steps for every vehicle.
+  const double* initial_speeds = nullptr;
+  const long* driver_steps = nullptr;
   long sample_every = 0;  // steps between channel samples; 0: none
   int samples = 0;
   int n_channels = 0;
@@ -81,9 +86,11 @@ struct BatchKernel {
   }
 
   TERRACAL_HD void simulate(const RomVehicle& v, long i, long g) const {
-    const DriverSeriesView& d = drivers[n_drivers == 1 ? 0 : g];
+    const long di = n_drivers == 1 ? 0 : g;
+    const DriverSeriesView& d = drivers[di];
+    const long steps = driver_steps ? driver_steps[di] : this->steps;
     double y[M::kStates];
-    int gear = M::initial_state(v, initial_speed, y);
+    int gear = M::initial_state(v, initial_speeds ? initial_speeds[di] : initial_speed, y);
     RomAux aux;
     double max_ay = 0, max_r = 0, max_roll = 0, failed_at = -1;
     if (sample_every > 0) record(0, i, v, d.at(0.0), gear, y);
@@ -104,6 +111,14 @@ struct BatchKernel {
   }
 };
 
+// The steps of each driver's runs (BatchOptions::end_times), or of every run: one entry.
+inline std::vector<long> batch_steps(const BatchOptions& o) {
+  std::vector<long> out;
+  for (double t : o.end_times.empty() ? std::vector<double>{o.end_time} : o.end_times)
+    out.push_back(static_cast<long>(t / o.step + 0.5));
+  return out;
+}
+
 // The loop's settings from the options, and the result's arrays sized for n vehicles (host code;
 // the CPU and GPU batches share it).
 template <class M>
@@ -112,7 +127,8 @@ BatchKernel<M> configure_batch(const BatchOptions& o, long n_vehicles, long n_dr
   k.n_vehicles = n_vehicles;
   k.n_drivers = n_drivers;
   k.step = o.step;
-  k.steps = static_cast<long>(o.end_time / o.step + 0.5);
+  k.steps = 0;
+  for (long s : batch_steps(o)) k.steps = std::max(k.steps, s);
   k.initial_speed = o.initial_speed;
   k.sample_every = o.output_rate > 0 ? static_cast<long>(1.0 / (o.output_rate * o.step) + 0.5) : 0;
   k.samples = k.sample_every > 0 ? static_cast<int>(k.steps / k.sample_every) + 1 : 0;

@@ -1,6 +1,7 @@
 #pragma once
 // The ROM as a calibrator's forward model: many parameter sets of one base vehicle, each run on
-// every reference manoeuvre, as one batch per reference (OpenMP threads, or one CUDA launch). The
+// every reference manoeuvre, as one batch for all references sampled at one rate (OpenMP threads,
+// or one CUDA launch that lasts as long as the longest reference). The
 // predictions are the batch's sampled channels, interpolated linearly at the reference's times.
 #include <string>
 #include <vector>
@@ -19,6 +20,9 @@ struct RomForwardSetup {
   const std::vector<RomReference>* references = nullptr;
   double step = 1e-3;  // half-implicit step [s]
   BatchDevice device = BatchDevice::kCpu;
+  // With device kCuda, batches of fewer than 8 runs per CPU thread run on the CPU (a GPU launch
+  // lasts as long as its longest run, whatever the batch's size).
+  bool small_batches_on_cpu = true;
 };
 
 struct RomForwardStats {
@@ -42,6 +46,10 @@ class RomForward {
 
  private:
   RomForwardSetup s_;
+  void run_group(const std::vector<std::size_t>& group, const std::vector<RomVehicle>& vehicles,
+                 const std::vector<std::size_t>& first_row, std::vector<std::vector<double>>& out,
+                 std::vector<char>& ok) const;
+
   std::vector<double> rate_;  // output rate per reference [Hz]
   std::size_t rows_ = 0;
   mutable RomForwardStats stats_;

@@ -85,6 +85,51 @@ TEST_CASE("calibrate-rom: the 90 % intervals cover known parameters in 80-98 % o
   CHECK(covered <= 0.98 * intervals);
 }
 
+TEST_CASE("calibrate-rom: i-SIR (the GPU's default sampler, here on the CPU) finds Metropolis-Hastings' posterior",
+          "[apps][calibrate-rom]") {
+  ScratchDir dir("calibrate_rom_isir");
+  const std::vector<std::string> params = {"tire_cornering_scale_front", "tire_cornering_scale_rear", "torque_scale"};
+  const std::vector<double> truth = {0.8, 1.25, 1.15};
+  write(dir.str() + "/p.json",
+        R"({"tire_cornering_scale_front": {"type": "uniform", "lower": 0.3, "upper": 3},
+            "tire_cornering_scale_rear": {"type": "uniform", "lower": 0.3, "upper": 3},
+            "torque_scale": {"type": "uniform", "lower": 0.5, "upper": 2}})");
+  write_rom_reference(dir.str(), "steer", kSteer, rom::RomModel::k11Dof, params, truth, 2.5, 7, 1);
+  write_rom_reference(dir.str(), "accel", kAccel, rom::RomModel::k11Dof, params, truth, 2.5, 7, 2);
+  nlohmann::json post[2];
+  for (int tries : {1, 16}) {
+    app::RomCalibrationSettings s;
+    s.model = rom::RomModel::k11Dof;
+    s.vehicle = "hmmwv";
+    s.references = {dir.str() + "/steer", dir.str() + "/accel"};
+    s.params_json = dir.str() + "/p.json";
+    s.out = dir.str() + fmt::format("/out{}", tries);
+    s.seed = 7;
+    s.chains = tries > 1 ? 8 : 12;
+    s.tries = tries;
+    s.min_ess = 400;
+    s.global_points = 32;
+    s.plots = false;
+    std::filesystem::create_directories(s.out);
+    const app::RomCalibrationOutcome r = app::run_rom_calibration(s);
+    REQUIRE(r.result.converged);
+    const nlohmann::json j = nlohmann::json::parse(read_file(s.out + "/rom_params.json"));
+    CHECK(j["Fit"]["tries"].get<int>() == tries);
+    post[tries > 1] = j["Posterior"];
+  }
+  // The two samplers' medians within a tenth of the 90 % interval's width, and the widths within 15 %:
+  // an i-SIR that picked by pi instead of pi / q, or ignored the current state, would sample another
+  // distribution (tests/bayes/test_independence.cpp shows by how much).
+  for (const auto& name : params) {
+    const auto &a = post[0][name], &b = post[1][name];
+    const double wa = a["q95"].get<double>() - a["q05"].get<double>();
+    const double wb = b["q95"].get<double>() - b["q05"].get<double>();
+    INFO(name << ": medians " << a["q50"] << " and " << b["q50"] << ", widths " << wa << " and " << wb);
+    CHECK(std::abs(a["q50"].get<double>() - b["q50"].get<double>()) < 0.1 * wa);
+    CHECK(std::abs(wb - wa) < 0.15 * wa);
+  }
+}
+
 TEST_CASE("bad input, calibrate-rom: references and parameter files", "[apps][calibrate-rom][bad-input]") {
   ScratchDir dir("calibrate_rom_bad");
   const std::string root = dir.str();

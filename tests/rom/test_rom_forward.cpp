@@ -24,8 +24,9 @@ DriverSeries step_steer() {
 
 // A reference with the given sample times; its values are placeholders (the forward model reads
 // only the times, the driver and the initial speed).
-RomReference reference(const std::string& name, std::vector<double> time, double speed) {
-  RomReference r{.dir = name, .name = name, .driver = step_steer()};
+RomReference reference(const std::string& name, std::vector<double> time, double speed,
+                       DriverSeries driver = step_steer()) {
+  RomReference r{.dir = name, .name = name, .driver = std::move(driver)};
   r.initial_speed = speed;
   r.time = std::move(time);
   for (int c = 0; c < kRomChannelCount; ++c) {
@@ -57,8 +58,12 @@ double sampled(const RomRunResult& r, RomChannel c, double t, double dt) {
 
 TEST_CASE("rom forward: each parameter set's predictions are its own single run at the reference times",
           "[rom][forward]") {
+  // "grid" and "short" share a rate and run as one batch, with their own drivers, initial speeds and
+  // end times; "offgrid" runs as a second batch.
+  const DriverSeries brake = DriverSeries::from_rows({0, 0.3, 0.8}, {0, -0.2, -0.2}, {0.2, 0, 0}, {0, 0.4, 0.4});
   const std::vector<RomReference> refs = {reference("grid", grid(0.02, 101), 10.0),
-                                          reference("offgrid", grid(0.0237, 60), 6.0)};
+                                          reference("offgrid", grid(0.0237, 60), 6.0),
+                                          reference("short", grid(0.02, 40), 4.0, brake)};
   const std::vector<RomChannel> channels = {kRcVx, kRcYawRate, kRcRoll, kRcAy};
   const RomForward f({hmmwv(),
                       RomModel::k18Dof,
@@ -71,14 +76,14 @@ TEST_CASE("rom forward: each parameter set's predictions are its own single run 
   std::vector<std::vector<double>> out;
   f(params, out);
   REQUIRE(out.size() == 3);
-  const std::size_t rows = refs[0].time.size() + refs[1].time.size();
+  const std::size_t rows = refs[0].time.size() + refs[1].time.size() + refs[2].time.size();
   REQUIRE(f.rows_per_channel() == rows);
   for (std::size_t i = 0; i < params.size(); ++i) {
     REQUIRE(out[i].size() == channels.size() * rows);
     std::size_t first = 0;
     for (const RomReference& ref : refs) {
       // Sampled as the batch samples: the reference's spacing, a whole number of 1 ms steps.
-      const double dt = ref.name == "grid" ? 0.02 : 0.024;
+      const double dt = ref.name == "offgrid" ? 0.024 : 0.02;
       RomRunOptions o = options(RomModel::k18Dof, ref.end_time() + dt, ref.initial_speed);
       o.output_rate = 1.0 / dt;
       const RomRunResult single = run(f.vehicle(params[i]), ref.driver, o);
@@ -89,7 +94,7 @@ TEST_CASE("rom forward: each parameter set's predictions are its own single run 
           const double want = sampled(single, channels[c], ref.time[r], dt);
           // On the grid the batch's samples are the single run's to the bit; off it (0.0237 s
           // apart, sampled every 0.024 s) both interpolate the same samples.
-          if (ref.name == "grid")
+          if (ref.name != "offgrid")
             CHECK(got == want);
           else
             CHECK(std::fabs(got - want) <= 1e-12 * (1 + std::fabs(want)));
@@ -118,7 +123,10 @@ TEST_CASE("rom forward: a parameter set that makes an invalid vehicle fails alon
 TEST_CASE("rom forward: GPU and CPU batches give the same log-likelihoods within 1e-9 relative",
           "[rom][forward][gpu]") {
   if (!test::cuda_device_or_skip("rom forward GPU/CPU log-likelihood")) return;
-  std::vector<RomReference> refs = {reference("a", grid(0.02, 101), 10.0), reference("b", grid(0.05, 40), 5.0)};
+  // "a" and "c" run as one launch (one rate; their own drivers, speeds and lengths), "b" as another.
+  const DriverSeries brake = DriverSeries::from_rows({0, 0.3, 0.8}, {0, -0.2, -0.2}, {0.2, 0, 0}, {0, 0.4, 0.4});
+  std::vector<RomReference> refs = {reference("a", grid(0.02, 101), 10.0), reference("b", grid(0.05, 40), 5.0),
+                                    reference("c", grid(0.02, 40), 4.0, brake)};
   const std::vector<RomChannel> channels = {kRcVx, kRcYawRate, kRcRoll, kRcAy};
   // Observations: the preset's predictions plus a deterministic wiggle.
   const RomForward cpu({hmmwv(),
@@ -134,16 +142,17 @@ TEST_CASE("rom forward: GPU and CPU batches give the same log-likelihoods within
                         channels,
                         &refs,
                         1e-3,
-                        BatchDevice::kCuda});
+                        BatchDevice::kCuda,
+                        false});  // every batch on the GPU, however small
   std::vector<std::vector<double>> base;
   cpu({{1.0, 1.0}}, base);
   std::vector<bayes::ModelChannel> obs;
   for (std::size_t c = 0; c < channels.size(); ++c) {
-    bayes::ModelChannel m{kRomChannelNames[channels[c]], kRomChannelUnits[channels[c]], {}, {}, {}, {"a", "b"}};
+    bayes::ModelChannel m{kRomChannelNames[channels[c]], kRomChannelUnits[channels[c]], {}, {}, {}, {"a", "b", "c"}};
     for (std::size_t r = 0; r < cpu.rows_per_channel(); ++r) {
       m.y.push_back(base[0][c * cpu.rows_per_channel() + r] + 0.01 * std::sin(0.7 * double(r)));
       m.x.push_back(double(r));
-      m.curve.push_back(r < refs[0].time.size() ? 0 : 1);
+      m.curve.push_back(r < refs[0].time.size() ? 0 : r < refs[0].time.size() + refs[1].time.size() ? 1 : 2);
     }
     obs.push_back(m);
   }
