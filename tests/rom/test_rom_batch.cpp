@@ -5,6 +5,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "core/errors.hpp"
 #include "rom/rom18.hpp"
 #include "rom/rom_batch.hpp"
 #include "tests/rom/rom_test_vehicles.hpp"
@@ -93,4 +94,42 @@ TEST_CASE("rom batch: GPU and CPU batches of 1000 different vehicles agree withi
       CHECK(gpu.failed == cpu.failed);
     }
   }
+}
+
+TEST_CASE("rom batch: per-driver initial speeds and end times run each vehicle as its own batch would",
+          "[rom][batch]") {
+  const auto vehicles = varied_vehicles(6);
+  const DriverSeries a = lane_change();
+  const DriverSeries b = DriverSeries::from_rows({0, 1.0}, {0, 0.2}, {0.8, 0.8}, {0, 0});
+  BatchOptions o;
+  o.output_rate = 50;
+  o.channels = {kChVx, kChYawRate};
+  // Runs 0-2 on the lane change from 12 m/s for 2 s, runs 3-5 on the turn from 5 m/s for 1.2 s.
+  std::vector<const DriverSeries*> drivers = {&a, &a, &a, &b, &b, &b};
+  o.initial_speeds = {12, 12, 12, 5, 5, 5};
+  o.end_times = {2.0, 2.0, 2.0, 1.2, 1.2, 1.2};
+  const BatchResult mixed = run_rom_batch(vehicles, drivers, 6, o);
+  REQUIRE(mixed.samples == 101);  // the longest run's
+  for (long i = 0; i < 6; ++i) {
+    BatchOptions one = o;
+    one.initial_speeds.clear();
+    one.end_times.clear();
+    one.initial_speed = o.initial_speeds[i];
+    one.end_time = o.end_times[i];
+    const BatchResult alone = run_rom_batch({vehicles[i]}, {drivers[i]}, 1, one);
+    for (int m = 0; m < kBatchMetricCount; ++m) CHECK(mixed.metrics[m * 6 + i] == alone.metrics[m]);
+    for (int c = 0; c < 2; ++c)
+      for (int s = 0; s < alone.samples; ++s)
+        CHECK(mixed.channels[(c * mixed.samples + s) * 6 + i] == alone.channels[c * alone.samples + s]);
+  }
+  // Per-driver values must come one per driver, and be usable.
+  BatchOptions bad = o;
+  bad.end_times.pop_back();
+  CHECK_THROWS_AS(run_rom_batch(vehicles, drivers, 6, bad), InputError);
+  bad = o;
+  bad.end_times[2] = 0;
+  CHECK_THROWS_AS(run_rom_batch(vehicles, drivers, 6, bad), InputError);
+  bad = o;
+  bad.initial_speeds[4] = std::nan("");
+  CHECK_THROWS_AS(run_rom_batch(vehicles, drivers, 6, bad), InputError);
 }
