@@ -167,6 +167,8 @@ TEST_CASE("bad input, calibrate-rom: references and parameter files", "[apps][ca
       {"--reference " + root + "/ok --params " + root + "/inverted.json", "lower 2 must be below upper 0.5"},
       {"--reference " + root + "/ok --params " + root + "/friction.json", "unknown key 'friction'"},
       {"--reference " + root + "/ok --model 30dof", "30dof"},
+      {"--reference " + root + "/ok --tries -3", "--tries: value -3 is outside [0, 100000]"},
+      {"--reference " + root + "/ok --warmup -2", "--warmup: value -2 is outside [-1, 1000000]"},
       {"--reference " + root + "/ok --params " + root + "/overlap.json",
        "'roll_stiffness_total' and 'roll_stiffness_front' set the same vehicle values", true},
   };
