@@ -58,7 +58,7 @@ Command add_calibrate_rom(CLI::App& app) {
       ->check(whole_in(10, 100000000))
       ->capture_default_str();
   sub->add_option("--warmup", s.warmup,
-                  "steps per chain discarded before the draws (the proposal adapts in them); -1: 40, 10 with tries > 1")
+                  "steps per chain discarded before the draws (the proposal adapts in them); -1: 40, 4 with tries > 1")
       ->check(whole_in(-1, 1000000))
       ->capture_default_str();
   sub->add_option("--global-points", s.global_points, "random points of the global search")
@@ -82,9 +82,10 @@ Command add_calibrate_rom(CLI::App& app) {
     std::filesystem::create_directories(a->s.out);
     const RomCalibrationOutcome r = run_rom_calibration(a->s);
     fmt::print(
-        "calibrate-rom: {}; {} ROM runs ({} failed) in {:.3g} s ({:.3g} s in the batches); written to "
-        "{}/rom_params.json\n",
-        r.result.termination, r.runs, r.failed_runs, r.wall_seconds, r.forward_seconds, a->s.out);
+        "calibrate-rom: {}; {} ROM runs ({} failed) in {:.3g} s ({:.3g} s in the forward model, {:.3g} s of it in "
+        "the batches, {:.3g} s stepping); written to {}/rom_params.json\n",
+        r.result.termination, r.runs, r.failed_runs, r.wall_seconds, r.model_seconds, r.forward_seconds,
+        r.stepping_seconds, a->s.out);
     return r.result.converged ? 0 : 1;
   };
 }

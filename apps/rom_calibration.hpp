@@ -61,7 +61,9 @@ struct RomCalibrationOutcome {
   std::vector<std::string> parameters;
   double wall_seconds = 0;
   long runs = 0, failed_runs = 0;
-  double forward_seconds = 0;  // spent in the batch runs
+  double forward_seconds = 0;   // spent in the batch runs
+  double stepping_seconds = 0;  // of which stepping the vehicles
+  double model_seconds = 0;     // in the forward model: the batches, building vehicles, resampling
 };
 
 // Runs the calibration and writes rom_params.json, posterior.h5, fit_<reference>.csv and

@@ -68,23 +68,33 @@ bool cuda_batch_available() {
 
 BatchResult run_rom_batch(const std::vector<RomVehicle>& vehicles, const std::vector<const DriverSeries*>& drivers,
                           long n, const BatchOptions& o) {
+  BatchResult r;
+  run_rom_batch(vehicles, drivers, n, o, r);
+  return r;
+}
+
+void run_rom_batch(const std::vector<RomVehicle>& vehicles, const std::vector<const DriverSeries*>& drivers, long n,
+                   const BatchOptions& o, BatchResult& r) {
   check_batch(vehicles, drivers, n, o);
+  r.failed = 0;
+  r.chunks = 0;
+  r.wall_seconds = r.stepping_seconds = r.bytes_per_vehicle = 0;
   if (o.device == BatchDevice::kCuda) {
 #if TERRACAL_HAVE_CUDA
-    return run_rom_batch_cuda(vehicles, drivers, n, o);
+    run_rom_batch_cuda(vehicles, drivers, n, o, r);
+    return;
 #else
     throw RunError("rom batch: --device cuda, but this terracal was built without CUDA");
 #endif
   }
-  BatchResult r;
   r.device = "cpu (OpenMP)";
   std::vector<DriverSeriesView> views;
   for (const DriverSeries* d : drivers) views.push_back(d->view());
   const auto start = std::chrono::steady_clock::now();
   with_model(o.model, [&](auto model) { run_cpu<decltype(model)>(vehicles, views, n, o, r); });
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.stepping_seconds = r.wall_seconds;
   r.failed = count_failed(r);
-  return r;
 }
 
 }  // namespace terracal::rom

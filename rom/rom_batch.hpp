@@ -59,8 +59,9 @@ struct BatchResult {
   std::vector<double> final_state;  // [state][vehicle]
   int states = 0;
   long failed = 0;          // vehicles whose state diverged
-  double wall_seconds = 0;  // the stepping, launches and copies included
-  std::string device;       // what ran it, in words
+  double wall_seconds = 0;      // the stepping, launches and copies included
+  double stepping_seconds = 0;  // the stepping alone (on a GPU: from the launches to their end)
+  std::string device;           // what ran it, in words
   long chunks = 0;
   double bytes_per_vehicle = 0;  // device memory per vehicle: parameters, driver, outputs
 };
@@ -69,6 +70,11 @@ struct BatchResult {
 // sizes and RunError for CUDA failures or a GPU batch in a build without CUDA.
 BatchResult run_rom_batch(const std::vector<RomVehicle>& vehicles, const std::vector<const DriverSeries*>& drivers,
                           long n, const BatchOptions& options);
+// The same into `into`, whose arrays keep their memory from call to call: a caller that runs batch
+// after batch of one size (the calibrator's forward model, a GPU launch per sampler step) then
+// allocates and pages in nothing new (a few hundred MB of channel samples per launch).
+void run_rom_batch(const std::vector<RomVehicle>& vehicles, const std::vector<const DriverSeries*>& drivers, long n,
+                   const BatchOptions& options, BatchResult& into);
 
 bool cuda_batch_available();
 

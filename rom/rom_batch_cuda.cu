@@ -1,5 +1,6 @@
 // The GPU batch: vehicles' parameters and drivers copied once, then chunks of vehicles run as one
 // CUDA thread each (the same BatchKernel as the CPU), and only the reduced outputs come back.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -32,6 +33,31 @@ struct DeviceArray {
   DeviceArray(const DeviceArray&) = delete;
   DeviceArray& operator=(const DeviceArray&) = delete;
 };
+
+// Device memory kept from batch to batch and grown on demand, one per use and host thread: the
+// calibrator runs thousands of batches of one size, and a cudaMalloc/cudaFree pair of a few hundred
+// MB per launch costs milliseconds (a free waits for the device).
+struct DeviceScratch {
+  void* p = nullptr;
+  std::size_t bytes = 0;
+  ~DeviceScratch() { cudaFree(p); }
+  template <class T>
+  T* ensure(std::size_t n) {
+    if (n * sizeof(T) > bytes) {
+      if (p) TERRACAL_CUDA_CHECK(cudaFree(p));
+      p = nullptr;
+      bytes = 0;
+      TERRACAL_CUDA_CHECK(cudaMalloc(&p, n * sizeof(T)));
+      bytes = n * sizeof(T);
+    }
+    return static_cast<T*>(p);
+  }
+};
+enum ScratchUse { kVehiclesScratch, kOutputScratch, kScratchUses };
+DeviceScratch& device_scratch(ScratchUse use) {
+  thread_local DeviceScratch s[kScratchUses];
+  return s[use];
+}
 
 // The vehicles as the device sees them: a deformable_terrain table's arrays copied into one device
 // allocation per distinct table (owned by `tables`), the copies' views pointing into it.
@@ -75,8 +101,13 @@ void run_device(const std::vector<RomVehicle>& vehicles, const std::vector<const
                 const BatchOptions& o, BatchResult& r) {
   // deformable_terrain tables: each distinct one copied once, the vehicles' views pointed at it.
   std::vector<std::unique_ptr<DeviceArray<double>>> tables;
-  const std::vector<RomVehicle> on_device = with_device_tables(vehicles, tables);
-  DeviceArray<RomVehicle> d_vehicles(on_device.data(), on_device.size());
+  std::vector<RomVehicle> with_tables;  // a copy only where some vehicle has a table
+  if (std::any_of(vehicles.begin(), vehicles.end(), [](const RomVehicle& v) { return v.terrain.present(); }))
+    with_tables = with_device_tables(vehicles, tables);
+  const std::vector<RomVehicle>& on_device = with_tables.empty() ? vehicles : with_tables;
+  RomVehicle* d_vehicles = device_scratch(kVehiclesScratch).ensure<RomVehicle>(on_device.size());
+  TERRACAL_CUDA_CHECK(
+      cudaMemcpy(d_vehicles, on_device.data(), on_device.size() * sizeof(RomVehicle), cudaMemcpyHostToDevice));
   // Each driver's four columns on the device, and the views that point at them.
   std::vector<std::unique_ptr<DeviceArray<double>>> columns;
   std::vector<DriverSeriesView> views;
@@ -99,7 +130,7 @@ void run_device(const std::vector<RomVehicle>& vehicles, const std::vector<const
   DeviceArray<DriverSeriesView> d_views(views.data(), views.size());
 
   BatchKernel<M> k = configure_batch<M>(o, static_cast<long>(vehicles.size()), static_cast<long>(views.size()), n, r);
-  k.vehicles = d_vehicles.p;
+  k.vehicles = d_vehicles;
   k.drivers = d_views.p;
   const std::vector<long> steps = batch_steps(o);
   DeviceArray<long> d_steps(steps.data(), o.end_times.empty() ? 0 : steps.size());
@@ -111,6 +142,7 @@ void run_device(const std::vector<RomVehicle>& vehicles, const std::vector<const
   const std::size_t out_doubles = kBatchMetricCount + static_cast<std::size_t>(k.n_channels) * k.samples + M::kStates;
   std::size_t free_bytes = 0, total_bytes = 0;
   TERRACAL_CUDA_CHECK(cudaMemGetInfo(&free_bytes, &total_bytes));
+  free_bytes += device_scratch(kOutputScratch).bytes;  // the previous batch's outputs, reused
   long chunk = std::max<long>(1, static_cast<long>(0.8 * free_bytes / (out_doubles * sizeof(double))));
   if (o.max_chunk > 0) chunk = std::min(chunk, o.max_chunk);
   chunk = std::min(chunk, n);
@@ -118,16 +150,21 @@ void run_device(const std::vector<RomVehicle>& vehicles, const std::vector<const
   // columns are shared by the vehicles that use them).
   r.bytes_per_vehicle = out_doubles * sizeof(double) + (vehicles.size() > 1 ? sizeof(RomVehicle) : 0) +
                         (drivers.size() > 1 ? sizeof(DriverSeriesView) : 0);
-  DeviceArray<double> d_out(out_doubles * chunk);
+  double* d_out = device_scratch(kOutputScratch).ensure<double>(out_doubles * chunk);
   for (long first = 0; first < n; first += chunk) {
     const long count = std::min(chunk, n - first);
     k.first = first;
     k.count = count;
-    k.metrics = d_out.p;
-    k.channels = d_out.p + kBatchMetricCount * count;
+    k.metrics = d_out;
+    k.channels = d_out + kBatchMetricCount * count;
     k.final_state = k.channels + static_cast<std::size_t>(k.n_channels) * k.samples * count;
+    // Samples past a run's own end (a shorter manoeuvre in a launch with a longer one) read 0.
+    TERRACAL_CUDA_CHECK(
+        cudaMemset(k.channels, 0, static_cast<std::size_t>(k.n_channels) * k.samples * count * sizeof(double)));
+    const auto launched = std::chrono::steady_clock::now();
     parallel_for_cuda_spread(count, k);
     TERRACAL_CUDA_CHECK(cudaDeviceSynchronize());
+    r.stepping_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - launched).count();
     // [quantity][count] blocks of this chunk into [quantity][n] of the whole batch.
     auto fetch = [&](const double* from, std::vector<double>& to, std::size_t rows) {
       TERRACAL_CUDA_CHECK(cudaMemcpy2D(to.data() + first, n * sizeof(double), from, count * sizeof(double),
@@ -142,20 +179,21 @@ void run_device(const std::vector<RomVehicle>& vehicles, const std::vector<const
 
 }  // namespace
 
-BatchResult run_rom_batch_cuda(const std::vector<RomVehicle>& vehicles, const std::vector<const DriverSeries*>& drivers,
-                               long n, const BatchOptions& o) {
+void run_rom_batch_cuda(const std::vector<RomVehicle>& vehicles, const std::vector<const DriverSeries*>& drivers, long n,
+                        const BatchOptions& o, BatchResult& r) {
   int count = 0;
   if (cudaGetDeviceCount(&count) != cudaSuccess || count == 0)
     throw RunError("rom batch: --device cuda, but no CUDA device is present");
-  BatchResult r;
-  cudaDeviceProp prop{};
-  TERRACAL_CUDA_CHECK(cudaGetDeviceProperties(&prop, 0));
-  r.device = fmt::format("cuda: {}", prop.name);
+  static const std::string name = [] {  // a properties query costs milliseconds: once
+    cudaDeviceProp prop{};
+    TERRACAL_CUDA_CHECK(cudaGetDeviceProperties(&prop, 0));
+    return fmt::format("cuda: {}", prop.name);
+  }();
+  r.device = name;
   const auto start = std::chrono::steady_clock::now();
   with_model(o.model, [&](auto model) { run_device<decltype(model)>(vehicles, drivers, n, o, r); });
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   r.failed = count_failed(r);
-  return r;
 }
 
 }  // namespace terracal::rom

@@ -6,7 +6,8 @@
 
 namespace terracal::rom {
 
-BatchResult run_rom_batch_cuda(const std::vector<RomVehicle>& vehicles, const std::vector<const DriverSeries*>& drivers,
-                               long n, const BatchOptions& options);
+// Fills r (its arrays sized by configure_batch, its counters zero).
+void run_rom_batch_cuda(const std::vector<RomVehicle>& vehicles, const std::vector<const DriverSeries*>& drivers, long n,
+                        const BatchOptions& options, BatchResult& r);
 
 }  // namespace terracal::rom

@@ -94,8 +94,10 @@ struct BatchKernel {
     RomAux aux;
     double max_ay = 0, max_r = 0, max_roll = 0, failed_at = -1;
     if (sample_every > 0) record(0, i, v, d.at(0.0), gear, y);
+    int cursor = 0;  // the driver's row at the last step
     for (long k = 0; k < steps; ++k) {
-      if (!half_implicit_step<M>(v, d.at(k * step), gear, y, step, &aux)) {
+      const DriverInput in = d.at(k * step, cursor);
+      if (!half_implicit_step<M>(v, in, gear, y, step, &aux)) {
         failed_at = (k + 1) * step;
         break;
       }
@@ -103,7 +105,7 @@ struct BatchKernel {
       max_r = max_of(max_r, fabs(y[M::kYawRate]));
       max_roll = max_of(max_roll, fabs(M::roll_of(y)));
       if (sample_every > 0 && (k + 1) % sample_every == 0)
-        record(int((k + 1) / sample_every), i, v, d.at(k * step), gear, y);
+        record(int((k + 1) / sample_every), i, v, in, gear, y);
     }
     const double m[kBatchMetricCount] = {y[M::kX], y[M::kY], y[M::kYaw], y[M::kVx], max_ay, max_r, max_roll, failed_at};
     for (int k = 0; k < kBatchMetricCount; ++k) metrics[long(k) * count + i] = m[k];

@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -81,9 +82,9 @@ void RomForward::run_group(const std::vector<std::size_t>& group, const std::vec
                      runs < kSmallBatchRunsPerThread * omp_get_max_threads()
                  ? BatchDevice::kCpu
                  : s_.device;
-  std::vector<RomVehicle> all;
+  std::vector<RomVehicle>& all = all_;  // kept from call to call, with the batch's result (no new pages)
+  all.clear();
   std::vector<const DriverSeries*> drivers;
-  all.reserve(runs);
   for (std::size_t k : group) {
     const RomReference& ref = (*s_.references)[k];
     all.insert(all.end(), vehicles.begin(), vehicles.end());
@@ -92,9 +93,11 @@ void RomForward::run_group(const std::vector<std::size_t>& group, const std::vec
     o.end_times.insert(o.end_times.end(), n, ref.end_time() + 1.0 / rate);  // a sample beyond the last time
   }
   o.end_time = *std::max_element(o.end_times.begin(), o.end_times.end());
-  const BatchResult b = run_rom_batch(all, drivers, runs, o);
+  run_rom_batch(all, drivers, runs, o, batch_);
+  const BatchResult& b = batch_;
   stats_.runs += runs;
   stats_.wall_seconds += b.wall_seconds;
+  stats_.stepping_seconds += b.stepping_seconds;
   for (std::size_t r = 0; r < group.size(); ++r) {
     const RomReference& ref = (*s_.references)[group[r]];
     // This reference's own samples (the batch holds the longest run's).
@@ -124,16 +127,18 @@ void RomForward::run_group(const std::vector<std::size_t>& group, const std::vec
 
 void RomForward::operator()(const std::vector<std::vector<double>>& params,
                             std::vector<std::vector<double>>& out) const {
+  const auto start = std::chrono::steady_clock::now();
   out.assign(params.size(), std::vector<double>(s_.channels.size() * rows_));
   std::vector<char> ok(params.size(), 1);
-  std::vector<RomVehicle> vehicles;
-  for (const auto& p : params) {
-    vehicles.push_back(vehicle(p));
+  std::vector<RomVehicle> vehicles(params.size());
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < params.size(); ++i) {
+    vehicles[i] = vehicle(params[i]);
     try {
-      validate(vehicles.back(), "calibration");
+      validate(vehicles[i], "calibration");
     } catch (const InputError&) {
-      ok[vehicles.size() - 1] = 0;
-      vehicles.back() = s_.base;  // runs, but its result is dropped
+      ok[i] = 0;
+      vehicles[i] = s_.base;  // runs, but its result is dropped
     }
   }
   // The first row of each reference in a channel's block.
@@ -154,6 +159,7 @@ void RomForward::operator()(const std::vector<std::vector<double>>& params,
   }
   for (std::size_t i = 0; i < params.size(); ++i)
     if (!ok[i]) out[i].clear();
+  stats_.call_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace terracal::rom

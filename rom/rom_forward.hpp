@@ -26,14 +26,17 @@ struct RomForwardSetup {
 };
 
 struct RomForwardStats {
-  long runs = 0;  // vehicle runs (parameter sets x references)
-  double wall_seconds = 0;
+  long runs = 0;                // vehicle runs (parameter sets x references)
+  double wall_seconds = 0;      // in the batches (run_rom_batch)
+  double stepping_seconds = 0;  // of which stepping the vehicles
+  double call_seconds = 0;      // in the forward model's calls: the batches, building the vehicles, resampling
 };
 
 class RomForward {
  public:
-  // Throws InputError for an unknown parameter, a reference lacking a compared channel, or a
-  // reference whose sample spacing is not a whole number of steps.
+  // One call at a time (it keeps a call's batch for the next). Throws InputError for an unknown
+  // parameter, a reference lacking a compared channel, or a reference whose sample spacing is not a
+  // whole number of steps.
   explicit RomForward(RomForwardSetup setup);
   // out[i]: for params[i], every channel's rows over all references (channel-major, then reference,
   // then sample), or empty when the vehicle failed on some reference or its parameters are invalid.
@@ -51,6 +54,9 @@ class RomForward {
                  std::vector<char>& ok) const;
 
   std::vector<double> rate_;  // output rate per reference [Hz]
+  // A call's batch and its result, kept for the next call: a GPU step's batch holds a few hundred MB.
+  mutable std::vector<RomVehicle> all_;
+  mutable BatchResult batch_;
   std::size_t rows_ = 0;
   mutable RomForwardStats stats_;
 };

@@ -42,7 +42,24 @@ struct DriverSeriesView {
     if (n <= 0) return DriverInput{};
     if (!(t > time[0])) return DriverInput{steering[0], throttle[0], braking[0]};
     if (t >= time[n - 1]) return DriverInput{steering[n - 1], throttle[n - 1], braking[n - 1]};
-    int lo = 0, hi = n - 1;  // time[lo] < t < time[hi]
+    return between(row_before(t, 0), t);
+  }
+
+  // The same value to the bit, for a run's times that increase from call to call: the search starts
+  // at `cursor`, the row the previous call found, and walks forward, so a long series costs a step a
+  // few reads instead of a bisection (on a GPU thread, a chain of dependent loads).
+  TERRACAL_HD DriverInput at(double t, int& cursor) const {
+    if (n <= 0 || !(t > time[0]) || t >= time[n - 1]) return at(t);
+    int lo = cursor >= 0 && cursor < n - 1 && time[cursor] <= t ? cursor : row_before(t, 0);
+    while (time[lo + 1] <= t) ++lo;
+    cursor = lo;
+    return between(lo, t);
+  }
+
+ private:
+  // The last row at or before t (time[0] < t < time[n - 1]), by bisection from row lo.
+  TERRACAL_HD int row_before(double t, int lo) const {
+    int hi = n - 1;  // time[lo] < t < time[hi]
     while (hi - lo > 1) {
       const int mid = lo + (hi - lo) / 2;
       if (time[mid] <= t)
@@ -50,6 +67,11 @@ struct DriverSeriesView {
       else
         hi = mid;
     }
+    return lo;
+  }
+  // Linear between row lo and the next.
+  TERRACAL_HD DriverInput between(int lo, double t) const {
+    const int hi = lo + 1;
     const double w = (t - time[lo]) / (time[hi] - time[lo]);
     return DriverInput{steering[lo] + w * (steering[hi] - steering[lo]),
                        throttle[lo] + w * (throttle[hi] - throttle[lo]), braking[lo] + w * (braking[hi] - braking[lo])};

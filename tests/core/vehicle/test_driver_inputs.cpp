@@ -115,6 +115,38 @@ TEST_CASE("driver file: the lookup finds the right interval in a long series", "
   }
 }
 
+TEST_CASE("driver series: the lookup from a cursor gives the bisection's value to the bit", "[driver_inputs]") {
+  std::vector<double> t, st, th, br;
+  for (int i = 0; i < 400; ++i) {
+    t.push_back(0.05 * i + 1e-3 * std::sin(double(i)));  // uneven steps
+    st.push_back(std::sin(0.1 * i));
+    th.push_back(0.5 + 0.5 * std::cos(0.03 * i));
+    br.push_back(i % 3 ? 0.25 : 0.0);
+  }
+  const DriverSeries s = DriverSeries::from_rows(t, st, th, br, "uneven rows");
+  const terracal::DriverSeriesView v = s.view();
+  auto same = [](const DriverInput& a, const DriverInput& b) {
+    return a.steering == b.steering && a.throttle == b.throttle && a.braking == b.braking;
+  };
+  // A run's steps: before the first row, on rows, between them, past the last; steps shorter and
+  // longer than the rows' spacing.
+  for (double h : {1e-3, 0.013, 0.05, 0.31}) {
+    int cursor = 0;
+    long mismatches = 0;
+    for (double at = -0.2; at < t.back() + 0.5; at += h) mismatches += !same(v.at(at, cursor), v.at(at));
+    for (int i = 0; i < 400; ++i) mismatches += !same(v.at(t[i], cursor), v.at(t[i]));
+    CHECK(mismatches == 0);
+  }
+  // Times that go back, and a cursor that points anywhere, still give the bisection's value.
+  int cursor = 350;
+  CHECK(same(v.at(1.234, cursor), v.at(1.234)));
+  CHECK(cursor == 24);
+  for (int bad : {-5, 399, 400, 100000}) {
+    cursor = bad;
+    CHECK(same(v.at(7.77, cursor), v.at(7.77)));
+  }
+}
+
 TEST_CASE("driver file: bad files are refused, naming the file, the line, the column and the value",
           "[driver_inputs]") {
   const terracal::test::ScratchDir scratch("driver_bad");
