@@ -96,6 +96,44 @@ TEST_CASE("rom batch: GPU and CPU batches of 1000 different vehicles agree withi
   }
 }
 
+TEST_CASE("rom batch: a GPU batch of mixed manoeuvres equals the CPU's, zeros past each run's end included",
+          "[rom][batch][gpu]") {
+  if (!test::cuda_device_or_skip("rom batch GPU mixed manoeuvres")) return;
+  const auto vehicles = varied_vehicles(64);
+  const DriverSeries a = lane_change();
+  const DriverSeries b = DriverSeries::from_rows({0, 1.0}, {0, 0.2}, {0.8, 0.8}, {0, 0});
+  BatchOptions o;
+  o.output_rate = 50;
+  o.channels = {kChVx, kChYawRate};
+  std::vector<const DriverSeries*> drivers;
+  for (int i = 0; i < 64; ++i) {
+    drivers.push_back(i < 32 ? &a : &b);
+    o.initial_speeds.push_back(i < 32 ? 12.0 : 5.0);
+    o.end_times.push_back(i < 32 ? 2.0 : 1.2);
+  }
+  o.device = BatchDevice::kCpu;
+  const BatchResult cpu = run_rom_batch(vehicles, drivers, 64, o);
+  // The GPU batch reuses its device buffers from call to call: a first batch of longer runs leaves
+  // non-zero samples where the second's shorter runs end.
+  BatchResult gpu;
+  BatchOptions longer = o;
+  longer.device = BatchDevice::kCuda;
+  longer.end_times.assign(64, 2.0);
+  longer.initial_speeds.assign(64, 12.0);
+  run_rom_batch(vehicles, drivers, 64, longer, gpu);
+  o.device = BatchDevice::kCuda;
+  run_rom_batch(vehicles, drivers, 64, o, gpu);
+  REQUIRE(gpu.channels.size() == cpu.channels.size());
+  double worst = 0;
+  long zeros = 0;
+  for (std::size_t k = 0; k < cpu.channels.size(); ++k) {
+    worst = std::max(worst, relative(gpu.channels[k], cpu.channels[k]));
+    zeros += cpu.channels[k] == 0.0 && gpu.channels[k] == 0.0;
+  }
+  CHECK(worst < 1e-10);
+  CHECK(zeros >= 2 * 32 * (101 - 61));  // the turn's runs end at sample 60 of 100
+}
+
 TEST_CASE("rom batch: per-driver initial speeds and end times run each vehicle as its own batch would",
           "[rom][batch]") {
   const auto vehicles = varied_vehicles(6);
