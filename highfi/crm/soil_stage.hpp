@@ -15,6 +15,10 @@ namespace terracal {
 
 template <typename T, class Fx>
 struct SoilStage {
+  // CUDA blocks of 256 per SM the stage is compiled for: 4 caps it at 64 registers, which suits the
+  // core sums; effects with sums of their own (hourglass_stiffness) then spill, and 3 (80 registers)
+  // runs the rigs' configuration 1.28x faster (docs/decisions.md, "CUDA launch bounds").
+  static constexpr int kCudaMinBlocks = AnyListed<Fx>::value ? 3 : 4;
   SphConstants<T> k;
   CrmEffectConstants<T> ec;
   GridGeometry<T> grid;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <string>
+#include <type_traits>
 
 #include "core/cuda_check.hpp"
 #include "core/parallel_for_cuda.cuh"
@@ -15,6 +16,12 @@ namespace terracal {
 namespace {
 
 constexpr int kDefaultMinBlocks = 4;  // the measured best (bench/RESULTS.md, "Occupancy"; docs/decisions.md)
+
+// A stage's own choice of blocks per SM (F::kCudaMinBlocks), or the default.
+template <typename F, typename = void>
+struct PreferredMinBlocks : std::integral_constant<int, kDefaultMinBlocks> {};
+template <typename F>
+struct PreferredMinBlocks<F, std::void_t<decltype(F::kCudaMinBlocks)>> : std::integral_constant<int, F::kCudaMinBlocks> {};
 
 // Scratch memory of CUB's sort, grown on demand and kept for the engine's lifetime.
 struct CubScratch {
@@ -163,16 +170,16 @@ struct CudaBackend {
   static void parallel_for(long n, const F& f) {
     parallel_for_cuda(n, f);
   }
-  // The neighbour-loop stages; TERRACAL_CUDA_MIN_BLOCKS (1-4) picks the occupancy/register trade-off
-  // for tuning runs (bench/RESULTS.md); the default is the measured best.
+  // The neighbour-loop stages, at the stage's measured best occupancy/register trade-off;
+  // TERRACAL_CUDA_MIN_BLOCKS (1-4) overrides it for tuning runs (bench/RESULTS.md).
   template <typename F>
   static void parallel_for_heavy(long n, const F& f) {
-    static const int min_blocks = [] {
+    static const int forced = [] {
       const char* e = std::getenv("TERRACAL_CUDA_MIN_BLOCKS");
-      const int v = e ? std::atoi(e) : kDefaultMinBlocks;
-      return v >= 1 && v <= 4 ? v : kDefaultMinBlocks;
+      const int v = e ? std::atoi(e) : 0;
+      return v >= 1 && v <= 4 ? v : 0;
     }();
-    switch (min_blocks) {
+    switch (forced ? forced : PreferredMinBlocks<F>::value) {
       case 1:
         parallel_for_cuda_bounded<1>(n, f);
         break;
