@@ -4,7 +4,7 @@
 // annulus (radii, loads, turn, settling, load ramp, CRM step).
 #include <string>
 
-#include <CLI/CLI.hpp>
+#include "apps/cli_fwd.hpp"
 
 #include "apps/rig_runs.hpp"
 

@@ -76,7 +76,7 @@ struct CalibrationOutcome {
   nlohmann::ordered_json params;  // scm_params.json as written
   // Posterior draws as SCM sets (with the fitted Ke, Chrono's damping and S), evenly thinned to at
   // most kPosteriorSets per chain: what a predictive band runs through a fast model.
-  std::vector<lowfi::ScmSoil> posterior_sets;
+  std::vector<lowfi::ScmSoil> posterior_sets{};
 };
 inline constexpr int kPosteriorSets = 25;
 

@@ -24,7 +24,7 @@ std::string parameters_table(const RomCalibrationOutcome& c) {
   const auto& r = c.result;
   for (std::size_t i = 0; i < r.summary.size() && i < r.names.size(); ++i) {
     const auto& v = r.summary[i];
-    const double map = i < r.point.x.size() ? r.point.x[i] : NAN;
+    const double map = Eigen::Index(i) < r.point.x.size() ? r.point.x[i] : NAN;
     md += fmt::format("| {} | {} | {} | {} – {} | {} | {} |\n", r.names[i], number(map, "{:.4g}"),
                       number(v.q50, "{:.4g}"), number(v.q05, "{:.4g}"), number(v.q95, "{:.4g}"),
                       number(v.rhat, "{:.3f}"), number(v.ess_bulk, "{:.0f}"));

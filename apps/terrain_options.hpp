@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
+#include "apps/cli_fwd.hpp"
 
 #include "core/terrain.hpp"
 #include "highfi/crm/crm_scene.hpp"

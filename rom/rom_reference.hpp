@@ -21,8 +21,8 @@ struct RomReference {
   std::string name;  // its last path component, for labels
   DriverSeries driver;
   double initial_speed = 0;  // vx of the first row [m/s]
-  std::vector<double> time;  // sample times, from 0, strictly increasing [s]
-  std::array<std::vector<double>, kRomChannelCount> values;
+  std::vector<double> time{};  // sample times, from 0, strictly increasing [s]
+  std::array<std::vector<double>, kRomChannelCount> values{};
   std::array<bool, kRomChannelCount> has{};  // the file has that column
   double end_time() const { return time.back(); }
 };

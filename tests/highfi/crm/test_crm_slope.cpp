@@ -66,7 +66,9 @@ Slope slump(double mu_s) {
   j["resolution"]["cpu_precision"] = "float";
   CrmSolver s(test::scene_from(j), test::validation_device());
   Slope r;
-  // The collapse is over within about 0.4 s; the angle is read at 0.9 s and again at 1.2 s.
+  // The collapse is over within about 0.4 s and the kinetic energy is below 1/500 of its peak by 0.7 s;
+  // the angle is read at 0.7 s and again at 0.9 s (it moved by under 0.3 degrees between them, and by
+  // under 0.6 degrees from 0.9 s to 1.2 s, at both friction coefficients).
   auto run_to = [&](double t) {
     while (s.time() < t) {
       s.step();
@@ -74,16 +76,16 @@ Slope slump(double mu_s) {
     }
   };
   int fitted = 0;
-  run_to(0.9);
+  run_to(0.7);
   r.earlier_angle_deg = surface_angle(s.soil(), &fitted);
-  run_to(1.2);
+  run_to(0.9);
   r.angle_deg = surface_angle(s.soil(), &r.fitted);
   const SoilStats st = s.stats();
   r.kinetic_energy = st.kinetic_energy;
   r.lost = st.lost;
   r.nonfinite = st.nonfinite;
   std::printf(
-      "slump mu_s=%.2f: surface slope %.1f deg (%.1f deg at 0.9 s) against atan(mu_s) = %.1f deg, %d columns "
+      "slump mu_s=%.2f: surface slope %.1f deg (%.1f deg at 0.7 s) against atan(mu_s) = %.1f deg, %d columns "
       "fitted; kinetic energy %.3g J (peak %.3g J)\n",
       mu_s, r.angle_deg, r.earlier_angle_deg, std::atan(mu_s) * 180.0 / M_PI, r.fitted, r.kinetic_energy,
       r.peak_energy);
@@ -100,8 +102,8 @@ TEST_CASE("CRM: a released block comes to rest at the angle of repose", "[highfi
     CHECK(r.lost == 0);
     CHECK(r.fitted >= 5);
     CHECK(r.kinetic_energy < 5e-3 * r.peak_energy);  // nearly at rest ...
-    // ... and the slope no longer changes: within 1 degree over the last part of the run (0.6 degrees
-    // at mu_s 0.7 with the pressure-tied density cap, 17 columns fitted)
+    // ... and the slope no longer changes: within 1 degree over the last part of the run (0.2 degrees
+    // at both friction coefficients)
     CHECK(std::abs(r.angle_deg - r.earlier_angle_deg) < 1.0);
     CHECK(std::abs(r.angle_deg - std::atan(mu_s) * 180.0 / M_PI) < 5.0);
   }
