@@ -62,7 +62,7 @@ Command add_bevameter(CLI::App& app) {
                           {"terrain", c.site},
                           {"plate_wall_seconds", c.plate_wall},
                           {"shear_wall_seconds", c.shear_wall},
-                          {"wall_seconds", c.plate_wall + c.shear_wall}};
+                          {"wall_seconds", c.wall}};
     write_text_atomically(a->out + "/run.json", run.dump(2) + "\n");
     if (a->plots) plot_bevameter(a->out, c, nullptr);
     fmt::print("bevameter ({}): {} plate rows in {:.3g} s, {} shear rows in {:.3g} s; written to {}\n",

@@ -13,6 +13,7 @@
 #include "apps/report_plots.hpp"
 #include "apps/soil_choice.hpp"
 #include "apps/wheel_band.hpp"
+#include "core/concurrent_jobs.hpp"
 #include "core/csv.hpp"
 #include "core/errors.hpp"
 #include "lowfi/effects/scm_slip_sinkage.hpp"
@@ -192,9 +193,16 @@ int run_pipeline(const PipelinePlan& plan) {
   std::filesystem::create_directories(plan.out);
 
   PipelineResults r;
-  r.bevameter = bevameter_stage(plan, crm, r.wall);
+  // The CRM bevameter and the CRM wheel sweep need nothing of each other: where CRM runs go at once
+  // (a GPU), the wheel's small runs fill the gaps of the plates' large ones.
+  r.wall.crm_at_once = crm_runs_go_at_once(plan.terrain);
+  run_concurrently(2, r.wall.crm_at_once ? 2 : 1, [&](std::size_t stage) {
+    if (stage == 0)
+      r.bevameter = bevameter_stage(plan, crm, r.wall);
+    else
+      crm_wheel_stage(plan, crm, r);
+  });
   CalibrationData data = calibration_data(r.bevameter, plan.out + "/bevameter");
-  crm_wheel_stage(plan, crm, r);
   if (plan.calibrate_on_wheel)
     data.wheel = wheel_calibration_data(r.wheel_crm, plan.wheel, plan.out + "/wheel_crm/wheel.csv",
                                         plan.calibration_slips);

@@ -178,8 +178,11 @@ std::string checks_and_cost_section(const PipelineResults& r) {
   const StageTimes& w = r.wall;
   md += fmt::format(
       "\n## Cost\n\n| stage | wall time [s] |\n|---|---|\n| CRM bevameter | {:.1f} |\n| calibration | {:.1f} |\n"
-      "| CRM wheel sweep | {:.1f} |\n| SCM wheel sweep | {:.2f} |\n| total | {:.1f} |\n",
-      w.bevameter, w.calibration, w.crm_wheel, w.scm_wheel, w.total);
+      "| CRM wheel sweep | {:.1f} |\n| SCM wheel sweep | {:.2f} |\n| total | {:.1f} |\n{}",
+      w.bevameter, w.calibration, w.crm_wheel, w.scm_wheel, w.total,
+      w.crm_at_once
+          ? "\nThe CRM runs went at once (`--concurrent-runs`): the CRM bevameter and wheel sweep overlap in time.\n"
+          : "");
   return md;
 }
 

@@ -15,6 +15,7 @@ namespace terracal::app {
 // Wall seconds of each stage.
 struct StageTimes {
   double bevameter = 0, calibration = 0, crm_wheel = 0, scm_wheel = 0, total = 0;
+  bool crm_at_once = false;  // the CRM bevameter and wheel sweep ran at once (their times overlap)
 };
 
 struct PipelineResults {

@@ -4,11 +4,13 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <mutex>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "apps/memory_check.hpp"
+#include "core/concurrent_jobs.hpp"
 #include "core/errors.hpp"
 
 namespace terracal::app {
@@ -62,6 +64,46 @@ RigSoil wheel_soil(const rigs::WheelSpec& wheel, const std::vector<double>& slip
           std::max(0.2, 0.5 * wheel.radius),
           2 * outer * wheel.width,
           (2 * outer + travel) * (wheel.width + cross)};
+}
+
+// The host and GPU bytes one CRM run on `rig`'s site needs.
+std::pair<double, double> crm_run_bytes(const CrmSoil& soil, const TerrainOptions& o, const RigSoil& rig) {
+  const CrmScene sc = crm_site_scene(soil, o, o.bin_scale * rig.half_length, o.bin_scale * rig.half_width,
+                                     o.depth_scale() * rig.depth);
+  const CrmMemoryNeed n = crm_memory_need(sc, crm_device(o.device));
+  return {n.host_bytes, n.gpu_bytes};
+}
+
+// How many of the CRM runs `jobs` go at once (TerrainOptions::concurrent_runs): the option's value,
+// or with 0 on a GPU up to kAutoRunsAtOnce, as many as fit with the largest runs together. An explicit
+// value that does not fit is refused (InputError naming --concurrent-runs); auto takes fewer.
+struct CrmJob {
+  TerrainOptions o;  // the options its site is built with (the plates' spacing may differ)
+  RigSoil rig;
+};
+int runs_at_once(const SoilChoice& soil, const TerrainOptions& o, const std::vector<CrmJob>& jobs) {
+  if (soil.solver != SoilModel::kCrm || !soil.crm || jobs.size() <= 1 || o.concurrent_runs == 1) return 1;
+  const bool gpu = crm_device(o.device) == CrmDevice::kCuda;
+  int width = int(std::min<std::size_t>(jobs.size(), std::size_t(o.concurrent_runs > 0 ? o.concurrent_runs
+                                                                  : gpu ? kAutoRunsAtOnce
+                                                                        : 1)));
+  if (width <= 1) return 1;
+  std::vector<std::pair<double, double>> bytes;
+  for (const CrmJob& job : jobs) bytes.push_back(crm_run_bytes(*soil.crm, job.o, job.rig));
+  std::sort(bytes.begin(), bytes.end(), [](const auto& a, const auto& b) { return a.second + a.first > b.second + b.first; });
+  const double host = available_host_bytes(), device = gpu ? available_gpu_bytes() : -1;
+  for (; width > 1; --width) {
+    double h = 0, d = 0;
+    for (int k = 0; k < width; ++k) h += bytes[std::size_t(k)].first, d += bytes[std::size_t(k)].second;
+    if ((host < 0 || h <= host) && (device < 0 || d <= device)) return width;
+    if (o.concurrent_runs > 0)
+      throw InputError(fmt::format(
+          "--concurrent-runs {}: {} CRM runs at once need about {:.3g} GiB of memory and {:.3g} GiB on the GPU, where "
+          "{:.3g} GiB and {:.3g} GiB are free; expected fewer runs at once (0: as many as fit)",
+          o.concurrent_runs, width, h / 1073741824.0, d / 1073741824.0, host / 1073741824.0,
+          std::max(device, 0.0) / 1073741824.0));
+  }
+  return 1;
 }
 
 // Refuses a site that cannot fit in memory, naming the options that size it; `say`: log the estimate.
@@ -186,6 +228,11 @@ std::string soil_model_name(SoilModel model) {
   return "?";
 }
 
+bool crm_runs_go_at_once(const TerrainOptions& o) {
+  if (o.concurrent_runs == 1) return false;
+  return o.concurrent_runs > 1 || crm_device(o.device) == CrmDevice::kCuda;
+}
+
 rigs::RigProgress progress_logger() {
   auto start = std::make_shared<Clock::time_point>(Clock::now());
   auto last = std::make_shared<Clock::time_point>(Clock::now());
@@ -205,6 +252,97 @@ rigs::RigProgress progress_logger() {
   };
 }
 
+namespace {
+rigs::PlateTest plate_test(const BevameterPlan& plan, const TerrainOptions& po, double r) {
+  rigs::PlateTest t;
+  t.radius = r;
+  t.max_sinkage = plan.max_sinkage;
+  t.speed = plan.plate_speed;
+  t.thickness = std::max(0.02, 2 * po.spacing);
+  return t;
+}
+
+rigs::ShearTest shear_test(const BevameterPlan& plan, const TerrainOptions& o, double load) {
+  rigs::ShearTest t;
+  t.inner_radius = plan.inner_radius;
+  t.outer_radius = plan.outer_radius;
+  t.loads = {load};
+  t.angular_velocity = plan.shear_rate;
+  t.max_angle = plan.shear_angle;
+  t.settle_time = plan.shear_settle;
+  t.load_ramp = plan.shear_load_ramp * plan.shear_settle;
+  t.thickness = std::max(0.02, 2 * o.spacing);
+  return t;
+}
+
+// The bevameter's runs as a list of jobs: each plate (in a bin of its own), then each annulus load
+// (all on one bin, settled by the first load's job).
+struct BevameterJobs {
+  std::vector<double> plates, loads;
+  std::vector<CrmJob> rigs;  // per job, for the memory of runs at once
+  std::size_t size() const { return plates.size() + loads.size(); }
+};
+
+BevameterJobs bevameter_jobs(const TerrainOptions& o, const BevameterPlan& plan, bool plate, bool shear) {
+  BevameterJobs j;
+  const TerrainOptions po = plate_options(plan, o);
+  if (plate)
+    for (double r : plan.plates) j.plates.push_back(r), j.rigs.push_back({po, plate_soil(plan, po, r)});
+  const TerrainOptions so = shear_options(plan, o);
+  if (shear)
+    for (double load : plan.shear_loads) j.loads.push_back(load), j.rigs.push_back({so, shear_soil(plan, o)});
+  return j;
+}
+}  // namespace
+
+BevameterCurves run_bevameter(const SoilChoice& soil, const TerrainOptions& o, const BevameterPlan& plan, bool plate,
+                              bool shear) {
+  // Before any run: a bad value must not wait for the plates to finish.
+  check_bevameter_plan(plan, plate, shear);
+  const auto t0 = Clock::now();
+  const BevameterJobs jobs = bevameter_jobs(o, plan, plate, shear);
+  const int width = runs_at_once(soil, o, jobs.rigs);
+  if (width > 1) spdlog::info("bevameter: {} CRM runs, {} at once", jobs.size(), width);
+  const TerrainOptions po = plate_options(plan, o), so = shear_options(plan, o);
+  std::vector<std::vector<rigs::PlateRow>> plate_rows(jobs.plates.size());
+  std::vector<std::vector<rigs::ShearRow>> shear_rows(jobs.loads.size());
+  std::vector<std::string> plate_sites(jobs.plates.size());
+  std::vector<double> seconds(jobs.size(), 0.0);
+  std::unique_ptr<TerrainSite> annulus;
+  std::once_flag annulus_settled;
+  run_concurrently(jobs.size(), width, [&](std::size_t i) {
+    const auto t = Clock::now();
+    const auto progress = progress_logger();
+    if (i < jobs.plates.size()) {
+      const double r = jobs.plates[i];
+      auto site = site_for(soil, po, plate_soil(plan, po, r));
+      plate_sites[i] = site->description();
+      plate_rows[i] = rigs::run_plate(*site, plate_test(plan, po, r), progress);
+      const auto& rows = plate_rows[i];
+      spdlog::info("plate r = {} m: {} rows, force {:.4g} N at {:.3g} m", r, rows.size(), rows.back().force,
+                   rows.back().sinkage);
+    } else {
+      const std::size_t k = i - jobs.plates.size();
+      std::call_once(annulus_settled, [&] { annulus = site_for(soil, so, shear_soil(plan, o)); });
+      shear_rows[k] = rigs::run_shear(*annulus, shear_test(plan, o, jobs.loads[k]), progress);
+    }
+    seconds[i] = seconds_since(t);
+  });
+  BevameterCurves c;
+  for (std::size_t i = 0; i < jobs.plates.size(); ++i) {
+    c.plate.insert(c.plate.end(), plate_rows[i].begin(), plate_rows[i].end());
+    if (c.site.find(plate_sites[i]) == std::string::npos) c.site += (c.site.empty() ? "" : "; ") + plate_sites[i];
+    c.plate_wall += seconds[i];
+  }
+  for (std::size_t k = 0; k < jobs.loads.size(); ++k) {
+    c.shear.insert(c.shear.end(), shear_rows[k].begin(), shear_rows[k].end());
+    c.shear_wall += seconds[jobs.plates.size() + k];
+  }
+  if (annulus && c.site.empty()) c.site = annulus->description();
+  c.wall = seconds_since(t0);
+  return c;
+}
+
 void check_bevameter(const SoilChoice& soil, const TerrainOptions& o, const BevameterPlan& plan, bool plate,
                      bool shear) {
   check_bevameter_plan(plan, plate, shear);
@@ -213,58 +351,7 @@ void check_bevameter(const SoilChoice& soil, const TerrainOptions& o, const Beva
     for (double r : plan.plates) check_site_memory(soil, po, plate_soil(plan, po, r));
   }
   if (shear) check_site_memory(soil, shear_options(plan, o), shear_soil(plan, o));
-}
-
-namespace {
-void run_plates(const SoilChoice& soil, const TerrainOptions& o, const BevameterPlan& plan,
-                const rigs::RigProgress& progress, BevameterCurves& c) {
-  const TerrainOptions po = plate_options(plan, o);
-  const auto t0 = Clock::now();
-  for (double r : plan.plates) {
-    auto site = site_for(soil, po, plate_soil(plan, po, r));
-    if (c.site.find(site->description()) == std::string::npos)
-      c.site += (c.site.empty() ? "" : "; ") + site->description();
-    rigs::PlateTest t;
-    t.radius = r;
-    t.max_sinkage = plan.max_sinkage;
-    t.speed = plan.plate_speed;
-    t.thickness = std::max(0.02, 2 * po.spacing);
-    const auto rows = rigs::run_plate(*site, t, progress);
-    c.plate.insert(c.plate.end(), rows.begin(), rows.end());
-    spdlog::info("plate r = {} m: {} rows, force {:.4g} N at {:.3g} m", r, rows.size(), rows.back().force,
-                 rows.back().sinkage);
-  }
-  c.plate_wall = seconds_since(t0);
-}
-
-void run_annulus(const SoilChoice& soil, const TerrainOptions& o, const BevameterPlan& plan,
-                 const rigs::RigProgress& progress, BevameterCurves& c) {
-  const auto t0 = Clock::now();
-  auto site = site_for(soil, shear_options(plan, o), shear_soil(plan, o));
-  if (c.site.empty()) c.site = site->description();
-  rigs::ShearTest t;
-  t.inner_radius = plan.inner_radius;
-  t.outer_radius = plan.outer_radius;
-  t.loads = plan.shear_loads;
-  t.angular_velocity = plan.shear_rate;
-  t.max_angle = plan.shear_angle;
-  t.settle_time = plan.shear_settle;
-  t.load_ramp = plan.shear_load_ramp * plan.shear_settle;
-  t.thickness = std::max(0.02, 2 * o.spacing);
-  c.shear = rigs::run_shear(*site, t, progress);
-  c.shear_wall = seconds_since(t0);
-}
-}  // namespace
-
-BevameterCurves run_bevameter(const SoilChoice& soil, const TerrainOptions& o, const BevameterPlan& plan, bool plate,
-                              bool shear) {
-  // Before any run: a bad value must not wait for the plates to finish.
-  check_bevameter_plan(plan, plate, shear);
-  BevameterCurves c;
-  const auto progress = progress_logger();
-  if (plate) run_plates(soil, o, plan, progress, c);
-  if (shear) run_annulus(soil, o, plan, progress, c);
-  return c;
+  runs_at_once(soil, o, bevameter_jobs(o, plan, plate, shear).rigs);
 }
 
 void check_wheel_sweep(SoilModel solver, const SoilChoice& soil, const TerrainOptions& o, const rigs::WheelSpec& wheel,
@@ -276,7 +363,9 @@ void check_wheel_sweep(SoilModel solver, const SoilChoice& soil, const TerrainOp
   if (solver == SoilModel::kWongReece) return;
   SoilChoice s = soil;
   s.solver = solver;
-  check_site_memory(s, o, wheel_soil(wheel, slips, run, o));
+  const RigSoil rig = wheel_soil(wheel, slips, run, o);
+  check_site_memory(s, o, rig);
+  runs_at_once(s, o, std::vector<CrmJob>(slips.size(), CrmJob{o, rig}));
 }
 
 void warn_about_sweep(const rigs::WheelSpec& wheel, const std::vector<double>& slips) {
@@ -298,18 +387,21 @@ std::vector<rigs::WheelResult> run_wheel_sweep(SoilModel solver, const SoilChoic
   }
   SoilChoice s = soil;
   s.solver = solver;
-  auto site = site_for(s, o, wheel_soil(wheel, slips, run, o));
+  const RigSoil rig = wheel_soil(wheel, slips, run, o);
+  auto site = site_for(s, o, rig);
   if (site_description) *site_description = site->description();
-  std::vector<rigs::WheelResult> out;
-  const auto progress = progress_logger();
-  for (double slip : slips) {
-    out.push_back(rigs::run_wheel(*site, wheel, slip, run, progress));
-    const auto& r = out.back();
+  // Every slip is its own run on the one settled bed: on a GPU they go at once (runs_at_once).
+  const int width = runs_at_once(s, o, std::vector<CrmJob>(slips.size(), CrmJob{o, rig}));
+  if (width > 1) spdlog::info("wheel: {} CRM runs, {} at once", slips.size(), width);
+  std::vector<rigs::WheelResult> out(slips.size());
+  run_concurrently(slips.size(), width, [&](std::size_t i) {
+    out[i] = rigs::run_wheel(*site, wheel, slips[i], run, progress_logger());
+    const auto& r = out[i];
     spdlog::info("{} wheel at slip {}: DBP {:.4g} N, torque {:.4g} N m, sinkage {:.4g} m ({:.3g} s wall)",
-                 soil_model_name(solver), slip, r.dbp, r.torque, r.sinkage, r.wall_seconds);
+                 soil_model_name(solver), slips[i], r.dbp, r.torque, r.sinkage, r.wall_seconds);
     if (const std::string why = rigs::unsteady_reason(r); !why.empty())
       spdlog::warn("{} {} (wheel_series.csv has the time series)", soil_model_name(solver), why);
-  }
+  });
   return out;
 }
 

@@ -77,12 +77,17 @@ struct BevameterPlan {
 struct BevameterCurves {
   std::vector<rigs::PlateRow> plate;
   std::vector<rigs::ShearRow> shear;
-  double plate_wall = 0, shear_wall = 0;
+  // Seconds in the plate runs and in the annulus runs (each with its settling), and from the first
+  // run's start to the last one's end: less than their sum when runs go at once.
+  double plate_wall = 0, shear_wall = 0, wall = 0;
   std::string site;  // description of the terrain(s)
 };
 
 // The slips of a wheel sweep when the user names none (`wheel`, `pipeline`).
 inline constexpr const char* kDefaultSlips = "0,0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8";
+
+// Whether CRM runs go at once here (TerrainOptions::concurrent_runs not 1, and CRM on a GPU).
+bool crm_runs_go_at_once(const TerrainOptions& o);
 
 // Logs "what: t / t_end s simulated, x real time" every few wall seconds.
 rigs::RigProgress progress_logger();

@@ -73,6 +73,10 @@ CLI::Option* add_crm_terrain_options(CLI::App* sub, TerrainOptions& o) {
       ->check(in_range(RigRanges::kSpacing))
       ->capture_default_str();
   add_device_option(sub, o.device);
+  sub->add_option("--concurrent-runs", o.concurrent_runs,
+                  fmt::format("CRM runs of a sweep at once (0: on a GPU up to {} that fit, on the CPU 1)", kAutoRunsAtOnce))
+      ->check(in_range(RigRanges::kConcurrentRuns))
+      ->capture_default_str();
   sub->add_option("--cache", o.cache, "folder of settled CRM beds ('' = no cache)")->capture_default_str();
   add_crm_settling_options(sub, o);
   sub->add_option("--bin-scale", o.bin_scale, "CRM bins (and bed depth) scaled by this factor: the bin-size check")

@@ -41,6 +41,10 @@ struct TerrainOptions {
   // Wong-Reece with slip sinkage (--wong-reece-slip-sinkage; with --with-wong-reece it follows the SCM
   // effect slip_sinkage).
   bool wong_reece_slip_sinkage = false;
+  // CRM runs of one sweep (slips, plates, annulus loads) at once, each on its own host thread and
+  // stream; 0: as many as fit, up to kAutoRunsAtOnce, on a GPU, and one on the CPU (whose engine
+  // already uses every core). Results do not depend on it; only wall times do.
+  int concurrent_runs = 0;
   double bin_scale = 1;         // CRM bins (and their depth) scaled by this: the bin-size check
   double bin_depth_scale = 0;   // the bed's depth scaled by this instead (0 = bin_scale): which dimension matters
   // The options of one solver given on the command line, so that a run on the other solver refuses
@@ -49,16 +53,21 @@ struct TerrainOptions {
   double depth_scale() const { return bin_depth_scale > 0 ? bin_depth_scale : bin_scale; }
 };
 
+// The most CRM runs --concurrent-runs 0 puts on one GPU at once: the wheel's nine slips gain little
+// beyond it (bench/RESULTS.md, "CRM runs at once").
+inline constexpr int kAutoRunsAtOnce = 8;
+
 // The ranges of the rigs' own options.
 struct RigRanges {
+  static constexpr Range kConcurrentRuns{0, 64};
   static constexpr Range kBinScale{1, 10};
   static constexpr Range kSpacing{0, 1, true, true, "m"};
   static constexpr Range kScmGrid{1e-4, 1, false, false, "m"};
   static constexpr Range kStep{0, 0.1, false, false, "s"};  // 0: from the CFL limit (CRM), 1e-3 s (SCM)
 };
 
-// The CRM options (--soil, --spacing, --device, --cache, the settling options, --bin-scale,
-// --bin-depth-scale) and/or the SCM options (--scm, --grid, --scm-effects, --gravity), and --step.
+// The CRM options (--soil, --spacing, --device, --concurrent-runs, --cache, the settling options,
+// --bin-scale, --bin-depth-scale) and/or the SCM options (--scm, --grid, --scm-effects, --gravity), and --step.
 void add_terrain_options(CLI::App* sub, TerrainOptions& o, bool crm, bool scm);
 // The CRM options alone; returns --soil.
 CLI::Option* add_crm_terrain_options(CLI::App* sub, TerrainOptions& o);

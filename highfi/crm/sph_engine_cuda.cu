@@ -1,6 +1,9 @@
 // The CUDA backend of the CRM engine: device memory (never managed memory), the shared functors of
 // soil_stage.hpp and marker_stage.hpp launched by parallel_for_cuda, CUB's stable radix sort by cell,
-// and double-precision reductions with warp shuffles and atomics.
+// and double-precision reductions with warp shuffles and atomics. This file is compiled with
+// --default-stream per-thread (CMakeLists.txt): engines driven from different host threads (CRM runs
+// at once, core/concurrent_jobs.hpp) then each work in their own stream, and one engine's copies and
+// waits do not wait for the others' kernels. What it keeps between calls is per host thread.
 #include <cub/device/device_radix_sort.cuh>
 
 #include <cmath>
@@ -23,7 +26,8 @@ struct PreferredMinBlocks : std::integral_constant<int, kDefaultMinBlocks> {};
 template <typename F>
 struct PreferredMinBlocks<F, std::void_t<decltype(F::kCudaMinBlocks)>> : std::integral_constant<int, F::kCudaMinBlocks> {};
 
-// Scratch memory of CUB's sort, grown on demand and kept for the engine's lifetime.
+// Device scratch (CUB's sort, the reductions' sums), grown on demand and kept for the host thread's
+// lifetime: one per thread, so that engines on different threads never share it.
 struct CubScratch {
   void* p = nullptr;
   std::size_t bytes = 0;
@@ -40,8 +44,14 @@ struct CubScratch {
   }
 };
 CubScratch& cub_scratch() {
-  static CubScratch s;
+  thread_local CubScratch s;
   return s;
+}
+// The reductions' sums: allocated once per thread, not per call (cudaFree waits for the whole device,
+// every other thread's stream included).
+double* reduction_scratch(std::size_t count) {
+  thread_local CubScratch s;
+  return static_cast<double*>(s.ensure(count * sizeof(double)));
 }
 
 struct CellBegin {  // begin[c] = first sorted index with key >= c (binary search)
@@ -223,14 +233,14 @@ struct CudaBackend {
 
   template <typename T>
   static SoilStats soil_stats(const SoilArrays<T>& s, long n, double mass) {
-    double* d = alloc<double>(11);
+    double* d = reduction_scratch(11);
+    TERRACAL_CUDA_CHECK(cudaMemset(d, 0, 11 * sizeof(double)));
     const int threads = 256;
     const int blocks = int(std::max<long>(1, std::min<long>((n + threads - 1) / threads, 2048)));
     stats_kernel<<<blocks, threads>>>(s, n, mass, d);
     TERRACAL_CUDA_CHECK(cudaGetLastError());
     double h[11];
     download(h, d, 11);
-    release(d);
     SoilStats st;
     st.kinetic_energy = h[0];
     st.momentum = {h[1], h[2], h[3]};

@@ -12,7 +12,8 @@
 # plate's check to plate_bin_check.sh (its 1.5x bin is another 3.4x the particles). The checks compare
 # the means of REALISATIONS runs per bin (default 2) for the annulus and the wheel; the annulus's load
 # is ramped over half its 0.5 s settling (the rigs' default; docs/decisions.md, "Annulus load ramp").
-# Usage: [PLATE_SPACING=0.03] [CHECKS=...] [REALISATIONS=2] [COST=0]
+# PIPELINE_ARGS: more options for `pipeline` (e.g. '--concurrent-runs 1', the runs one at a time).
+# Usage: [PLATE_SPACING=0.03] [CHECKS=...] [REALISATIONS=2] [COST=0] [PIPELINE_ARGS=...]
 #          studies/pipeline/gpu_validation.sh TERRACAL OUT [spacing=0.02]
 set -uo pipefail
 exe=${1:?terracal binary}; out=${2:?output folder}; spacing=${3:-0.02}
@@ -22,7 +23,7 @@ nvidia-smi -L > "$out/gpu.txt" 2>&1 || true
 timeout "${PIPELINE_TIMEOUT:-420}" "$exe" pipeline --soil "$here/bevameter_soil_2022.json" --out "$out/pipeline" \
   --device cuda --spacing "$spacing" --shear-step 1e-4 --shear-angle 0.6 --shear-settle 0.5 \
   ${CHECKS:---checks} --check-realisations "${REALISATIONS:-2}" ${PLATE_SPACING:+--plate-spacing $PLATE_SPACING} \
-  --cache "$out/bed_cache" > "$out/pipeline.log" 2>&1
+  --cache "$out/bed_cache" ${PIPELINE_ARGS:-} > "$out/pipeline.log" 2>&1
 echo "pipeline exit $?" >> "$out/pipeline.log"
 [ "${COST:-1}" = 1 ] || exit 0
 spacings=$(echo ${COST_SPACINGS:-0.04 0.03 0.02} | tr ' ' ',')
