@@ -53,8 +53,9 @@ struct TerrainOptions {
   double depth_scale() const { return bin_depth_scale > 0 ? bin_depth_scale : bin_scale; }
 };
 
-// The most CRM runs --concurrent-runs 0 puts on one GPU at once: the wheel's nine slips gain little
-// beyond it (bench/RESULTS.md, "CRM runs at once").
+// The most CRM runs --concurrent-runs 0 puts on one GPU at once per sweep: the pipeline's two CRM
+// stages then drive at most 16 host threads, the cores of the GPU machines measured (bench/RESULTS.md,
+// "CRM runs at once"); a larger number was not measured.
 inline constexpr int kAutoRunsAtOnce = 8;
 
 // The ranges of the rigs' own options.

@@ -48,11 +48,11 @@ __global__ void __launch_bounds__(256, MinBlocks) bounded_parallel_for_kernel(lo
 }
 
 template <int MinBlocks, typename F>
-void parallel_for_cuda_bounded(long n, const F& f) {
+void parallel_for_cuda_bounded(long n, const F& f, cudaStream_t stream = nullptr) {
   if (n <= 0) return;
   constexpr int kThreads = 256;
   const long blocks = std::min<long>((n + kThreads - 1) / kThreads, 65535L * 8);
-  bounded_parallel_for_kernel<MinBlocks><<<static_cast<unsigned>(blocks), kThreads>>>(n, f);
+  bounded_parallel_for_kernel<MinBlocks><<<static_cast<unsigned>(blocks), kThreads, 0, stream>>>(n, f);
   TERRACAL_CUDA_CHECK(cudaGetLastError());
 }
 

@@ -18,6 +18,7 @@ namespace {
 struct CpuBackend {
   static std::string name() { return "CPU (OpenMP, " + std::to_string(omp_get_max_threads()) + " threads)"; }
   static std::size_t scratch_bytes() { return 0; }
+  static void bind(std::size_t /*particles*/) {}
   // 8 records of padding: the SIMD neighbour filter reads up to 7 records past a row's end.
   template <typename U>
   static U* alloc(std::size_t n) {

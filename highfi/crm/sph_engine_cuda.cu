@@ -1,9 +1,9 @@
 // The CUDA backend of the CRM engine: device memory (never managed memory), the shared functors of
 // soil_stage.hpp and marker_stage.hpp launched by parallel_for_cuda, CUB's stable radix sort by cell,
-// and double-precision reductions with warp shuffles and atomics. This file is compiled with
-// --default-stream per-thread (CMakeLists.txt): engines driven from different host threads (CRM runs
-// at once, core/concurrent_jobs.hpp) then each work in their own stream, and one engine's copies and
-// waits do not wait for the others' kernels. What it keeps between calls is per host thread.
+// and double-precision reductions with warp shuffles and atomics. Every call goes to its host thread's
+// stream (ThreadStream): engines driven from different threads (CRM runs at once,
+// core/concurrent_jobs.hpp) work side by side, and one engine's copies and waits do not wait for the
+// others' kernels. What the backend keeps between calls is per host thread.
 #include <cub/device/device_radix_sort.cuh>
 
 #include <cmath>
@@ -26,18 +26,56 @@ struct PreferredMinBlocks : std::integral_constant<int, kDefaultMinBlocks> {};
 template <typename F>
 struct PreferredMinBlocks<F, std::void_t<decltype(F::kCudaMinBlocks)>> : std::integral_constant<int, F::kCudaMinBlocks> {};
 
+// The stream of this host thread's engine. Small runs (under kHighPriorityBelow particles: a wheel, an
+// annulus) get the device's highest stream priority and large ones (plates in their wide bins) the
+// lowest: run at once, a small run's short kernels then take the next free SM instead of queuing
+// behind a large run's, and the large run fills the rest (bench/RESULTS.md, "CRM runs at once").
+// A thread whose next engine has the other priority first waits for its current stream, so that
+// everything it queued is done before the other stream carries on.
+constexpr std::size_t kHighPriorityBelow = 1000000;
+struct ThreadStream {
+  cudaStream_t streams[2] = {nullptr, nullptr};  // high, low priority
+  int current = 0;
+  ~ThreadStream() {
+    for (cudaStream_t s : streams)
+      if (s) cudaStreamDestroy(s);
+  }
+  cudaStream_t get() {
+    if (!streams[current]) {
+      int least = 0, greatest = 0;
+      TERRACAL_CUDA_CHECK(cudaDeviceGetStreamPriorityRange(&least, &greatest));
+      TERRACAL_CUDA_CHECK(
+          cudaStreamCreateWithPriority(&streams[current], cudaStreamNonBlocking, current == 0 ? greatest : least));
+    }
+    return streams[current];
+  }
+  void choose(bool high) {
+    const int want = high ? 0 : 1;
+    if (want == current) return;
+    if (streams[current]) TERRACAL_CUDA_CHECK(cudaStreamSynchronize(streams[current]));
+    current = want;
+  }
+};
+ThreadStream& thread_stream() {
+  thread_local ThreadStream s;
+  return s;
+}
+cudaStream_t stream() { return thread_stream().get(); }
+
 // Device scratch (CUB's sort, the reductions' sums), grown on demand and kept for the host thread's
 // lifetime: one per thread, so that engines on different threads never share it.
 struct CubScratch {
   void* p = nullptr;
   std::size_t bytes = 0;
   ~CubScratch() {
-    if (p) cudaFree(p);
+    // At the thread's end, in its stream (constructed before this scratch, so destroyed after it):
+    // cudaFree would wait for every other thread's kernels.
+    if (p) cudaFreeAsync(p, stream());
   }
   void* ensure(std::size_t n) {
     if (n > bytes) {
-      if (p) TERRACAL_CUDA_CHECK(cudaFree(p));
-      TERRACAL_CUDA_CHECK(cudaMalloc(&p, n));
+      if (p) TERRACAL_CUDA_CHECK(cudaFreeAsync(p, stream()));
+      TERRACAL_CUDA_CHECK(cudaMallocAsync(&p, n, stream()));
       bytes = n;
     }
     return p;
@@ -153,32 +191,39 @@ struct CudaBackend {
     return std::string("CUDA (") + prop.name + ")";
   }
   static std::size_t scratch_bytes() { return cub_scratch().bytes; }
+  static void bind(std::size_t particles) { thread_stream().choose(particles < kHighPriorityBelow); }
+  // Stream-ordered allocations (the device's memory pool, not managed memory): cudaFree waits for the
+  // whole device, and an engine that ended while others ran waited minutes for their kernels.
   template <typename U>
   static U* alloc(std::size_t n) {
     U* p = nullptr;
-    TERRACAL_CUDA_CHECK(cudaMalloc(&p, (n > 0 ? n : 1) * sizeof(U)));
-    TERRACAL_CUDA_CHECK(cudaMemset(p, 0, (n > 0 ? n : 1) * sizeof(U)));
+    TERRACAL_CUDA_CHECK(cudaMallocAsync(reinterpret_cast<void**>(&p), (n > 0 ? n : 1) * sizeof(U), stream()));
+    TERRACAL_CUDA_CHECK(cudaMemsetAsync(p, 0, (n > 0 ? n : 1) * sizeof(U), stream()));
     return p;
   }
   template <typename U>
   static void release(U* p) {
-    if (p) cudaFree(p);
+    if (p) cudaFreeAsync(p, stream());
   }
   template <typename U>
   static void upload(U* dst, const U* src, std::size_t n) {
-    if (n) TERRACAL_CUDA_CHECK(cudaMemcpy(dst, src, n * sizeof(U), cudaMemcpyHostToDevice));
+    if (!n) return;
+    TERRACAL_CUDA_CHECK(cudaMemcpyAsync(dst, src, n * sizeof(U), cudaMemcpyHostToDevice, stream()));
+    TERRACAL_CUDA_CHECK(cudaStreamSynchronize(stream()));
   }
   template <typename U>
   static void download(U* dst, const U* src, std::size_t n) {
-    if (n) TERRACAL_CUDA_CHECK(cudaMemcpy(dst, src, n * sizeof(U), cudaMemcpyDeviceToHost));
+    if (!n) return;
+    TERRACAL_CUDA_CHECK(cudaMemcpyAsync(dst, src, n * sizeof(U), cudaMemcpyDeviceToHost, stream()));
+    TERRACAL_CUDA_CHECK(cudaStreamSynchronize(stream()));
   }
   template <typename U>
   static void copy(U* dst, const U* src, std::size_t n) {
-    if (n) TERRACAL_CUDA_CHECK(cudaMemcpy(dst, src, n * sizeof(U), cudaMemcpyDeviceToDevice));
+    if (n) TERRACAL_CUDA_CHECK(cudaMemcpyAsync(dst, src, n * sizeof(U), cudaMemcpyDeviceToDevice, stream()));
   }
   template <typename F>
   static void parallel_for(long n, const F& f) {
-    parallel_for_cuda(n, f);
+    parallel_for_cuda(n, f, stream());
   }
   // The neighbour-loop stages, at the stage's measured best occupancy/register trade-off;
   // TERRACAL_CUDA_MIN_BLOCKS (1-4) overrides it for tuning runs (bench/RESULTS.md).
@@ -191,20 +236,20 @@ struct CudaBackend {
     }();
     switch (forced ? forced : PreferredMinBlocks<F>::value) {
       case 1:
-        parallel_for_cuda_bounded<1>(n, f);
+        parallel_for_cuda_bounded<1>(n, f, stream());
         break;
       case 2:
-        parallel_for_cuda_bounded<2>(n, f);
+        parallel_for_cuda_bounded<2>(n, f, stream());
         break;
       case 3:
-        parallel_for_cuda_bounded<3>(n, f);
+        parallel_for_cuda_bounded<3>(n, f, stream());
         break;
       default:
-        parallel_for_cuda_bounded<4>(n, f);
+        parallel_for_cuda_bounded<4>(n, f, stream());
         break;
     }
   }
-  static void fill_begin(int* begin, int count, int value) { parallel_for_cuda(count, FillInt{begin, value}); }
+  static void fill_begin(int* begin, int count, int value) { parallel_for_cuda(count, FillInt{begin, value}, stream()); }
 
   // Sorts in the caller's double buffers (CUB's DoubleBuffer form), so that its scratch holds only
   // its histograms, not another copy of the keys and values; the result is in either buffer.
@@ -213,31 +258,31 @@ struct CudaBackend {
     while ((1 << end_bit) <= bins && end_bit < 31) ++end_bit;
     cub::DoubleBuffer<int> k(keys, keys_alt), v(vals, vals_alt);
     std::size_t bytes = 0;
-    TERRACAL_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, bytes, k, v, n, 0, end_bit));
+    TERRACAL_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, bytes, k, v, n, 0, end_bit, stream()));
     void* tmp = cub_scratch().ensure(bytes);
-    TERRACAL_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(tmp, bytes, k, v, n, 0, end_bit));
-    parallel_for_cuda(long(bins) + 1, CellBegin{k.Current(), n, begin});
+    TERRACAL_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(tmp, bytes, k, v, n, 0, end_bit, stream()));
+    parallel_for_cuda(long(bins) + 1, CellBegin{k.Current(), n, begin}, stream());
     return v.Current();
   }
 
   template <typename T>
   static void wrench_sum(const MarkerArrays<T>& mk, long nm, const BodyPose<T>* poses, int bodies, double* scratch,
                          double* out) {
-    TERRACAL_CUDA_CHECK(cudaMemset(scratch, 0, 6 * sizeof(double) * bodies));
+    TERRACAL_CUDA_CHECK(cudaMemsetAsync(scratch, 0, 6 * sizeof(double) * bodies, stream()));
     const int threads = 256;
     const int blocks = int(std::min<long>((nm + threads - 1) / threads, 1024));
-    wrench_kernel<<<blocks, threads>>>(mk, nm, poses, bodies, scratch);
+    wrench_kernel<<<blocks, threads, 0, stream()>>>(mk, nm, poses, bodies, scratch);
     TERRACAL_CUDA_CHECK(cudaGetLastError());
-    TERRACAL_CUDA_CHECK(cudaMemcpy(out, scratch, 6 * sizeof(double) * bodies, cudaMemcpyDeviceToHost));
+    download(out, scratch, 6 * std::size_t(bodies));
   }
 
   template <typename T>
   static SoilStats soil_stats(const SoilArrays<T>& s, long n, double mass) {
     double* d = reduction_scratch(11);
-    TERRACAL_CUDA_CHECK(cudaMemset(d, 0, 11 * sizeof(double)));
+    TERRACAL_CUDA_CHECK(cudaMemsetAsync(d, 0, 11 * sizeof(double), stream()));
     const int threads = 256;
     const int blocks = int(std::max<long>(1, std::min<long>((n + threads - 1) / threads, 2048)));
-    stats_kernel<<<blocks, threads>>>(s, n, mass, d);
+    stats_kernel<<<blocks, threads, 0, stream()>>>(s, n, mass, d);
     TERRACAL_CUDA_CHECK(cudaGetLastError());
     double h[11];
     download(h, d, 11);

@@ -103,6 +103,7 @@ class SphEngineImpl final : public SphEngine {
         bodies_(s.bodies),
         room_lo_(to_t<T>(s.room_lo)),
         room_hi_(to_t<T>(s.room_hi)) {
+    B::bind(n_);  // before any allocation: where this engine's work goes (the CUDA stream)
     for_each_named_record(effects_, [&](int) { ++records_; });
     const std::size_t nn = n_ > 0 ? n_ : 1, mm = nm_ > 0 ? nm_ : 1;
     A_.allocate(nn, effects_);
