@@ -98,6 +98,8 @@ TEST_CASE("bad input, bevameter: options", "[cli][bad_input]") {
       crm("--hourglass-damping 3", {"--hourglass-damping", "3"}),
       crm("--hourglass-stiffness 0.5", {"--hourglass-stiffness", "0.5"}),
       crm("--h-over-d0 2", {"--h-over-d0", "2"}),
+      crm("--concurrent-runs 65", {"--concurrent-runs: value 65 is outside [0, 64]"}),
+      crm("--concurrent-runs 2.5", {"--concurrent-runs", "2.5"}),
       {"--out is a file",
        {{"afile", "x\n"}},
        "bevameter --solver scm --scm {demo}/truth.json --test plate --out {dir}/afile",

@@ -48,6 +48,7 @@ TEST_CASE("bad input, wheel: options", "[cli][bad_input]") {
       scm("--gravity 0 0 9.81", {"--gravity [0, 0, 9.81] m/s^2: expected gravity pointing down"}),
       scm("--gravity 0 0 0", {"--gravity [0, 0, 0] m/s^2: expected gravity"}),
       scm("--device cpu", {"--device: for CRM only; --solver/--terrain scm does not read it"}),
+      scm("--concurrent-runs 2", {"--concurrent-runs: for CRM only; --solver/--terrain scm does not read it"}),
       scm("--drop-height 3", {"--drop-height: value 3 is outside [0, 2] m"}),
       scm("--wong-reece-slip-sinkage", {"--wong-reece-slip-sinkage: only with --terrain wong-reece"}),
       {"a slip-sinkage coefficient out of range",
