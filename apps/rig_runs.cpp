@@ -66,21 +66,22 @@ RigSoil wheel_soil(const rigs::WheelSpec& wheel, const std::vector<double>& slip
           (2 * outer + travel) * (wheel.width + cross)};
 }
 
-// The host and GPU bytes one CRM run on `rig`'s site needs.
-std::pair<double, double> crm_run_bytes(const CrmSoil& soil, const TerrainOptions& o, const RigSoil& rig) {
-  const CrmScene sc = crm_site_scene(soil, o, o.bin_scale * rig.half_length, o.bin_scale * rig.half_width,
-                                     o.depth_scale() * rig.depth);
-  const CrmMemoryNeed n = crm_memory_need(sc, crm_device(o.device));
-  return {n.host_bytes, n.gpu_bytes};
+// The CRM scene of `rig`'s site (its bin scaled by --bin-scale and --bin-depth-scale).
+CrmScene rig_scene(const CrmSoil& soil, const TerrainOptions& o, const RigSoil& rig) {
+  return crm_site_scene(soil, o, o.bin_scale * rig.half_length, o.bin_scale * rig.half_width,
+                        o.depth_scale() * rig.depth);
 }
+
+// One CRM run of a command: its site, and the options the site is built with (the plates' spacing
+// may differ from the others').
+struct CrmJob {
+  TerrainOptions o;
+  RigSoil rig;
+};
 
 // How many of the CRM runs `jobs` go at once (TerrainOptions::concurrent_runs): the option's value,
 // or with 0 on a GPU up to kAutoRunsAtOnce, as many as fit with the largest runs together. An explicit
 // value that does not fit is refused (InputError naming --concurrent-runs); auto takes fewer.
-struct CrmJob {
-  TerrainOptions o;  // the options its site is built with (the plates' spacing may differ)
-  RigSoil rig;
-};
 int runs_at_once(const SoilChoice& soil, const TerrainOptions& o, const std::vector<CrmJob>& jobs) {
   if (soil.solver != SoilModel::kCrm || !soil.crm || jobs.size() <= 1 || o.concurrent_runs == 1) return 1;
   const bool gpu = crm_device(o.device) == CrmDevice::kCuda;
@@ -89,7 +90,10 @@ int runs_at_once(const SoilChoice& soil, const TerrainOptions& o, const std::vec
                                                                         : 1)));
   if (width <= 1) return 1;
   std::vector<std::pair<double, double>> bytes;
-  for (const CrmJob& job : jobs) bytes.push_back(crm_run_bytes(*soil.crm, job.o, job.rig));
+  for (const CrmJob& job : jobs) {
+    const CrmMemoryNeed n = crm_memory_need(rig_scene(*soil.crm, job.o, job.rig), crm_device(job.o.device));
+    bytes.push_back({n.host_bytes, n.gpu_bytes});
+  }
   std::sort(bytes.begin(), bytes.end(), [](const auto& a, const auto& b) { return a.second + a.first > b.second + b.first; });
   const double host = available_host_bytes(), device = gpu ? available_gpu_bytes() : -1;
   for (; width > 1; --width) {
@@ -109,8 +113,7 @@ int runs_at_once(const SoilChoice& soil, const TerrainOptions& o, const std::vec
 // Refuses a site that cannot fit in memory, naming the options that size it; `say`: log the estimate.
 void check_site_memory(const SoilChoice& soil, const TerrainOptions& o, const RigSoil& rig, bool say = false) {
   if (soil.solver == SoilModel::kCrm && soil.crm) {
-    const CrmScene sc = crm_site_scene(*soil.crm, o, o.bin_scale * rig.half_length, o.bin_scale * rig.half_width,
-                                       o.depth_scale() * rig.depth);
+    const CrmScene sc = rig_scene(*soil.crm, o, rig);
     check_crm_memory(sc, crm_device(o.device), fmt::format("{} {} m", rig.spacing_option, o.spacing),
                      fmt::format("a coarser {} (or a smaller --bin-scale) for {}", rig.spacing_option, rig.what), say);
   } else if (soil.solver == SoilModel::kScm) {
