@@ -6,14 +6,23 @@
 #include <limits>
 #include <map>
 
+#include <omp.h>
+
 #include <fmt/format.h>
 
 #include "bayes/correlation_time.hpp"
+#include "core/concurrent_jobs.hpp"
 #include "core/errors.hpp"
 #include "lowfi/scm_steady_wheel.hpp"
 
 namespace terracal::bayes {
 namespace {
+
+// Threads for the slips of one wheel prediction: the OpenMP threads (OMP_NUM_THREADS, or the cores)
+// that the calling team (the chains, one per thread) leaves idle, shared among its threads. 4 chains
+// with 16 threads give each 4; with 2 the slips run in order on the chain's own thread. Inside the
+// chains' parallel region omp_get_max_threads() is still the whole budget (it is inherited).
+int slip_threads() { return std::max(1, omp_get_max_threads() / std::max(1, omp_get_num_threads())); }
 constexpr double kNegInf = -std::numeric_limits<double>::infinity();
 // Defaults for parameters the data cannot identify (Chrono's "soft" SCM preset values).
 constexpr double kDefaultCohesion = 0.0, kDefaultFriction = 30.0, kDefaultJanosi = 0.01;
@@ -194,13 +203,15 @@ const WheelPrediction& CalibrationProblem::predict_wheel(const ParamVector& p) c
   WheelPrediction& out = cache.pred;
   out.dbp.assign(n, std::numeric_limits<double>::quiet_NaN());
   out.torque = out.sinkage = out.dbp;
+  // The slips are independent of each other: they run at once on the cores the chains leave idle
+  // (the predictions do not depend on how many).
   try {
-    for (std::size_t i = 0; i < n; ++i) {
+    run_concurrently(n, slip_threads(), [&](std::size_t i) {
       const lowfi::WongReeceResult r = lowfi::scm_steady_wheel(soil, rim, d.points[i].load, d.points[i].slip, opt);
       out.dbp[i] = r.dbp;
       out.torque[i] = r.torque;
       out.sinkage[i] = r.sinkage;
-    }
+    });
   } catch (const std::exception&) {
     // No steady state for this set (a soil outside its range, a wheel sinking past its axle): the
     // NaN predictions reject it.

@@ -8,6 +8,8 @@
 #include <limits>
 #include <memory>
 
+#include <omp.h>
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -58,7 +60,10 @@ class DramChains : public MultiChain {
   int chains() const override { return static_cast<int>(chains_.size()); }
   void advance(int iterations, bool adapt, std::vector<ChainRecord>* record) override {
     // Chains are independent: one per thread; each owns its RNG, so the result is thread-count free.
-#pragma omp parallel for schedule(static, 1)
+    // A team of one thread per chain, so that the threads left over go to each chain's own work (the
+    // steady wheel's slips, CalibrationProblem::predict_wheel).
+    const int team = std::max(1, std::min(chains(), omp_get_max_threads()));
+#pragma omp parallel for schedule(static, 1) num_threads(team)
     for (int c = 0; c < chains(); ++c) {
       DramChain& ch = chains_[c];
       for (int i = 0; i < iterations; ++i) {

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <omp.h>
+
 #include "bayes/calibration_problem.hpp"
 #include "bayes/point_estimate.hpp"
 #include "bayes/synthetic_data.hpp"
@@ -76,6 +78,43 @@ TEST_CASE("a joint calibration recovers S and the soil from bevameter and steady
   CHECK(rel(p[kJanosi], t[kJanosi]) < 0.05);
   for (double r : design.plate_radii) CHECK(rel(p[kKc] / r + p[kKphi], t[kKc] / r + t[kKphi]) < 0.05);
   CHECK(est.covariance_ok);
+}
+
+TEST_CASE("the wheel's slips evaluated at once give the predictions of one at a time, bit for bit",
+          "[bayes][wheel][concurrent]") {
+  Rng rng(7);
+  const ParamVector t = truth();
+  SyntheticDesign design;
+  const PlateData plate = synthesize_plate(t, design, rng);
+  const ShearData shear = synthesize_shear(t, design, rng);
+  const WheelData wheel = synthesize_wheel(t, {0.0, 0.1, 0.2, 0.3, 0.5, 0.7, 0.8}, {1059.48}, 0.02, rng);
+  const int threads = omp_get_max_threads();
+  // Each problem keeps its own last prediction, so every call below is a fresh evaluation.
+  auto predict = [&](int omp_threads, const ParamVector& p) {
+    omp_set_num_threads(omp_threads);  // the slips' threads follow the OpenMP budget
+    const CalibrationProblem problem(plate, shear, default_priors(), NoiseModel::kRelative, wheel);
+    const WheelPrediction f = problem.predict_wheel(p);
+    omp_set_num_threads(threads);
+    return f;
+  };
+  const WheelPrediction serial = predict(1, t), at_once = predict(4, t);
+  REQUIRE(serial.dbp.size() == wheel.points.size());
+  for (std::size_t i = 0; i < serial.dbp.size(); ++i) {
+    INFO("row " << i);
+    CHECK(std::isfinite(serial.dbp[i]));
+    CHECK(at_once.dbp[i] == serial.dbp[i]);
+    CHECK(at_once.torque[i] == serial.torque[i]);
+    CHECK(at_once.sinkage[i] == serial.sinkage[i]);
+  }
+  // A set with no steady state at some slips is rejected as a whole (NaN rows) either way.
+  ParamVector soft = t;
+  soft[kKphi] = 1e3, soft[kKc] = 1;
+  const WheelPrediction soft_serial = predict(1, soft), soft_at_once = predict(4, soft);
+  const auto any_nan = [](const WheelPrediction& f) {
+    return std::any_of(f.dbp.begin(), f.dbp.end(), [](double x) { return std::isnan(x); });
+  };
+  REQUIRE(any_nan(soft_serial));
+  CHECK(any_nan(soft_at_once));
 }
 
 TEST_CASE("wheel curves without shear curves leave c, phi and k free: the wheel's shear identifies them",
