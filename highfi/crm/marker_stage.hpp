@@ -99,7 +99,7 @@ struct MarkerStage {
     visit([&](int j) {
       const Vec4<T> pj = soil.pos[j];
       const Vec3<T> r = xm - pj.xyz();
-      const T dist = std::sqrt(dot(r, r));
+      const T dist = pair_sqrt(dot(r, r));
       if (contact_rule && dist - depth < gap) gap = dist - depth;
       const T w = k.kernel.values(dist).w;
       sum_w += w;
@@ -148,13 +148,14 @@ struct MarkerStage {
       const Vec4<T> pj = soil.pos[j];
       const Vec3<T> r = pj.xyz() - xm;  // from the soil particle's side: r_jm
       const T r2 = dot(r, r);
-      const typename SphKernel<T>::Values kv = k.kernel.values(std::sqrt(r2));
+      const T dist = pair_sqrt(r2);
+      const typename SphKernel<T>::Values kv = k.kernel.values(dist);
       const T rho_j = pj.w;
       const Sym3<T> sj = stress_of(soil.s0[j], soil.s1[j]);
       // The marker's stress as soil particle j sees it: with the contact pressure (wall_contact.hpp).
-      const Sym3<T> sm = plus_pressure(ms.s, wall_contact_pressure(k, std::sqrt(r2), sj));
-      f -= pair_acceleration<T, Mx>(k, ec, sj, T(1) / (rho_j * rho_j), rho_j, soil.vel[j].xyz(), sm, ms.inv_rho2,
-                                    ms.rho, ms.v, r, r2, kv.f * r);
+      const Sym3<T> sm = plus_pressure(ms.s, wall_contact_pressure(k, dist, sj));
+      f -= pair_acceleration<T, Mx>(k, ec, pair_div(T(1), rho_j * rho_j) * sj, rho_j, soil.vel[j].xyz(), sm,
+                                    ms.inv_rho2, ms.rho, ms.v, r, r2, kv.f * r);
       for_each_effect(Mx{}, [&](auto tag) {
         using E = typename decltype(tag)::type;
         Vec4<T> record{};

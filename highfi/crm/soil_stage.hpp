@@ -64,9 +64,10 @@ struct SoilStage {
     me.x = pi4.xyz();
     me.v = eval.vel[i].xyz();
     me.rho = pi4.w;
-    me.inv_rho2 = T(1) / (me.rho * me.rho);
     me.inv_rho = T(1) / me.rho;
-    me.s = stress_of(eval.s0[i], eval.s1[i]);
+    const Sym3<T> s = stress_of(eval.s0[i], eval.s1[i]);
+    me.s_rho2 = (me.inv_rho * me.inv_rho) * s;
+    me.pressure = -s.trace() / T(3);
     return me;
   }
 
@@ -151,7 +152,9 @@ struct SoilStage {
     Vec3<T> acc = k.mass * sum.acc + k.gravity;
     Vec3<T> drift = me.v;
     Vec4<T> records[kCrmRecordSlots] = {};
-    const ParticleUpdate<T> p{me, sum, dt};
+    // The stress at eval, read again: the neighbour loop needs only sigma / rho^2 (SoilSelf).
+    const Sym3<T> s_eval = stress_of(eval.s0[i], eval.s1[i]);
+    const ParticleUpdate<T> p{me, s_eval, sum, dt};
     for_each_effect(Fx{}, [&](auto tag) {
       using E = typename decltype(tag)::type;
       Vec4<T> at_eval{}, at_base{}, next{};
@@ -163,7 +166,7 @@ struct SoilStage {
       if constexpr (E::kRecord) records[kRecordSlot<E>] = next;
     });
     const T div_v = L.m[0][0] + L.m[1][1] + L.m[2][2];
-    const Sym3<T> rate = jaumann_rate(me.s, L, k.model);
+    const Sym3<T> rate = jaumann_rate(s_eval, L, k.model);
 
     const Vec4<T> pb = base.pos[i];
     const Vec4<T> s0b = base.s0[i], s1b = base.s1[i];

@@ -6,17 +6,21 @@
 #include <cmath>
 
 #include "core/effect_list.hpp"
+#include "core/pair_math.hpp"
 #include "highfi/crm/sph_fields.hpp"
 #include "highfi/crm/wall_contact.hpp"
 
 namespace terracal {
 
-// A soil particle's own state, as the sums over its neighbours need it.
+// A soil particle's own state, as the sums over its neighbours need it: its stress enters them only
+// as sigma / rho^2 (the pair term) and as its pressure (the walls' contact), so those are what it
+// keeps, worked out once per particle rather than once per pair.
 template <typename T>
 struct SoilSelf {
   Vec3<T> x, v;
-  T rho, inv_rho, inv_rho2;
-  Sym3<T> s;
+  T rho, inv_rho;
+  Sym3<T> s_rho2;  // sigma / rho^2
+  T pressure;      // -tr(sigma) / 3
 };
 
 // Sums over a soil particle's neighbours, or one neighbour's share of them: acceleration (per
@@ -50,10 +54,11 @@ struct Neighbour {
   Vec3<T> dv;      // v_j - v_i
 };
 
-// What an effect's finish hook reads of a particle: its state, its sums and the stage's step.
+// What an effect's finish hook reads of a particle: its state and stress, its sums and the stage's step.
 template <typename T>
 struct ParticleUpdate {
   const SoilSelf<T>& me;
+  const Sym3<T>& s;
   const SoilSums<T>& sum;
   T dt;
 };
@@ -71,13 +76,13 @@ struct AnyUsesDrift<EffectList<E...>> : std::bool_constant<(E::kUsesDrift || ...
 // (sigma_i/rho_i^2 + sigma_j/rho_j^2) . grad_i W_ij, plus the named effects' pair forces (the
 // artificial viscosity). Used by the soil pass and, with the roles of soil and marker fixed, by the
 // marker force pass, so that the forces on bodies are exactly the reaction of those on the soil.
-// The caller supplies 1/rho_j^2, which it has from the one division per pair that also gives the
-// volume m/rho_j.
+// The caller supplies sigma_i/rho_i^2 (a soil particle's is worked out once, SoilSelf) and 1/rho_j^2,
+// which it has from the one division per pair that also gives the volume m/rho_j.
 template <typename T, class Fx, class EC>
-TERRACAL_HD inline Vec3<T> pair_acceleration(const SphConstants<T>& k, const EC& ec, const Sym3<T>& si, T inv_rho2_i,
-                                             T rho_i, const Vec3<T>& vi, const Sym3<T>& sj, T inv_rho2_j, T rho_j,
+TERRACAL_HD inline Vec3<T> pair_acceleration(const SphConstants<T>& k, const EC& ec, const Sym3<T>& si_rho2, T rho_i,
+                                             const Vec3<T>& vi, const Sym3<T>& sj, T inv_rho2_j, T rho_j,
                                              const Vec3<T>& vj, const Vec3<T>& rij, T r2, const Vec3<T>& grad) {
-  const Sym3<T> a = inv_rho2_i * si + inv_rho2_j * sj;
+  const Sym3<T> a = si_rho2 + inv_rho2_j * sj;
   Vec3<T> acc = a * grad;
   for_each_effect(Fx{}, [&](auto tag) {
     using E = typename decltype(tag)::type;
@@ -96,17 +101,17 @@ TERRACAL_HD inline SoilSums<T> neighbour_share(const SphConstants<T>& k, const E
   Neighbour<T> nb;
   nb.r = me.x - pj.xyz();
   nb.r2 = dot(nb.r, nb.r);
-  nb.kv = k.kernel.values(std::sqrt(nb.r2));
+  nb.kv = k.kernel.values(pair_sqrt(nb.r2));
   nb.grad = nb.kv.f * nb.r;
   const Vec3<T> vj = vj4.xyz();
-  nb.inv_rho = T(1) / pj.w;
+  nb.inv_rho = pair_div(T(1), pj.w);
   nb.vol = k.mass * nb.inv_rho;
   nb.dv = vj - me.v;
   SoilSums<T> c;
   Sym3<T> sj = stress_of(s0j, s1j);
-  if constexpr (!kSoil) sj = plus_pressure(sj, wall_contact_pressure(k, std::sqrt(nb.r2), me.s));
-  c.acc = pair_acceleration<T, Fx>(k, ec, me.s, me.inv_rho2, me.rho, me.v, sj, nb.inv_rho * nb.inv_rho, pj.w, vj, nb.r,
-                                   nb.r2, nb.grad);
+  if constexpr (!kSoil) sj = plus_pressure(sj, wall_contact_pressure_at(k, pair_sqrt(nb.r2), me.pressure));
+  c.acc = pair_acceleration<T, Fx>(k, ec, me.s_rho2, me.rho, me.v, sj, nb.inv_rho * nb.inv_rho, pj.w, vj, nb.r, nb.r2,
+                                   nb.grad);
   if constexpr (kSoil) {
     for_each_effect(Fx{}, [&](auto tag) {
       using E = typename decltype(tag)::type;

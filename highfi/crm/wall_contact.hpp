@@ -19,13 +19,16 @@
 
 namespace terracal {
 
-// The contact pressure of a marker at distance r from a soil particle of stress s (branch-free: it
-// runs in the CPU's SIMD loop); 0 when off (wall_contact = 0).
+// The contact pressure of a marker at distance r from a soil particle of pressure p, or of stress s
+// (branch-free: it runs in the CPU's SIMD loop); 0 when off (wall_contact = 0).
+template <typename T>
+TERRACAL_HD inline T wall_contact_pressure_at(const SphConstants<T>& k, T r, T p) {
+  const T overlap = T(1) - r * k.wall_contact_inv_reach;
+  return overlap > T(0) && p > T(0) ? k.wall_contact * p * overlap : T(0);
+}
 template <typename T>
 TERRACAL_HD inline T wall_contact_pressure(const SphConstants<T>& k, T r, const Sym3<T>& s) {
-  const T overlap = T(1) - r * k.wall_contact_inv_reach;
-  const T p = -s.trace() / T(3);
-  return overlap > T(0) && p > T(0) ? k.wall_contact * p * overlap : T(0);
+  return wall_contact_pressure_at(k, r, -s.trace() / T(3));
 }
 
 // s - p I: a stress with the pressure p added.

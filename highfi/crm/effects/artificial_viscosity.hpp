@@ -36,7 +36,7 @@ struct ArtificialViscosity : CrmEffect {
     if (vr < T(0)) {
       // Pi = -alpha c mu / rho_mean with mu = h vr / (r^2 + 0.01 h^2), in one division.
       const T h = k.kernel.h;
-      const T pi = T(-2) * c.alpha * c.sound_speed * h * vr / ((r2 + T(0.01) * h * h) * (rho_i + rho_j));
+      const T pi = pair_div(T(-2) * c.alpha * c.sound_speed * h * vr, (r2 + T(0.01) * h * h) * (rho_i + rho_j));
       acc -= pi * grad;
     }
   }

@@ -36,7 +36,7 @@ struct HourglassDamping : CrmEffect {
   TERRACAL_HD_INLINE static void pair_soil(const SphConstants<T>& k, const Constants<T>& c, const SoilSelf<T>& me,
                                            const Neighbour<T>& nb, SoilSums<T>& share) {
     const T h = k.kernel.h;
-    const T lap = c.nu * (me.inv_rho + nb.inv_rho) * nb.kv.f * nb.r2 / (nb.r2 + T(0.01) * h * h);
+    const T lap = pair_div(c.nu * (me.inv_rho + nb.inv_rho) * nb.kv.f * nb.r2, nb.r2 + T(0.01) * h * h);
     share.acc -= lap * nb.dv;
   }
 };

@@ -68,7 +68,7 @@ struct HourglassStiffness : CrmEffect {
     c.ws = vw;
     c.wv = vw * vn.xyz();
     c.wr = vw * (xi - pn.xyz());
-    c.react = (vw * pn.w / k.mass * hg_n.w) * hg_n.xyz();  // W_in u_n / S_n
+    c.react = (pair_div(vw * pn.w, k.mass) * hg_n.w) * hg_n.xyz();  // W_in u_n / S_n
     return c;
   }
   template <class T>
@@ -94,7 +94,7 @@ struct HourglassStiffness : CrmEffect {
       // confinement gives a grain, (mu_s p + c) / (rho d0) per unit mass. Loose grains at the
       // surface are not held in place, and an error of the velocity extrapolation that keeps
       // feeding u (at a wall's corner) cannot build up a force that throws a particle out.
-      T pressure = -me.s.trace() / T(3);
+      T pressure = -p.s.trace() / T(3);
       pressure = pressure > T(0) ? pressure : T(0);
       const T u_max = (k.model.mu_s * pressure + k.model.cohesion) / (me.rho * k.spacing * c.k);
       const T u2 = dot(u, u);
