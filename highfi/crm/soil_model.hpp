@@ -79,4 +79,20 @@ TERRACAL_HD inline T return_map(Sym3<T>& s, T gamma_dot, const SoilModel<T>& m) 
   return plastic;
 }
 
+// The highest density a particle may carry: 1.5 rho0, or 1.2 times what its pressure implies where
+// that is higher. Density and pressure integrate the same velocity divergence (d rho / rho = dp / K;
+// plastic flow keeps the volume), so rho = rho0 exp(p / K) for soil that starts at rest. Where that
+// tie is lost (a stress-free particle squeezed against a wall) the divergence would grow the density
+// without bound; the fixed 1.5 rho0 stops it. Soil under very high pressure (p/K > ln 1.25 = 0.22, a
+// plate driven towards the floor) must be allowed past 1.5 rho0 or it blows up, so there the cap
+// follows the pressure. At ordinary pressures the bound stays the fixed one: soil sheared under a
+// rolling wheel drifts up to it, and a cap loosened with the pressure there (1.5 rho0 exp(p/K)) let
+// the wheel keep sinking (docs/decisions.md, "Density cap").
+template <typename T>
+TERRACAL_HD inline T density_cap(T pressure, const SoilModel<T>& m) {
+  const T tied = T(1.2) * m.rho0 * std::exp((pressure > T(0) ? pressure : T(0)) / m.bulk_modulus);
+  const T fixed = T(1.5) * m.rho0;
+  return tied > fixed ? tied : fixed;
+}
+
 }  // namespace terracal

@@ -178,16 +178,8 @@ struct SoilStage {
     // A particle with a truncated kernel (free surface) cannot resolve its velocity gradient;
     // it carries no stress rather than a spurious one.
     if (sum.support < k.free_surface_support) s_new = Sym3<T>{};
-    // The density follows the pressure: both integrate the same divergence (d rho / rho = dp / K;
-    // plastic flow keeps the volume), so rho = rho0 exp(p / K) from a soil at rest. Where the stress
-    // is zeroed (the free surface, no tension) that tie is lost, and a stress-free particle squeezed
-    // against a wall sees a spurious divergence that would grow its density without bound; its
-    // volume then vanishes and the walls' hydrostatic head throws it about. So the density is held
-    // within 1.5 times what the pressure implies. A fixed cap (1.5 rho0) also bound compressed soil,
-    // cut the tie there, and under a plate driven towards the floor that soil blew up
-    // (docs/decisions.md, "Density cap").
-    const T p_new = -s_new.trace() / T(3);
-    const T rho_cap = T(1.5) * k.model.rho0 * std::exp((p_new > T(0) ? p_new : T(0)) / k.model.bulk_modulus);
+    // Soil does not compress without bound where the tie of density to pressure is lost (density_cap).
+    const T rho_cap = density_cap(-s_new.trace() / T(3), k.model);
     if (rho_new > rho_cap) rho_new = rho_cap;
     out.pos[i] = make_vec4(x_new, rho_new);
     out.vel[i] = make_vec4(v_new, T(kParticleActive));

@@ -16,6 +16,7 @@
 #include "highfi/crm/crm_run.hpp"
 #include "highfi/crm/crm_run_check.hpp"
 #include "highfi/crm/crm_solver.hpp"
+#include "highfi/crm/soil_model.hpp"
 #include "tests/highfi/crm/crm_test_scenes.hpp"
 
 using namespace terracal;
@@ -58,6 +59,35 @@ std::string squeeze(CrmSolver& solver, double duration) {
 }
 
 }  // namespace
+
+TEST_CASE("CRM density cap: fixed at ordinary pressures, tied to the pressure under very high ones",
+          "[highfi][crm]") {
+  // The 2022 soil: rho0 1700 kg/m^3, K = E / (3 (1 - 2 nu)) with E 1 MPa, nu 0.3.
+  SoilModel<double> m;
+  m.rho0 = 1700;
+  m.bulk_modulus = 1e6 / (3 * (1 - 2 * 0.3));
+  const double K = m.bulk_modulus, fixed = 1.5 * m.rho0;
+  // No pressure, tension (a stress-free or zeroed particle) and a wheel's contact (p/K ~ 0.05-0.1):
+  // the fixed bound. A cap that loosens with any pressure (1.5 rho0 exp(p/K), 1.66 rho0 at p/K 0.1)
+  // let the CRM wheel keep sinking (docs/decisions.md, "Density cap").
+  CHECK(density_cap(0.0, m) == fixed);
+  CHECK(density_cap(-1e4, m) == fixed);
+  CHECK(density_cap(0.1 * K, m) == fixed);
+  CHECK(density_cap(0.2 * K, m) == fixed);
+  // Continuous where the tie takes over (p/K = ln 1.25).
+  CHECK(density_cap(std::log(1.25) * K, m) == Approx(fixed).epsilon(1e-12));
+  // Soil under a plate driven towards the floor (p/K ~ 1.2): the density may follow its pressure,
+  // rho0 exp(p/K) = 3.3 rho0, with a fifth to spare.
+  const double tie = m.rho0 * std::exp(1.2);
+  CHECK(density_cap(1.2 * K, m) == Approx(1.2 * tie).epsilon(1e-12));
+  CHECK(density_cap(1.2 * K, m) > tie);
+  // The GPU's float32 reads the same bound.
+  SoilModel<float> mf;
+  mf.rho0 = 1700;
+  mf.bulk_modulus = float(K);
+  CHECK(density_cap(0.1f * mf.bulk_modulus, mf) == Approx(fixed).epsilon(1e-6));
+  CHECK(density_cap(1.2f * mf.bulk_modulus, mf) == Approx(1.2 * tie).epsilon(1e-5));
+}
 
 TEST_CASE("CRM: soil squeezed to half its volume in a closed box stays in the box", "[highfi][crm][hard]") {
   // The lid goes down 0.03 m of the 0.06 m: the soil reaches p/K ~ 0.5, as under a plate driven
