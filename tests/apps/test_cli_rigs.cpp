@@ -3,6 +3,9 @@
 #include <catch2/catch.hpp>
 
 #include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
 
 #include "bayes/observations.hpp"
 #include "core/csv.hpp"
@@ -50,4 +53,9 @@ TEST_CASE("terracal bevameter and wheel on SCM and Wong-Reece write the curve fi
   const CsvTable scm = CsvTable::read(d + "/scm/wheel.csv");
   CHECK(scm.number(0, "dbp_N") > 0);
   CHECK(std::filesystem::exists(d + "/scm/wheel_series.csv"));
+  // run.json: the runs' own walls (a study's cost) and the sweep's elapsed time (settling included),
+  // which for one slip run alone is at least the run's own.
+  const nlohmann::json run = nlohmann::json::parse(std::ifstream(d + "/scm/run.json"));
+  CHECK(run.at("wall_seconds").get<double>() > 0);
+  CHECK(run.at("elapsed_seconds").get<double>() >= run.at("wall_seconds").get<double>());
 }

@@ -60,8 +60,7 @@ std::string squeeze(CrmSolver& solver, double duration) {
 
 }  // namespace
 
-TEST_CASE("CRM density cap: fixed at ordinary pressures, tied to the pressure under very high ones",
-          "[highfi][crm]") {
+TEST_CASE("CRM density cap: fixed at ordinary pressures, tied to the pressure under very high ones", "[highfi][crm]") {
   // The 2022 soil: rho0 1700 kg/m^3, K = E / (3 (1 - 2 nu)) with E 1 MPa, nu 0.3.
   SoilModel<double> m;
   m.rho0 = 1700;
