@@ -400,8 +400,9 @@ std::vector<rigs::WheelResult> run_wheel_sweep(SoilModel solver, const SoilChoic
   run_concurrently(slips.size(), width, [&](std::size_t i) {
     out[i] = rigs::run_wheel(*site, wheel, slips[i], run, progress_logger());
     const auto& r = out[i];
-    spdlog::info("{} wheel at slip {}: DBP {:.4g} N, torque {:.4g} N m, sinkage {:.4g} m ({:.3g} s wall)",
-                 soil_model_name(solver), slips[i], r.dbp, r.torque, r.sinkage, r.wall_seconds);
+    spdlog::info("{} wheel at slip {}: DBP {:.4g} N, torque {:.4g} N m, sinkage {:.4g} m ({:.3g} s wall){}",
+                 soil_model_name(solver), slips[i], r.dbp, r.torque, r.sinkage, r.wall_seconds,
+                 r.numerics_note.empty() ? "" : "; at the end " + r.numerics_note);
     if (const std::string why = rigs::unsteady_reason(r); !why.empty())
       spdlog::warn("{} {} (wheel_series.csv has the time series)", soil_model_name(solver), why);
   });

@@ -22,6 +22,8 @@ class Terrain {
   virtual double time_step() const = 0;
   virtual const std::vector<BodyState>& bodies() const = 0;
   virtual const std::vector<BodyWrench>& wrenches() const = 0;
+  // What the terrain's numerics say about the run so far, for the log (empty: nothing to say).
+  virtual std::string numerics_note() const { return {}; }
 };
 
 // A soil site before any body is placed: where its undisturbed surface is and how much room it

@@ -160,6 +160,7 @@ WheelResult run_wheel(const TerrainSite& site, const WheelSpec& wheel, double sl
     r.airborne_fraction = double(airborne_steps) / n;
   }
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.numerics_note = terrain->numerics_note();
   return r;
 }
 

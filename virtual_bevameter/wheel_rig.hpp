@@ -74,6 +74,7 @@ struct WheelResult {
   // of steps in which the soil carries less than 5 % of the load (the wheel is off the ground).
   double vertical_sd = 0, airborne_fraction = 0;
   double wall_seconds = 0;
+  std::string numerics_note;  // the terrain's note at the end of the run (Terrain::numerics_note)
   std::vector<WheelSample> series;
 };
 

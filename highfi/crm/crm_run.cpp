@@ -222,9 +222,14 @@ void fill_summary(const CrmSolver& solver, long first_step, double wall_seconds,
   sum.wall_seconds = wall_seconds;
   sum.particle_steps_per_second =
       sum.wall_seconds > 0 ? double(sum.steps) * double(sum.particles) / sum.wall_seconds : 0;
-  sum.lost = solver.stats().lost;
+  const SoilStats st = solver.stats();
+  sum.lost = st.lost;
+  sum.at_density_cap = st.at_density_cap;
   sum.device = solver.engine().description();
   if (sum.lost > 0) spdlog::warn("{} particles left the domain and were removed from the simulation", sum.lost);
+  if (sum.at_density_cap > 0)
+    spdlog::info("{} particles ({:.3g} % of the soil) end held at the density cap (docs/decisions.md, \"Density cap\")",
+                 sum.at_density_cap, 100.0 * double(sum.at_density_cap) / double(std::max<std::size_t>(1, sum.particles)));
 }
 
 void write_summary_json(const fs::path& path, const CrmRunSummary& sum, std::size_t device_bytes) {
@@ -237,6 +242,7 @@ void write_summary_json(const fs::path& path, const CrmRunSummary& sum, std::siz
       {"wall_s", sum.wall_seconds},
       {"particle_steps_per_second", sum.particle_steps_per_second},
       {"lost_particles", sum.lost},
+      {"at_density_cap", sum.at_density_cap},
       {"bed_from_cache", sum.bed_from_cache},
       {"device", sum.device},
       {"device_bytes_per_particle", double(device_bytes) / double(std::max<std::size_t>(1, sum.particles))},

@@ -22,6 +22,7 @@ struct CrmRunSummary {
   long steps = 0;
   double time_step = 0, simulated = 0, wall_seconds = 0, particle_steps_per_second = 0;
   long lost = 0;
+  long at_density_cap = 0;  // active particles held at the density cap at the end (soil_model.hpp)
   bool bed_from_cache = false;
   std::string device;
   std::string status = "completed";  // or "failed" (summary.json; the run then throws RunError)

@@ -76,6 +76,14 @@ std::string CrmTerrain::description() const {
   return fmt::format("CRM, spacing {} m, step {:.3g} s", s.numerics.spacing, s.numerics.time_step);
 }
 
+std::string CrmTerrain::numerics_note() const {
+  const SoilStats st = solver_.stats();
+  const long active = long(solver_.engine().soil_count()) - st.frozen - st.lost - st.nonfinite;
+  if (st.at_density_cap == 0 || active <= 0) return {};
+  return fmt::format("{} of {} active particles ({:.3g} %) held at the density cap", st.at_density_cap, active,
+                     100.0 * double(st.at_density_cap) / double(active));
+}
+
 void CrmTerrain::step() {
   solver_.step();
   // The wrenches every step (cheap); the soil's health every kCrmCheckEvery steps (crm_run_check.hpp).

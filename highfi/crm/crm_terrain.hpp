@@ -37,6 +37,8 @@ class CrmTerrain final : public Terrain {
   double time_step() const override { return solver_.time_step(); }
   const std::vector<BodyState>& bodies() const override { return solver_.bodies(); }
   const std::vector<BodyWrench>& wrenches() const override { return solver_.wrenches(); }
+  // How much of the active soil is held at the density cap now.
+  std::string numerics_note() const override;
   const CrmSolver& solver() const { return solver_; }
 
  private:

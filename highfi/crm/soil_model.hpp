@@ -85,14 +85,21 @@ TERRACAL_HD inline T return_map(Sym3<T>& s, T gamma_dot, const SoilModel<T>& m) 
 // tie is lost (a stress-free particle squeezed against a wall) the divergence would grow the density
 // without bound; the fixed 1.5 rho0 stops it. Soil under very high pressure (p/K > ln 1.25 = 0.22, a
 // plate driven towards the floor) must be allowed past 1.5 rho0 or it blows up, so there the cap
-// follows the pressure. At ordinary pressures the bound stays the fixed one: soil sheared under a
-// rolling wheel drifts up to it, and a cap loosened with the pressure there (1.5 rho0 exp(p/K)) let
-// the wheel keep sinking (docs/decisions.md, "Density cap").
+// follows the pressure. At ordinary pressures the bound stays the fixed one: particles against a
+// rolling wheel's rim drift up to it, the wheel bears on them, and a cap loosened with the pressure
+// there (1.5 rho0 exp(p/K)) let the wheel keep sinking (docs/decisions.md, "Density cap").
 template <typename T>
 TERRACAL_HD inline T density_cap(T pressure, const SoilModel<T>& m) {
   const T tied = T(1.2) * m.rho0 * std::exp((pressure > T(0) ? pressure : T(0)) / m.bulk_modulus);
   const T fixed = T(1.5) * m.rho0;
   return tied > fixed ? tied : fixed;
+}
+
+// Whether a particle's density is held at density_cap (within 0.1 %), from its stress's first three
+// components (xx, yy, zz): where many are, the cap rather than the soil sets the result.
+template <typename T>
+TERRACAL_HD inline bool at_density_cap(T rho, const Vec4<T>& s0, const SoilModel<T>& m) {
+  return rho >= T(0.999) * density_cap(-(s0.x + s0.y + s0.z) / T(3), m);
 }
 
 }  // namespace terracal

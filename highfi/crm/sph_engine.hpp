@@ -72,6 +72,7 @@ struct SoilStats {
   Vec3<double> first_moment{};  // sum of m x: the soil's potential energy is -g . first_moment
   double max_speed = 0;
   long nonfinite = 0, lost = 0, frozen = 0;
+  long at_density_cap = 0;  // active particles whose density is held at density_cap (soil_model.hpp)
 };
 
 class SphEngine {

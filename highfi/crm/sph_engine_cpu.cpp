@@ -73,11 +73,11 @@ struct CpuBackend {
   }
 
   template <typename T>
-  static SoilStats soil_stats(const SoilArrays<T>& s, long n, double mass) {
+  static SoilStats soil_stats(const SoilArrays<T>& s, long n, double mass, const SoilModel<T>& model) {
     SoilStats st;
     double ke = 0, px = 0, py = 0, pz = 0, mx = 0, my = 0, mz = 0, vmax = 0;
-    long bad = 0, lost = 0, frozen = 0;
-#pragma omp parallel for reduction(+ : ke, px, py, pz, mx, my, mz, bad, lost, frozen) reduction(max : vmax)
+    long bad = 0, lost = 0, frozen = 0, capped = 0;
+#pragma omp parallel for reduction(+ : ke, px, py, pz, mx, my, mz, bad, lost, frozen, capped) reduction(max : vmax)
     for (long i = 0; i < n; ++i) {
       const Vec4<T> v = s.vel[i], p = s.pos[i];
       const double vx = v.x, vy = v.y, vz = v.z;
@@ -91,7 +91,10 @@ struct CpuBackend {
         ++lost;
         continue;
       }
-      if (v.w == T(kParticleFrozen)) ++frozen;
+      if (v.w == T(kParticleFrozen))
+        ++frozen;
+      else if (at_density_cap(p.w, s.s0[i], model))
+        ++capped;
       const double v2 = vx * vx + vy * vy + vz * vz;
       ke += 0.5 * mass * v2;
       px += mass * vx;
@@ -110,6 +113,7 @@ struct CpuBackend {
     st.nonfinite = bad;
     st.lost = lost;
     st.frozen = frozen;
+    st.at_density_cap = capped;
     return st;
   }
 };

@@ -145,10 +145,12 @@ __global__ void wrench_kernel(MarkerArrays<T> mk, long nm, const BodyPose<T>* po
   }
 }
 
+constexpr int kStats = 12;  // the soil statistics' sums (stats_kernel)
+
 template <typename T>
-__global__ void stats_kernel(SoilArrays<T> s, long n, double mass, double* out) {
-  // out: ke, px, py, pz, vmax, nonfinite, lost, frozen, mx, my, mz
-  double acc[11] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+__global__ void stats_kernel(SoilArrays<T> s, long n, double mass, SoilModel<T> model, double* out) {
+  // out: ke, px, py, pz, vmax, nonfinite, lost, frozen, mx, my, mz, at the density cap
+  double acc[kStats] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
   for (long i = blockIdx.x * long(blockDim.x) + threadIdx.x; i < n; i += long(blockDim.x) * gridDim.x) {
     const Vec4<T> v = s.vel[i], p = s.pos[i];
     const double vx = v.x, vy = v.y, vz = v.z;
@@ -162,7 +164,10 @@ __global__ void stats_kernel(SoilArrays<T> s, long n, double mass, double* out) 
       acc[6] += 1;
       continue;
     }
-    if (v.w == T(kParticleFrozen)) acc[7] += 1;
+    if (v.w == T(kParticleFrozen))
+      acc[7] += 1;
+    else if (at_density_cap(p.w, s.s0[i], model))
+      acc[11] += 1;
     const double v2 = vx * vx + vy * vy + vz * vz;
     acc[0] += 0.5 * mass * v2;
     acc[1] += mass * vx;
@@ -173,7 +178,7 @@ __global__ void stats_kernel(SoilArrays<T> s, long n, double mass, double* out) 
     acc[9] += mass * double(p.y);
     acc[10] += mass * double(p.z);
   }
-  for (int q = 0; q < 11; ++q) {
+  for (int q = 0; q < kStats; ++q) {
     const double r = q == 4 ? warp_max(acc[q]) : warp_sum(acc[q]);
     if ((threadIdx.x & 31) == 0) {
       if (q == 4)
@@ -277,15 +282,15 @@ struct CudaBackend {
   }
 
   template <typename T>
-  static SoilStats soil_stats(const SoilArrays<T>& s, long n, double mass) {
-    double* d = reduction_scratch(11);
-    TERRACAL_CUDA_CHECK(cudaMemsetAsync(d, 0, 11 * sizeof(double), stream()));
+  static SoilStats soil_stats(const SoilArrays<T>& s, long n, double mass, const SoilModel<T>& model) {
+    double* d = reduction_scratch(kStats);
+    TERRACAL_CUDA_CHECK(cudaMemsetAsync(d, 0, kStats * sizeof(double), stream()));
     const int threads = 256;
     const int blocks = int(std::max<long>(1, std::min<long>((n + threads - 1) / threads, 2048)));
-    stats_kernel<<<blocks, threads, 0, stream()>>>(s, n, mass, d);
+    stats_kernel<<<blocks, threads, 0, stream()>>>(s, n, mass, model, d);
     TERRACAL_CUDA_CHECK(cudaGetLastError());
-    double h[11];
-    download(h, d, 11);
+    double h[kStats];
+    download(h, d, kStats);
     SoilStats st;
     st.kinetic_energy = h[0];
     st.momentum = {h[1], h[2], h[3]};
@@ -294,6 +299,7 @@ struct CudaBackend {
     st.nonfinite = long(h[5]);
     st.lost = long(h[6]);
     st.frozen = long(h[7]);
+    st.at_density_cap = long(h[11]);
     st.mass = mass * double(n - st.lost - st.nonfinite);
     return st;
   }

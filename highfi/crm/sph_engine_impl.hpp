@@ -222,7 +222,7 @@ class SphEngineImpl final : public SphEngine {
     return w;
   }
 
-  SoilStats stats() const override { return B::soil_stats(A_.a, long(n_), double(k_.mass)); }
+  SoilStats stats() const override { return B::soil_stats(A_.a, long(n_), double(k_.mass), k_.model); }
 
   void download(HostSoil& s) const override {
     s.pos.resize(n_);

@@ -151,6 +151,30 @@ TEST_CASE("CRM: soil squeezed to half its volume in a closed box stays in the bo
   }
 }
 
+TEST_CASE("CRM soil statistics count the particles held at the density cap", "[highfi][crm]") {
+  // A settled bed has none; particles set to the cap of their own pressure (stress-free: 1.5 rho0;
+  // under p = K: 1.2 rho0 e) are counted, on either backend, and frozen ones are not.
+  nlohmann::json j = test::bed_scene_json(kD0, kCells, 4, 0.0);
+  const CrmScene sc = test::scene_from(j);
+  CrmSolver solver(sc, test::validation_device());
+  for (int k = 0; k < 20; ++k) solver.step();
+  CHECK(solver.stats().at_density_cap == 0);
+  HostSoil s = solver.soil();
+  const double rho0 = sc.soil.density, K = sc.soil.bulk_modulus();
+  s.pos[3].w = 1.5 * rho0;
+  s.s0[3] = {0, 0, 0, 0};
+  s.pos[5].w = 1.2 * rho0 * std::exp(1.0);
+  s.s0[5] = {-K, -K, -K, 0};
+  s.pos[7].w = 1.4 * rho0;  // below the cap: not counted
+  s.s0[7] = {0, 0, 0, 0};
+  s.pos[9].w = 1.5 * rho0;  // at the cap but frozen (outside the active domain): not counted
+  s.s0[9] = {0, 0, 0, 0};
+  s.vel[9] = {0, 0, 0, double(kParticleFrozen)};
+  solver.restore(s, solver.bodies(), solver.time(), solver.steps());
+  CHECK(solver.stats().at_density_cap == 2);
+  CHECK(solver.stats().frozen == 1);
+}
+
 TEST_CASE("CRM run check: a sound state passes, a bad one is named with its place", "[highfi][crm]") {
   nlohmann::json j = test::bed_scene_json(kD0, kCells, 4, 0.0);
   const CrmScene sc = test::scene_from(j);
