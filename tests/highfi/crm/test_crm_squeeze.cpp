@@ -152,7 +152,7 @@ TEST_CASE("CRM: soil squeezed to half its volume in a closed box stays in the bo
 }
 
 TEST_CASE("CRM soil statistics count the particles held at the density cap", "[highfi][crm]") {
-  // A settled bed has none; particles set to the cap of their own pressure (stress-free: 1.5 rho0;
+  // A bed at rest after 20 steps has none; particles set to the cap of their own pressure (stress-free: 1.5 rho0;
   // under p = K: 1.2 rho0 e) are counted, on either backend, and frozen ones are not.
   nlohmann::json j = test::bed_scene_json(kD0, kCells, 4, 0.0);
   const CrmScene sc = test::scene_from(j);
