@@ -227,12 +227,8 @@ void fill_summary(const CrmSolver& solver, long first_step, double wall_seconds,
   sum.at_density_cap = st.at_density_cap;
   sum.device = solver.engine().description();
   if (sum.lost > 0) spdlog::warn("{} particles left the domain and were removed from the simulation", sum.lost);
-  const long active = long(sum.particles) - st.frozen - st.lost - st.nonfinite;
-  if (sum.at_density_cap > 0 && active > 0)
-    spdlog::info(
-        "{} of {} active particles ({:.3g} %) end held at the density cap (docs/decisions.md, \"Density "
-        "cap\")",
-        sum.at_density_cap, active, 100.0 * double(sum.at_density_cap) / double(active));
+  if (const std::string note = density_cap_note(st, sum.particles); !note.empty())
+    spdlog::info("at the end {} (docs/decisions.md, \"Density cap\")", note);
 }
 
 void write_summary_json(const fs::path& path, const CrmRunSummary& sum, std::size_t device_bytes) {

@@ -76,6 +76,13 @@ std::string where(const CrmSolver& solver, const std::string& kind) {
 
 }  // namespace
 
+std::string density_cap_note(const SoilStats& st, std::size_t particles) {
+  const long active = long(particles) - st.frozen - st.lost - st.nonfinite;
+  if (st.at_density_cap == 0 || active <= 0) return {};
+  return fmt::format("{} of {} active particles ({:.3g} %) held at the density cap", st.at_density_cap, active,
+                     100.0 * double(st.at_density_cap) / double(active));
+}
+
 CrmRunCheck::CrmRunCheck(const CrmSolver& solver) {
   const SoilStats st = solver.stats();
   const CrmScene& sc = solver.scene();

@@ -38,6 +38,10 @@ class CrmRunCheck {
   double energy0_ = 0, work0_ = 0, slack_ = 0, speed_limit_ = 0;
 };
 
+// "N of M active particles (x %) held at the density cap", or empty when none is (particles: the
+// soil's count, frozen and lost ones included).
+std::string density_cap_note(const SoilStats& stats, std::size_t particles);
+
 // The soil's kinetic plus potential energy [J] (potential from gravity, -g . sum m x).
 double soil_mechanical_energy(const SoilStats& stats, const Vec3<double>& gravity);
 

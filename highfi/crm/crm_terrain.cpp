@@ -77,11 +77,7 @@ std::string CrmTerrain::description() const {
 }
 
 std::string CrmTerrain::numerics_note() const {
-  const SoilStats st = solver_.stats();
-  const long active = long(solver_.engine().soil_count()) - st.frozen - st.lost - st.nonfinite;
-  if (st.at_density_cap == 0 || active <= 0) return {};
-  return fmt::format("{} of {} active particles ({:.3g} %) held at the density cap", st.at_density_cap, active,
-                     100.0 * double(st.at_density_cap) / double(active));
+  return density_cap_note(solver_.stats(), solver_.engine().soil_count());
 }
 
 void CrmTerrain::step() {
