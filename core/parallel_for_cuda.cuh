@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/cuda_check.hpp"
+#include "core/lane_group.hpp"
 
 namespace terracal {
 
@@ -53,6 +54,27 @@ void parallel_for_cuda_bounded(long n, const F& f, cudaStream_t stream = nullptr
   constexpr int kThreads = 256;
   const long blocks = std::min<long>((n + kThreads - 1) / kThreads, 65535L * 8);
   bounded_parallel_for_kernel<MinBlocks><<<static_cast<unsigned>(blocks), kThreads, 0, stream>>>(n, f);
+  TERRACAL_CUDA_CHECK(cudaGetLastError());
+}
+
+// Groups of `lanes` threads over the items list[0, *count): a list made on the device (an active
+// domain's particles) is run without reading its length back. One wave of `blocks` blocks strides
+// over it.
+template <int MinBlocks, typename F>
+__global__ void __launch_bounds__(256, MinBlocks)
+    listed_parallel_for_kernel(const int* list, const int* count, int lanes, F f) {
+  const long total = long(*count) * lanes;
+  for (long t = blockIdx.x * long(blockDim.x) + threadIdx.x; t < total; t += long(blockDim.x) * gridDim.x)
+    f(list[t / lanes], lane_group_of(t, lanes));
+}
+
+template <int MinBlocks, typename F>
+void parallel_for_cuda_listed(const int* list, const int* count, long max_items, int lanes, long max_blocks, const F& f,
+                              cudaStream_t stream = nullptr) {
+  if (max_items <= 0) return;
+  constexpr int kThreads = 256;
+  const long blocks = std::max<long>(1, std::min<long>((max_items * lanes + kThreads - 1) / kThreads, max_blocks));
+  listed_parallel_for_kernel<MinBlocks><<<static_cast<unsigned>(blocks), kThreads, 0, stream>>>(list, count, lanes, f);
   TERRACAL_CUDA_CHECK(cudaGetLastError());
 }
 

@@ -35,11 +35,17 @@ struct MarkerStage {
   const ActiveBox<T>* boxes;
   int box_count;
 
-  TERRACAL_HD void operator()(long m) const {
+  TERRACAL_HD void operator()(long m) const { run(m, SingleLane{}); }
+  // Marker m with a group of GPU lanes (core/lane_group.hpp): each lane walks a share of the rows,
+  // the group adds up the sums, and its leader writes the marker.
+  TERRACAL_HD void operator()(long m, const LaneGroup& g) const { run(m, g); }
+
+  template <class G>
+  TERRACAL_HD void run(long m, const G& g) const {
     const Vec3<T> xm = mk.pos[m].xyz();
     const T support2 = k.kernel.support2();
     if (!near_active(boxes, box_count, xm, std::sqrt(support2))) {
-      mk.force[m] = Vec4<T>{T(0), T(0), T(0), T(0)};
+      if (g.leader()) mk.force[m] = Vec4<T>{T(0), T(0), T(0), T(0)};
       return;
     }
     // visit(f) calls f(j) for every soil particle j within the support of the marker, twice per
@@ -47,7 +53,7 @@ struct MarkerStage {
 #if defined(__CUDA_ARCH__)
     auto visit = [&](auto&& f) {
       grid.for_each_neighbour_range(
-          xm, soil_begin, [&](int first, int last) { for_each_hit(soil.pos, first, last, -1, xm, support2, f); });
+          xm, soil_begin, g, [&](int first, int last) { for_each_hit(soil.pos, first, last, -1, xm, support2, f); });
     };
 #else
     // The CPU lists the neighbours once (SIMD filter) and walks the list in both passes; a marker
@@ -76,12 +82,12 @@ struct MarkerStage {
       });
     };
 #endif
-    force(m, extrapolate(m, visit), visit);
+    force(m, extrapolate(m, visit, g), visit, g);
   }
 
   // The marker's stress and velocity, extrapolated from the soil around it (written to mk).
-  template <class Visit>
-  TERRACAL_HD MarkerSoilView<T> extrapolate(long m, const Visit& visit) const {
+  template <class Visit, class G>
+  TERRACAL_HD MarkerSoilView<T> extrapolate(long m, const Visit& visit, const G& g) const {
     const Vec4<T> pm = mk.pos[m];
     const Vec3<T> xm = pm.xyz();
     const Vec4<T> wv = mk.wall_vel[m];
@@ -107,6 +113,11 @@ struct MarkerStage {
       sum_v += w * soil.vel[j].xyz();
       sum_rho_r += (w * pj.w) * r;
     });
+    g.template sum<T>(sum_w);
+    g.template sum<T>(sum_s);
+    g.template sum<T>(sum_v);
+    g.template sum<T>(sum_rho_r);
+    if (contact_rule) g.min(gap);
     Sym3<T> sm{};
     Vec3<T> vm = wv.xyz();
     if (sum_w > T(0)) {
@@ -130,17 +141,19 @@ struct MarkerStage {
     }
     if (k.marker_velocity == MarkerVelocity::kMirrorImage) vm = mirror_image_velocity(m, xm, wv.xyz(), vm);
     const T rho_m = pm.w, inv_rho2_m = T(1) / (rho_m * rho_m);
-    mk.vel[m] = make_vec4(vm, T(0));
-    mk.s0[m] = {sm.xx, sm.yy, sm.zz, sm.xy};
-    mk.s1[m] = {sm.xz, sm.yz, T(0), sum_w};
+    if (g.leader()) {
+      mk.vel[m] = make_vec4(vm, T(0));
+      mk.s0[m] = {sm.xx, sm.yy, sm.zz, sm.xy};
+      mk.s1[m] = {sm.xz, sm.yz, T(0), sum_w};
+    }
     return {sm, vm, rho_m, inv_rho2_m};
   }
 
   // Force of the soil on the marker: minus what the marker does to each soil particle (with the
   // effects' pair forces), plus the effects' marker terms (the reaction of hourglass_stiffness's
   // springs), from the same kernel values.
-  template <class Visit>
-  TERRACAL_HD void force(long m, const MarkerSoilView<T>& ms, const Visit& visit) const {
+  template <class Visit, class G>
+  TERRACAL_HD void force(long m, const MarkerSoilView<T>& ms, const Visit& visit, const G& g) const {
     const Vec3<T> xm = mk.pos[m].xyz();
     PerEffect<EffectSumsIn<T>::template marker, Mx> own;
     Vec3<T> f{};
@@ -163,11 +176,13 @@ struct MarkerStage {
         E::marker_pair(k, ec.template get<E>(), kv.w, record, own.template get<E>());
       });
     });
+    g.template sum<T>(f);
+    g.template sum<T>(own);
     for_each_effect(Mx{}, [&](auto tag) {
       using E = typename decltype(tag)::type;
       E::marker_finish(k, ec.template get<E>(), ms.rho, own.template get<E>(), f);
     });
-    mk.force[m] = make_vec4((k.mass * k.mass) * f, T(0));
+    if (g.leader()) mk.force[m] = make_vec4((k.mass * k.mass) * f, T(0));
   }
 
   // The marker's wall normal in the world frame, w = its depth (0: none).

@@ -28,23 +28,42 @@ struct SoilStage {
   MarkerArrays<T> mk;
   T dt;
 
-  TERRACAL_HD void operator()(long i) const {
+  TERRACAL_HD void operator()(long i) const { run(i, SingleLane{}); }
+  // Particle i with a group of GPU lanes (core/lane_group.hpp): each lane walks a share of the rows,
+  // the group adds up the sums, and its leader updates the particle.
+  TERRACAL_HD void operator()(long i, const LaneGroup& g) const { run(i, g); }
+
+  template <class G>
+  TERRACAL_HD void run(long i, const G& g) const {
     const Vec4<T> vb = base.vel[i];
     if (vb.w != T(kParticleActive)) {  // frozen (outside the active domain) or lost: carried unchanged
-      carry(i, vb);
+      if (g.leader()) carry(i, vb);
       return;
     }
     const SoilSelf<T> me = self(i);
     SoilSums<T> sum;
-    sum.support = k.mass / me.rho * k.kernel.values(T(0)).w;
+    if (g.leader()) sum.support = k.mass / me.rho * k.kernel.values(T(0)).w;
     EffectSums<T, Fx> own;
 #if defined(__CUDA_ARCH__)
-    add_neighbours_gpu(i, me, sum, own);
+    add_neighbours_gpu(i, me, sum, own, g);
+    g.template sum<T>(sum);
+    g.template sum<T>(own);
+    if (!g.leader()) return;
 #else
     add_neighbours_cpu(i, me, sum, own);
 #endif
     update(i, vb, me, sum, own);
   }
+
+  // The frozen and lost particles' part of the stage alone, for backends that run the active ones
+  // from a list (B::kCompactsActive).
+  struct CarryFrozen {
+    SoilStage stage;
+    TERRACAL_HD void operator()(long i) const {
+      const Vec4<T> vb = stage.base.vel[i];
+      if (vb.w != T(kParticleActive)) stage.carry(i, vb);
+    }
+  };
 
   TERRACAL_HD void carry(long i, const Vec4<T>& vb) const {
     if (base.pos == out.pos) return;
@@ -72,10 +91,13 @@ struct SoilStage {
   }
 
 #if defined(__CUDA_ARCH__)
-  // GPU: one thread per particle walks its neighbour rows, testing a row before summing its hits.
-  __device__ void add_neighbours_gpu(long i, const SoilSelf<T>& me, SoilSums<T>& sum, EffectSums<T, Fx>& own) const {
+  // GPU: a thread (or its share of a lane group's rows) walks the particle's neighbour rows, testing a
+  // row before summing its hits.
+  template <class G>
+  __device__ void add_neighbours_gpu(long i, const SoilSelf<T>& me, SoilSums<T>& sum, EffectSums<T, Fx>& own,
+                                     const G& g) const {
     const T support2 = k.kernel.support2();
-    grid.for_each_neighbour_range(me.x, soil_begin, [&](int first, int last) {
+    grid.for_each_neighbour_range(me.x, soil_begin, g, [&](int first, int last) {
       for_each_hit(eval.pos, first, last, int(i), me.x, support2, [&](int j) {
         const Vec4<T> pj = load(eval.pos + j), vj = load(eval.vel + j);
         const SoilSums<T> c = neighbour_share<T, Fx, true>(k, ec, me, pj, vj, load(eval.s0 + j), load(eval.s1 + j));
@@ -84,7 +106,7 @@ struct SoilStage {
             k, ec, me.x, pj, vj, c.support, [&](int slot) { return load(eval.record[slot] + j); }, own);
       });
     });
-    grid.for_each_neighbour_range(me.x, marker_begin, [&](int first, int last) {
+    grid.for_each_neighbour_range(me.x, marker_begin, g, [&](int first, int last) {
       for_each_hit(mk.pos, first, last, -1, me.x, support2, [&](int j) {
         const Vec4<T> pj = load(mk.pos + j), vj = load(mk.vel + j);
         const SoilSums<T> c = neighbour_share<T, Fx, false>(k, ec, me, pj, vj, load(mk.s0 + j), load(mk.s1 + j));

@@ -4,7 +4,9 @@
 // stream (ThreadStream): engines driven from different threads (CRM runs at once,
 // core/concurrent_jobs.hpp) work side by side, and one engine's copies and waits do not wait for the
 // others' kernels. What the backend keeps between calls is per host thread.
+#include <thrust/iterator/counting_iterator.h>
 #include <cub/device/device_radix_sort.cuh>
+#include <cub/device/device_select.cuh>
 
 #include <cmath>
 #include <cstdlib>
@@ -24,7 +26,8 @@ constexpr int kDefaultMinBlocks = 4;  // the measured best (bench/RESULTS.md, "O
 template <typename F, typename = void>
 struct PreferredMinBlocks : std::integral_constant<int, kDefaultMinBlocks> {};
 template <typename F>
-struct PreferredMinBlocks<F, std::void_t<decltype(F::kCudaMinBlocks)>> : std::integral_constant<int, F::kCudaMinBlocks> {};
+struct PreferredMinBlocks<F, std::void_t<decltype(F::kCudaMinBlocks)>>
+    : std::integral_constant<int, F::kCudaMinBlocks> {};
 
 // The stream of this host thread's engine. Small runs (under kHighPriorityBelow particles: a wheel, an
 // annulus) get the device's highest stream priority and large ones (plates in their wide bins) the
@@ -232,14 +235,22 @@ struct CudaBackend {
   }
   // The neighbour-loop stages, at the stage's measured best occupancy/register trade-off;
   // TERRACAL_CUDA_MIN_BLOCKS (1-4) overrides it for tuning runs (bench/RESULTS.md).
-  template <typename F>
-  static void parallel_for_heavy(long n, const F& f) {
+  static int forced_min_blocks() {
     static const int forced = [] {
       const char* e = std::getenv("TERRACAL_CUDA_MIN_BLOCKS");
       const int v = e ? std::atoi(e) : 0;
       return v >= 1 && v <= 4 ? v : 0;
     }();
-    switch (forced ? forced : PreferredMinBlocks<F>::value) {
+    return forced;
+  }
+  template <typename F>
+  static int min_blocks() {
+    return forced_min_blocks() ? forced_min_blocks() : PreferredMinBlocks<F>::value;
+  }
+  static constexpr int kListedMinBlocks = 3;
+  template <typename F>
+  static void parallel_for_heavy(long n, const F& f) {
+    switch (min_blocks<F>()) {
       case 1:
         parallel_for_cuda_bounded<1>(n, f, stream());
         break;
@@ -254,7 +265,52 @@ struct CudaBackend {
         break;
     }
   }
-  static void fill_begin(int* begin, int count, int value) { parallel_for_cuda(count, FillInt{begin, value}, stream()); }
+  // The active domain runs its stages over lists of the busy particles and markers (select), so
+  // that frozen ones take no thread of the neighbour stages (bench/RESULTS.md, "Active domain").
+  static constexpr bool kCompactsActive = true;
+  // list[0, *count) = the indices i < n with pred(i), in order; no read-back.
+  template <typename Pred>
+  static void select(long n, const Pred& pred, int* list, int* count) {
+    const thrust::counting_iterator<int> first(0);
+    std::size_t bytes = 0;
+    TERRACAL_CUDA_CHECK(cub::DeviceSelect::If(nullptr, bytes, first, list, count, n, pred, stream()));
+    void* tmp = cub_scratch().ensure(bytes);
+    TERRACAL_CUDA_CHECK(cub::DeviceSelect::If(tmp, bytes, first, list, count, n, pred, stream()));
+  }
+  // f(list[q], group) for q < *count (at most max_items), one wave of blocks. Compiled for 3 blocks
+  // per SM (80 registers) unless a stage asks for fewer: the lists are short, registers matter more
+  // than occupancy (bench/RESULTS.md, "Active domain on the GPU").
+  template <typename F>
+  static void parallel_for_listed(const int* list, const int* count, long max_items, const F& f, int lanes) {
+    static const int sms = [] {
+      int device = 0, c = 0;
+      TERRACAL_CUDA_CHECK(cudaGetDevice(&device));
+      TERRACAL_CUDA_CHECK(cudaDeviceGetAttribute(&c, cudaDevAttrMultiProcessorCount, device));
+      return std::max(c, 1);
+    }();
+    switch (std::min(min_blocks<F>(), forced_min_blocks() ? 4 : kListedMinBlocks)) {
+      case 1:
+        parallel_for_cuda_listed<1>(list, count, max_items, lanes, long(sms), f, stream());
+        break;
+      case 2:
+        parallel_for_cuda_listed<2>(list, count, max_items, lanes, long(sms) * 2, f, stream());
+        break;
+      case 3:
+        parallel_for_cuda_listed<3>(list, count, max_items, lanes, long(sms) * 3, f, stream());
+        break;
+      default:
+        parallel_for_cuda_listed<4>(list, count, max_items, lanes, long(sms) * 4, f, stream());
+        break;
+    }
+  }
+  template <typename U>
+  static void zero(U* p, std::size_t n) {
+    if (n) TERRACAL_CUDA_CHECK(cudaMemsetAsync(p, 0, n * sizeof(U), stream()));
+  }
+
+  static void fill_begin(int* begin, int count, int value) {
+    parallel_for_cuda(count, FillInt{begin, value}, stream());
+  }
 
   // Sorts in the caller's double buffers (CUB's DoubleBuffer form), so that its scratch holds only
   // its histograms, not another copy of the keys and values; the result is in either buffer.

@@ -144,6 +144,7 @@ class SphEngineImpl final : public SphEngine {
     B::release(poses_);
     B::release(boxes_);
     B::release(wrench_);
+    for (int* p : {soil_list_, marker_list_, list_counts_}) B::release(p);
   }
 
   std::string description() const override { return B::name() + (sizeof(T) == 8 ? " float64" : " float32"); }
@@ -152,7 +153,9 @@ class SphEngineImpl final : public SphEngine {
   std::size_t device_bytes() const override {
     const std::size_t per_soil = 2 * (4 + std::size_t(records_)) * sizeof(Vec4<T>) + sizeof(int);
     const std::size_t per_marker = (needs_wall_normals(k_.marker_velocity) ? 12 : 10) * sizeof(Vec4<T>);
-    return n_ * per_soil + nm_ * per_marker + 2 * (std::size_t(grid_.cells()) + 2) * sizeof(int) + B::scratch_bytes();
+    const std::size_t lists = list_counts_ ? (n_ + nm_ + 2) * sizeof(int) : 0;
+    return n_ * per_soil + nm_ * per_marker + 2 * (std::size_t(grid_.cells()) + 2) * sizeof(int) + lists +
+           B::scratch_bytes();
   }
 
   void set_poses(const std::vector<BodyPose<double>>& poses) override {
@@ -188,6 +191,14 @@ class SphEngineImpl final : public SphEngine {
       B::upload(boxes_, &all, 1);
     }
     B::parallel_for(long(n_), MarkActive<T>{boxes_, int(std::max<std::size_t>(b.size(), 1)), A_.a});
+    if constexpr (B::kCompactsActive) {
+      if (!b.empty() && !list_counts_) {
+        soil_list_ = B::template alloc<int>(n_ > 0 ? n_ : 1);
+        marker_list_ = B::template alloc<int>(nm_ > 0 ? nm_ : 1);
+        list_counts_ = B::template alloc<int>(2);
+      }
+    }
+    soil_list_stale_ = marker_list_stale_ = true;
   }
 
   // The sort's four key and value arrays live in memory that is free while it runs (SortArrays), so
@@ -200,7 +211,8 @@ class SphEngineImpl final : public SphEngine {
     // B is scratch between steps (it held the midpoint state), and its s1 holds the sort's arrays.
     const SortArrays sa = SortArrays::in(B_.a.s1, n_);
     B::parallel_for(long(n_), SoilCellKey<T>{grid_, A_.a, room_lo_, room_hi_, sa.keys, sa.vals});
-    const int* sorted = B::sort_cells(int(n_), grid_.cells() + 1, sa.keys, sa.vals, sa.keys_alt, sa.vals_alt, soil_begin_);
+    const int* sorted =
+        B::sort_cells(int(n_), grid_.cells() + 1, sa.keys, sa.vals, sa.keys_alt, sa.vals_alt, soil_begin_);
     // Gather A into B in sorted order, then swap. Once A's positions are gathered their memory is
     // free: the permutation moves there, out of the way of the gather into B's s1.
     B::parallel_for(long(n_), Gather<Vec4<T>>{A_.a.pos, B_.a.pos, sorted});
@@ -210,6 +222,7 @@ class SphEngineImpl final : public SphEngine {
     B::parallel_for(long(n_), GatherSoil<T>{A_.a, B_.a, ids_, moved.vals, perm});
     B::copy(ids_, moved.vals, n_);
     std::swap(A_, B_);
+    soil_list_stale_ = true;
   }
 
   std::vector<double> stage(int which, double dt) override {
@@ -255,16 +268,20 @@ class SphEngineImpl final : public SphEngine {
       upload_vec4(A_.a.record[r], record);
     });
     B::upload(ids_, s.ids.data(), n_);
+    soil_list_stale_ = true;
   }
 
  private:
   // The passes are compiled for each list of named effects (core/effect_list.hpp, with_named), so
   // that an effect a scene does not name costs nothing in them.
   void run_stage(const SoilArrays<T>& eval, const SoilArrays<T>& out, T dt) {
+    if constexpr (B::kCompactsActive) {
+      if (active_boxes_ > 0) return run_listed_stage(eval, out, dt);
+    }
     if (nm_ > 0)
       with_named<InMarkerLoop>(effects_, [&](auto mx) {
-        B::parallel_for_heavy(long(nm_), MarkerStage<T, decltype(mx)>{k_, ec_, grid_, soil_begin_, eval, mk_, poses_, boxes_,
-                                                                    active_boxes_});
+        B::parallel_for_heavy(long(nm_), MarkerStage<T, decltype(mx)>{k_, ec_, grid_, soil_begin_, eval, mk_, poses_,
+                                                                      boxes_, active_boxes_});
       });
     if (n_ == 0) return;
     with_named<InSoilLoop>(effects_, [&](auto fx) {
@@ -272,6 +289,50 @@ class SphEngineImpl final : public SphEngine {
           long(n_), SoilStage<T, decltype(fx)>{k_, ec_, grid_, soil_begin_, marker_begin_, eval, A_.a, out, mk_, dt});
     });
   }
+
+  // The active domain on a backend that compacts it (the GPU): the stages run over lists of the busy
+  // markers and particles, a group of lanes each (core/lane_group.hpp), and the frozen particles are
+  // carried by a plain copy. With a few thousand particles busy, a stage otherwise waits on one
+  // thread's walk through its neighbours, in every wave of a launch over the whole bed.
+  void run_listed_stage(const SoilArrays<T>& eval, const SoilArrays<T>& out, T dt) {
+    if constexpr (B::kCompactsActive) {
+      const int lanes = stage_lanes();
+      if (nm_ > 0) {
+        if (marker_list_stale_)
+          B::select(long(nm_), IsMarkerNearActive<T>{mk_.pos, boxes_, active_boxes_, std::sqrt(k_.kernel.support2())},
+                    marker_list_, list_counts_ + 1);
+        marker_list_stale_ = false;
+        B::zero(mk_.force, nm_);  // the markers off the list exert no force
+        with_named<InMarkerLoop>(effects_, [&](auto mx) {
+          B::parallel_for_listed(
+              marker_list_, list_counts_ + 1, long(nm_),
+              MarkerStage<T, decltype(mx)>{k_, ec_, grid_, soil_begin_, eval, mk_, poses_, boxes_, active_boxes_},
+              lanes);
+        });
+      }
+      if (n_ == 0) return;
+      if (soil_list_stale_) B::select(long(n_), IsActiveSoil<T>{A_.a.vel}, soil_list_, list_counts_);
+      soil_list_stale_ = false;
+      with_named<InSoilLoop>(effects_, [&](auto fx) {
+        using Stage = SoilStage<T, decltype(fx)>;
+        const Stage stage{k_, ec_, grid_, soil_begin_, marker_begin_, eval, A_.a, out, mk_, dt};
+        if (out.pos != A_.a.pos) B::parallel_for(long(n_), typename Stage::CarryFrozen{stage});
+        B::parallel_for_listed(soil_list_, list_counts_, long(n_), stage, lanes);
+      });
+    }
+  }
+
+  // Threads per item in the listed stages (run_listed_stage; docs/decisions.md, "Active domain on
+  // the GPU"). TERRACAL_CUDA_LANES (1, 2, 4, 8, 16 or 32) overrides it for tuning runs.
+  static int stage_lanes() {
+    static const int forced = [] {
+      const char* e = std::getenv("TERRACAL_CUDA_LANES");
+      const int v = e ? std::atoi(e) : 0;
+      return v >= 1 && v <= 32 && (v & (v - 1)) == 0 ? v : 0;
+    }();
+    return forced ? forced : kActiveDomainLanes;
+  }
+  static constexpr int kActiveDomainLanes = 8;
 
   // Markers are re-derived from their canonical (construction-order) arrays at every sort, so that
   // their sorted order depends only on the current poses, never on the history: a run restarted
@@ -285,9 +346,11 @@ class SphEngineImpl final : public SphEngine {
     // The markers' forces are rewritten by every stage before they are read, so the sort borrows them.
     const SortArrays sa = SortArrays::in(mk_.force, nm_);
     B::parallel_for(long(nm_), MarkerCellKey<T>{grid_, canon_, sa.keys, sa.vals});
-    const int* perm = B::sort_cells(int(nm_), grid_.cells() + 1, sa.keys, sa.vals, sa.keys_alt, sa.vals_alt, marker_begin_);
+    const int* perm =
+        B::sort_cells(int(nm_), grid_.cells() + 1, sa.keys, sa.vals, sa.keys_alt, sa.vals_alt, marker_begin_);
     B::parallel_for(long(nm_), GatherMarkers<T>{canon_, mk_, needs_wall_normals(k_.marker_velocity), perm});
     markers_sorted_ = true;
+    marker_list_stale_ = true;
   }
 
   void upload_markers(const HostMarkers& m) {
@@ -331,6 +394,9 @@ class SphEngineImpl final : public SphEngine {
   BodyPose<T>* poses_ = nullptr;
   ActiveBox<T>* boxes_ = nullptr;
   double* wrench_ = nullptr;
+  // The active domain's lists on a backend that compacts it (run_listed_stage), made when stale.
+  int *soil_list_ = nullptr, *marker_list_ = nullptr, *list_counts_ = nullptr;
+  bool soil_list_stale_ = true, marker_list_stale_ = true;
 };
 
 }  // namespace terracal

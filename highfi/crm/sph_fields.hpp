@@ -5,6 +5,7 @@
 // the physical constants of the core. Pointers are device pointers on the CUDA backend and host
 // pointers on the CPU one; the physics never knows which.
 #include "core/host_device.hpp"
+#include "core/lane_group.hpp"
 #include "core/vec.hpp"
 #include "highfi/crm/marker_velocity.hpp"
 #include "highfi/crm/soil_model.hpp"
@@ -77,6 +78,10 @@ struct GridGeometry {
   // Calls f(first, last) for the contiguous index ranges (one per row) that cover the cells within
   // `reach` of the cell of p.
   template <typename F>
+  TERRACAL_HD void for_each_neighbour_range(const Vec3<T>& p, const int* begin, const SingleLane&, F&& f) const {
+    for_each_neighbour_range(p, begin, f);
+  }
+  template <typename F>
   TERRACAL_HD void for_each_neighbour_range(const Vec3<T>& p, const int* begin, F&& f) const {
     int ix, iy, iz;
     if (!cell_coords(p, ix, iy, iz)) return;
@@ -88,6 +93,22 @@ struct GridGeometry {
         const int row = nx * (y + ny * z);
         f(begin[row + x0], begin[row + x1 + 1]);
       }
+    }
+  }
+  // The same for lane g.lane of a group: rows g.lane, g.lane + g.lanes, ... of the (2 reach + 1)^2
+  // block (z major), so that the group's lanes take their k-th rows in the same iteration and run
+  // side by side instead of one after another.
+  template <typename F>
+  TERRACAL_HD void for_each_neighbour_range(const Vec3<T>& p, const int* begin, const LaneGroup& g, F&& f) const {
+    int ix, iy, iz;
+    if (!cell_coords(p, ix, iy, iz)) return;
+    const int x0 = ix - reach > 0 ? ix - reach : 0, x1 = ix + reach < nx ? ix + reach : nx - 1;
+    const int side = 2 * reach + 1;
+    for (int r = g.lane; r < side * side; r += g.lanes) {
+      const int z = iz - reach + r / side, y = iy - reach + r % side;
+      if (z < 0 || z >= nz || y < 0 || y >= ny) continue;
+      const int row = nx * (y + ny * z);
+      f(begin[row + x0], begin[row + x1 + 1]);
     }
   }
 };

@@ -118,4 +118,20 @@ struct MarkActive {
   }
 };
 
+// The active domain's work lists (backends that compact it, B::kCompactsActive): the soil particles
+// a stage integrates, and the markers it evaluates (those within the kernel's support of a box).
+template <typename T>
+struct IsActiveSoil {
+  const Vec4<T>* vel;
+  TERRACAL_HD bool operator()(int i) const { return vel[i].w == T(kParticleActive); }
+};
+template <typename T>
+struct IsMarkerNearActive {
+  const Vec4<T>* pos;
+  const ActiveBox<T>* boxes;
+  int count;
+  T support;
+  TERRACAL_HD bool operator()(int m) const { return near_active(boxes, count, pos[m].xyz(), support); }
+};
+
 }  // namespace terracal
