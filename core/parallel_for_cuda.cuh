@@ -21,6 +21,17 @@ void parallel_for_cuda(long n, const F& f, cudaStream_t stream = nullptr) {
   TERRACAL_CUDA_CHECK(cudaGetLastError());
 }
 
+// The current device's multiprocessors (asked once).
+inline int cuda_sm_count() {
+  static const int sms = [] {
+    int device = 0, count = 0;
+    TERRACAL_CUDA_CHECK(cudaGetDevice(&device));
+    TERRACAL_CUDA_CHECK(cudaDeviceGetAttribute(&count, cudaDevAttrMultiProcessorCount, device));
+    return std::max(count, 1);
+  }();
+  return sms;
+}
+
 // For loops of few long iterations (a ROM batch: one thread steps one vehicle through thousands of
 // steps), whose time is one thread's latency, not throughput: blocks small enough (down to one warp)
 // that every SM gets a share, instead of 256-thread blocks that pile a few thousand threads onto a
@@ -28,12 +39,7 @@ void parallel_for_cuda(long n, const F& f, cudaStream_t stream = nullptr) {
 template <typename F>
 void parallel_for_cuda_spread(long n, const F& f) {
   if (n <= 0) return;
-  static const int sms = [] {
-    int device = 0, count = 0;
-    TERRACAL_CUDA_CHECK(cudaGetDevice(&device));
-    TERRACAL_CUDA_CHECK(cudaDeviceGetAttribute(&count, cudaDevAttrMultiProcessorCount, device));
-    return std::max(count, 1);
-  }();
+  const int sms = cuda_sm_count();
   const long per_sm = (n + sms - 1) / sms;
   const int threads = static_cast<int>(std::clamp<long>((per_sm + 31) / 32 * 32, 32, 256));
   const long blocks = std::min<long>((n + threads - 1) / threads, 65535L * 8);

@@ -248,22 +248,27 @@ struct CudaBackend {
     return forced_min_blocks() ? forced_min_blocks() : PreferredMinBlocks<F>::value;
   }
   static constexpr int kListedMinBlocks = 3;
+  // f(std::integral_constant<int, k>) for k = blocks (1-4): the launch bounds are compile-time.
   template <typename F>
-  static void parallel_for_heavy(long n, const F& f) {
-    switch (min_blocks<F>()) {
+  static void with_blocks(int blocks, F&& f) {
+    switch (blocks) {
       case 1:
-        parallel_for_cuda_bounded<1>(n, f, stream());
+        f(std::integral_constant<int, 1>{});
         break;
       case 2:
-        parallel_for_cuda_bounded<2>(n, f, stream());
+        f(std::integral_constant<int, 2>{});
         break;
       case 3:
-        parallel_for_cuda_bounded<3>(n, f, stream());
+        f(std::integral_constant<int, 3>{});
         break;
       default:
-        parallel_for_cuda_bounded<4>(n, f, stream());
+        f(std::integral_constant<int, 4>{});
         break;
     }
+  }
+  template <typename F>
+  static void parallel_for_heavy(long n, const F& f) {
+    with_blocks(min_blocks<F>(), [&](auto k) { parallel_for_cuda_bounded<decltype(k)::value>(n, f, stream()); });
   }
   // The active domain runs its stages over lists of the busy particles and markers (select), so
   // that frozen ones take no thread of the neighbour stages (bench/RESULTS.md, "Active domain").
@@ -282,26 +287,11 @@ struct CudaBackend {
   // than occupancy (bench/RESULTS.md, "Active domain on the GPU").
   template <typename F>
   static void parallel_for_listed(const int* list, const int* count, long max_items, const F& f, int lanes) {
-    static const int sms = [] {
-      int device = 0, c = 0;
-      TERRACAL_CUDA_CHECK(cudaGetDevice(&device));
-      TERRACAL_CUDA_CHECK(cudaDeviceGetAttribute(&c, cudaDevAttrMultiProcessorCount, device));
-      return std::max(c, 1);
-    }();
-    switch (std::min(min_blocks<F>(), forced_min_blocks() ? 4 : kListedMinBlocks)) {
-      case 1:
-        parallel_for_cuda_listed<1>(list, count, max_items, lanes, long(sms), f, stream());
-        break;
-      case 2:
-        parallel_for_cuda_listed<2>(list, count, max_items, lanes, long(sms) * 2, f, stream());
-        break;
-      case 3:
-        parallel_for_cuda_listed<3>(list, count, max_items, lanes, long(sms) * 3, f, stream());
-        break;
-      default:
-        parallel_for_cuda_listed<4>(list, count, max_items, lanes, long(sms) * 4, f, stream());
-        break;
-    }
+    const long sms = cuda_sm_count();
+    with_blocks(std::min(min_blocks<F>(), forced_min_blocks() ? 4 : kListedMinBlocks), [&](auto k) {
+      constexpr int blocks = decltype(k)::value;
+      parallel_for_cuda_listed<blocks>(list, count, max_items, lanes, sms * blocks, f, stream());
+    });
   }
   template <typename U>
   static void zero(U* p, std::size_t n) {
