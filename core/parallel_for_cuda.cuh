@@ -36,15 +36,29 @@ inline int cuda_sm_count() {
 // steps), whose time is one thread's latency, not throughput: blocks small enough (down to one warp)
 // that every SM gets a share, instead of 256-thread blocks that pile a few thousand threads onto a
 // quarter of the SMs.
+inline int spread_block_threads(long n) {
+  const int sms = cuda_sm_count();
+  const long per_sm = (n + sms - 1) / sms;
+  return static_cast<int>(std::clamp<long>((per_sm + 31) / 32 * 32, 32, 256));
+}
+
 template <typename F>
 void parallel_for_cuda_spread(long n, const F& f) {
   if (n <= 0) return;
-  const int sms = cuda_sm_count();
-  const long per_sm = (n + sms - 1) / sms;
-  const int threads = static_cast<int>(std::clamp<long>((per_sm + 31) / 32 * 32, 32, 256));
+  const int threads = spread_block_threads(n);
   const long blocks = std::min<long>((n + threads - 1) / threads, 65535L * 8);
   parallel_for_kernel<<<static_cast<unsigned>(blocks), threads>>>(n, f);
   TERRACAL_CUDA_CHECK(cudaGetLastError());
+}
+
+// Whether parallel_for_cuda_spread(n, F) runs all its blocks at once (one wave): then the loop lasts
+// one thread's time, and more threads per item shorten it; past one wave they queue.
+template <typename F>
+bool spread_fits_one_wave(long n) {
+  const int threads = spread_block_threads(n);
+  int per_sm = 0;
+  TERRACAL_CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, parallel_for_kernel<F>, threads, 0));
+  return (n + threads - 1) / threads <= long(per_sm) * cuda_sm_count();
 }
 
 // For register-heavy functors: __launch_bounds__ asks the compiler to fit `MinBlocks` blocks of 256

@@ -8,6 +8,7 @@
 #include "core/vehicle/driver_inputs.hpp"
 #include "rom/driveline.hpp"
 #include "rom/wheel_contact.hpp"
+#include "rom/wheel_group.hpp"
 
 namespace terracal::rom {
 
@@ -22,51 +23,81 @@ struct FourWheelForces {
   double fz[4] = {};
 };
 
+// Wheel w's contact as the lane that computed it has it (one lane: its own slot w).
+template <class G>
+TERRACAL_HD_INLINE WheelContact contact_of_wheel(const G& g, const WheelContact (&mine)[G::kSlots], int w) {
+  if constexpr (G::kLanes == 1) {
+    return mine[w];
+  } else {
+    WheelContact c;
+    c.fx = g.from_wheel(mine[0].fx, w);
+    c.fy = g.from_wheel(mine[0].fy, w);
+    c.dxe = g.from_wheel(mine[0].dxe, w);
+    c.dye = g.from_wheel(mine[0].dye, w);
+    c.rdyn = g.from_wheel(mine[0].rdyn, w);
+    c.resist = g.from_wheel(mine[0].resist, w);
+    return c;
+  }
+}
+
 // The four tires in stages (loads, slips, stiffnesses, forces), each stage over all wheels: the
 // wheels' long chains of divisions and square roots are independent, and laid side by side the CPU
 // overlaps them (about 1.3x faster than wheel after wheel on the dev VM). The same functions as
-// wheel_contact.
-template <class M>
+// wheel_contact. With a group of four GPU lanes (rom/wheel_group.hpp) each lane's stages take its
+// own wheel, and the contacts are exchanged before the chassis sums, which every lane adds in wheel
+// order as one lane does.
+template <class M, class G = OneLanePerVehicle>
 TERRACAL_HD_INLINE FourWheelForces four_wheel_contacts(const RomVehicle& v, double cd, double sd, const double* y,
-                                                       const double* fz) {
-  FourWheelForces f;
-  TmeasyLoadState st[4];
-  Planar vw[4];
-  for (int w = 0; w < 4; ++w) {
-    const int axle = w / 2;
-    f.fz[w] = fz[w];
+                                                       const double* fz, const G& g = G{}) {
+  constexpr int kSlots = G::kSlots;
+  TmeasyLoadState st[kSlots];
+  Planar vw[kSlots];
+  double load[kSlots];
+  for (int j = 0; j < kSlots; ++j) {
+    const int w = g.wheel(j), axle = w / 2;
+    load[j] = G::of_wheel(fz, w);
     const double px = wheel_x(v, w), py = wheel_y(v, w);
-    vw[w] = to_wheel_frame(y[M::kVx] - y[M::kYawRate] * py, y[M::kVy] + y[M::kYawRate] * px, axle == 0 ? cd : 1.0,
+    vw[j] = to_wheel_frame(y[M::kVx] - y[M::kYawRate] * py, y[M::kVy] + y[M::kYawRate] * px, axle == 0 ? cd : 1.0,
                            axle == 0 ? sd : 0.0);
-    st[w] = tmeasy_at_load(v.tire[axle], fz[w], v.friction);
+    st[j] = tmeasy_at_load(v.tire[axle], load[j], v.friction);
   }
-  TmeasySlips sl[4];
-  for (int w = 0; w < 4; ++w) sl[w] = tmeasy_slips(vw[w].x, vw[w].y, y[M::kSpin + w], st[w].rdyn);
-  TmeasyStiffness k[4];
-  for (int w = 0; w < 4; ++w) k[w] = tmeasy_steady_stiffness(st[w], sl[w].sx, sl[w].sy, fz[w]);
-  SoilContact soil[4];
-  for (int w = 0; w < 4; ++w) soil[w] = soil_contact(v, fz[w], sl[w], vw[w].x, 1.0, &k[w]);
-  for (int w = 0; w < 4; ++w) {
-    const int axle = w / 2;
-    const TmeasyParams& tire = v.tire[axle];
-    WheelContact& c = f.w[w];
-    c.rdyn = st[w].rdyn;
-    if (fz[w] <= 0.0) {  // a wheel off the ground: no force; the tread relaxes
-      c.dxe = -y[M::kXe + w] * tire.longitudinal_stiffness / tire.longitudinal_damping;
-      c.dye = -y[M::kYe + w] * tire.lateral_stiffness / tire.lateral_damping;
+  TmeasySlips sl[kSlots];
+  for (int j = 0; j < kSlots; ++j)
+    sl[j] = tmeasy_slips(vw[j].x, vw[j].y, G::of_wheel(y + M::kSpin, g.wheel(j)), st[j].rdyn);
+  TmeasyStiffness k[kSlots];
+  for (int j = 0; j < kSlots; ++j) k[j] = tmeasy_steady_stiffness(st[j], sl[j].sx, sl[j].sy, load[j]);
+  SoilContact soil[kSlots];
+  for (int j = 0; j < kSlots; ++j) soil[j] = soil_contact(v, load[j], sl[j], vw[j].x, 1.0, &k[j]);
+  WheelContact mine[kSlots];
+  for (int j = 0; j < kSlots; ++j) {
+    const int w = g.wheel(j);
+    const TmeasyParams& tire = v.tire[w / 2];
+    const double xe = G::of_wheel(y + M::kXe, w), ye = G::of_wheel(y + M::kYe, w);
+    WheelContact& c = mine[j];
+    c.rdyn = st[j].rdyn;
+    if (load[j] <= 0.0) {  // a wheel off the ground: no force; the tread relaxes
+      c.dxe = -xe * tire.longitudinal_stiffness / tire.longitudinal_damping;
+      c.dye = -ye * tire.lateral_stiffness / tire.lateral_damping;
     } else if (v.has(kEffectTireRelaxation)) {
-      const TmeasyRelaxed r = tmeasy_relaxed(tire, k[w], sl[w], vw[w].x, vw[w].y, y[M::kSpin + w], st[w].rdyn,
-                                             y[M::kXe + w], y[M::kYe + w]);
+      const TmeasyRelaxed r = tmeasy_relaxed(tire, k[j], sl[j], vw[j].x, vw[j].y, G::of_wheel(y + M::kSpin, w),
+                                             st[j].rdyn, xe, ye);
       c.fx = r.fx;
       c.fy = r.fy;
       c.dxe = r.dxe;
       c.dye = r.dye;
     } else {
-      c.fx = k[w].kx * sl[w].sx;
-      c.fy = k[w].ky * sl[w].sy;
+      c.fx = k[j].kx * sl[j].sx;
+      c.fy = k[j].ky * sl[j].sy;
     }
-    c.fx += soil[w].thrust0;
-    c.resist = soil[w].resist;
+    c.fx += soil[j].thrust0;
+    c.resist = soil[j].resist;
+  }
+  FourWheelForces f;
+  for (int w = 0; w < 4; ++w) {
+    const int axle = w / 2;
+    f.fz[w] = fz[w];
+    WheelContact& c = f.w[w];
+    c = contact_of_wheel(g, mine, w);
     const Planar fc = to_chassis_frame(c.fx + c.resist, c.fy, axle == 0 ? cd : 1.0, axle == 0 ? sd : 0.0);
     f.fx += fc.x;
     f.fy += fc.y;

@@ -10,6 +10,7 @@
 #include "core/vehicle/driver_inputs.hpp"
 #include "core/vehicle/powertrain.hpp"
 #include "rom/rom_vehicle.hpp"
+#include "rom/wheel_group.hpp"
 
 namespace terracal::rom {
 
@@ -17,11 +18,12 @@ namespace terracal::rom {
 inline constexpr double kMaxSpeed = 1000.0;  // [m/s]
 inline constexpr double kMaxSpin = 20000.0;  // wheel or crank [rad/s]
 
-template <class M>
+// `g`: the lanes that share the vehicle's wheels (rom/wheel_group.hpp); each ends with the same state.
+template <class M, class G = OneLanePerVehicle>
 TERRACAL_HD bool half_implicit_step(const RomVehicle& v, const DriverInput& in, int& gear, double* y, double h,
-                                    RomAux* aux) {
+                                    RomAux* aux, const G& g = G{}) {
   double dy[M::kStates];
-  M::rhs(v, in, gear, y, dy, aux, false, false);
+  M::rhs(v, in, gear, y, dy, aux, false, false, g);
   for (int i = 0; i < M::kStates; ++i)
     if (!M::is_position(i)) y[i] += h * dy[i];
   for (int w = 0; w < M::kWheels; ++w) {

@@ -10,6 +10,7 @@
 #include "rom/loads.hpp"
 #include "rom/rom_sample.hpp"
 #include "rom/wheel_contact.hpp"
+#include "rom/wheel_group.hpp"
 
 namespace terracal::rom {
 
@@ -51,8 +52,11 @@ struct Rom11 {
     return f;
   }
 
+  // The wheel group is taken for the batch's sake and must be one lane: two axles are not split.
+  template <class G = OneLanePerVehicle>
   static TERRACAL_HD void rhs(const RomVehicle& v, const DriverInput& in, int gear, const double* y, double* dy,
-                              RomAux* aux, bool smooth_dry, bool positions = true) {
+                              RomAux* aux, bool smooth_dry, bool positions = true, const G& = G{}) {
+    static_assert(G::kLanes == 1, "the single-track model runs one lane per vehicle");
     const double delta = steer_angle(v, in);
     const double cd = cos(delta), sd = sin(delta);
     const double m = v.total_mass();

@@ -49,7 +49,9 @@ struct Rom18 {
   struct Forces : FourWheelForces {
     double roll = 0, roll_rate = 0;
   };
-  static TERRACAL_HD Forces forces(const RomVehicle& v, double cd, double sd, const double* y, double ax, double ay) {
+  template <class G = OneLanePerVehicle>
+  static TERRACAL_HD Forces forces(const RomVehicle& v, double cd, double sd, const double* y, double ax, double ay,
+                                   const G& g = G{}) {
     Forces f;
     const AxleLoads axle = axle_loads(v, ax);
     f.roll = v.has(kEffectRoll) ? y[kRoll] : steady_roll(v, ay);
@@ -59,16 +61,17 @@ struct Rom18 {
       const double transfer = lateral_transfer(v, w / 2, ay, f.roll, f.roll_rate);
       fz[w] = 0.5 * (w < 2 ? axle.front : axle.rear) + (w % 2 == 0 ? -transfer : transfer);
     }
-    static_cast<FourWheelForces&>(f) = four_wheel_contacts<Rom18>(v, cd, sd, y, fz);
+    static_cast<FourWheelForces&>(f) = four_wheel_contacts<Rom18>(v, cd, sd, y, fz, g);
     return f;
   }
 
   // dy = f(y). `smooth_dry`: brake and rolling resistance as smooth torques (ODE solvers); else
   // left out and reported in aux->dry_torque for the fixed-step scheme to apply implicitly.
   // `positions` false leaves the position rates out (the fixed-step scheme takes them after the
-  // velocities).
+  // velocities). `g`: the lanes that share the vehicle's wheels (rom/wheel_group.hpp).
+  template <class G = OneLanePerVehicle>
   static TERRACAL_HD void rhs(const RomVehicle& v, const DriverInput& in, int gear, const double* y, double* dy,
-                              RomAux* aux, bool smooth_dry, bool positions = true) {
+                              RomAux* aux, bool smooth_dry, bool positions = true, const G& g = G{}) {
     const double delta = steer_angle(v, in);
     const double cd = cos(delta), sd = sin(delta);
     const double m = v.total_mass();
@@ -81,11 +84,11 @@ struct Rom18 {
       ax = a.x;
       ay = a.y;
     } else {
-      const Forces first = forces(v, cd, sd, y, 0.0, 0.0);
+      const Forces first = forces(v, cd, sd, y, 0.0, 0.0, g);
       ax = first.fx / m;
       ay = first.fy / m;
     }
-    const Forces f = forces(v, cd, sd, y, ax - drag / m, ay);
+    const Forces f = forces(v, cd, sd, y, ax - drag / m, ay, g);
     ax = (f.fx - drag) / m;
     ay = f.fy / m;
     dy[kVx] = ax + y[kVy] * y[kYawRate];

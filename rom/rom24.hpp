@@ -75,8 +75,10 @@ struct Rom24 {
     for (int w = 0; w < 4; ++w) dy[kWheelZ + w] = y[kWheelVz + w];
   }
 
+  // `g`: the lanes that share the vehicle's wheels (rom/wheel_group.hpp).
+  template <class G = OneLanePerVehicle>
   static TERRACAL_HD void rhs(const RomVehicle& v, const DriverInput& in, int gear, const double* y, double* dy,
-                              RomAux* aux, bool smooth_dry, bool positions = true) {
+                              RomAux* aux, bool smooth_dry, bool positions = true, const G& g = G{}) {
     const double delta = steer_angle(v, in);
     const double cd = cos(delta), sd = sin(delta);
     const Statics st = statics(v);
@@ -93,7 +95,7 @@ struct Rom24 {
       spring[w] = st.corner_load[w] + v.spring_rate[a] * compression + v.damper_rate[a] * rate;
       fz[w] = max_of(0.0, v.tire[a].vertical_stiffness * (v.tire[a].unloaded_radius - y[kWheelZ + w]));
     }
-    const FourWheelForces f = four_wheel_contacts<Rom24>(v, cd, sd, y, fz);
+    const FourWheelForces f = four_wheel_contacts<Rom24>(v, cd, sd, y, fz, g);
     const double m = v.total_mass();
     const double drag = aero_drag(v, y[kVx]);
     const double ax = (f.fx - drag) / m, ay = f.fy / m;

@@ -1,5 +1,6 @@
 // The GPU batch: vehicles' parameters and drivers copied once, then chunks of vehicles run as one
-// CUDA thread each (the same BatchKernel as the CPU), and only the reduced outputs come back.
+// CUDA thread each, or four for the four-wheel models (the same BatchKernel as the CPU), and only the
+// reduced outputs come back.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -96,7 +97,7 @@ std::vector<RomVehicle> with_device_tables(const std::vector<RomVehicle>& vehicl
   return out;
 }
 
-template <class M>
+template <class M, int Lanes>
 void run_device(const std::vector<RomVehicle>& vehicles, const std::vector<const DriverSeries*>& drivers, long n,
                 const BatchOptions& o, BatchResult& r) {
   // deformable_terrain tables: each distinct one copied once, the vehicles' views pointed at it.
@@ -129,7 +130,8 @@ void run_device(const std::vector<RomVehicle>& vehicles, const std::vector<const
   }
   DeviceArray<DriverSeriesView> d_views(views.data(), views.size());
 
-  BatchKernel<M> k = configure_batch<M>(o, static_cast<long>(vehicles.size()), static_cast<long>(views.size()), n, r);
+  BatchKernel<M, Lanes> k =
+      configure_batch<M, Lanes>(o, static_cast<long>(vehicles.size()), static_cast<long>(views.size()), n, r);
   k.vehicles = d_vehicles;
   k.drivers = d_views.p;
   const std::vector<long> steps = batch_steps(o);
@@ -162,7 +164,7 @@ void run_device(const std::vector<RomVehicle>& vehicles, const std::vector<const
     TERRACAL_CUDA_CHECK(
         cudaMemset(k.channels, 0, static_cast<std::size_t>(k.n_channels) * k.samples * count * sizeof(double)));
     const auto launched = std::chrono::steady_clock::now();
-    parallel_for_cuda_spread(count, k);
+    parallel_for_cuda_spread(count * Lanes, k);
     TERRACAL_CUDA_CHECK(cudaDeviceSynchronize());
     r.stepping_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - launched).count();
     // [quantity][count] blocks of this chunk into [quantity][n] of the whole batch.
@@ -191,7 +193,17 @@ void run_rom_batch_cuda(const std::vector<RomVehicle>& vehicles, const std::vect
   }();
   r.device = name;
   const auto start = std::chrono::steady_clock::now();
-  with_model(o.model, [&](auto model) { run_device<decltype(model)>(vehicles, drivers, n, o, r); });
+  with_model(o.model, [&](auto model) {
+    using M = decltype(model);
+    // A batch that fits on the GPU at once with one lane per wheel (a calibrator's step) lasts one
+    // vehicle's time, which the four lanes shorten; a larger one is bound by throughput, which the
+    // lanes' repeated chassis arithmetic lowers (rom/wheel_group.hpp).
+    if constexpr (M::kWheels == 4) {
+      const long per_chunk = o.max_chunk > 0 ? std::min(n, o.max_chunk) : n;
+      if (spread_fits_one_wave<BatchKernel<M, 4>>(per_chunk * 4)) return run_device<M, 4>(vehicles, drivers, n, o, r);
+    }
+    run_device<M, 1>(vehicles, drivers, n, o, r);
+  });
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   r.failed = count_failed(r);
 }

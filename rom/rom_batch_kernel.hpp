@@ -1,8 +1,9 @@
 #pragma once
 // The body of the batch loop: vehicle i steps from rest (or its initial speed) to the end time with
 // the half-implicit scheme, keeping its state in registers, and writes its summary metrics, its
-// final state and its sampled channels once. Compiled for the CPU (OpenMP) and the GPU (one thread
-// per vehicle) from this one source.
+// final state and its sampled channels once. Compiled for the CPU (OpenMP, one iteration per vehicle)
+// and the GPU (`Lanes` threads per vehicle, one per wheel of the four-wheel models: rom/wheel_group.hpp)
+// from this one source.
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -11,11 +12,13 @@
 #include "core/vehicle/driver_inputs.hpp"
 #include "rom/half_implicit.hpp"
 #include "rom/rom_batch.hpp"
+#include "rom/wheel_group.hpp"
 
 namespace terracal::rom {
 
-template <class M>
+template <class M, int Lanes = 1>
 struct BatchKernel {
+  using Group = WheelGroup<Lanes>;
   const RomVehicle* vehicles = nullptr;  // n_vehicles entries (1: shared)
   long n_vehicles = 1;
   const DriverSeriesView* drivers = nullptr;  // n_drivers entries (1: shared)
@@ -62,30 +65,40 @@ struct BatchKernel {
 
   // A sample at state y: ax and ay from the right-hand side there, with the inputs of the step that
   // led to it, as a single run samples them (rom_run.cpp, sample_at).
-  TERRACAL_HD void record(int s, long i, const RomVehicle& v, const DriverInput& in, int gear, const double* y) const {
+  TERRACAL_HD void record(int s, long i, const RomVehicle& v, const DriverInput& in, int gear, const double* y,
+                          const Group& lanes) const {
     RomAux aux;
     if (sample_aux) {
       double dy[M::kStates];
-      M::rhs(v, in, gear, y, dy, &aux, true);
+      M::rhs(v, in, gear, y, dy, &aux, true, true, lanes);
     }
+    if (!lanes.leader()) return;
     for (int c = 0; c < n_channels; ++c)
       channels[(long(c) * samples + s) * count + i] = channel_value(channel[c], y, aux);
   }
 
-  TERRACAL_HD void operator()(long i) const {
-    const long g = first + i;
+  // Iteration t: vehicle t / Lanes of this chunk, wheel t % Lanes (the GPU's threads; the CPU's
+  // iterations with one lane).
+  TERRACAL_HD void operator()(long t) const {
+#if defined(__CUDA_ARCH__)
+    const Group lanes = wheel_group_of<Lanes>(t);
+#else
+    const Group lanes;  // one lane: groups share a vehicle through warp shuffles, on the GPU only
+#endif
+    const long i = t / Lanes, g = first + i;
     if (n_vehicles == 1) {
-      simulate(vehicles[0], i, g);  // shared: every thread reads the same (cached) parameters
+      simulate(vehicles[0], i, g, lanes);  // shared: every thread reads the same (cached) parameters
     } else {
       // Own parameters: a private copy, which the GPU lays out thread-interleaved (its local
       // memory), so neighbouring threads' reads of one field coalesce instead of striding by
       // sizeof(RomVehicle).
       const RomVehicle own = vehicles[g];
-      simulate(own, i, g);
+      simulate(own, i, g, lanes);
     }
   }
 
-  TERRACAL_HD void simulate(const RomVehicle& v, long i, long g) const {
+  // Every lane of a group steps the same state (the same bits); the leader writes the outputs.
+  TERRACAL_HD void simulate(const RomVehicle& v, long i, long g, const Group& lanes) const {
     const long di = n_drivers == 1 ? 0 : g;
     const DriverSeriesView& d = drivers[di];
     const long steps = driver_steps ? driver_steps[di] : this->steps;
@@ -93,11 +106,11 @@ struct BatchKernel {
     int gear = M::initial_state(v, initial_speeds ? initial_speeds[di] : initial_speed, y);
     RomAux aux;
     double max_ay = 0, max_r = 0, max_roll = 0, failed_at = -1;
-    if (sample_every > 0) record(0, i, v, d.at(0.0), gear, y);
+    if (sample_every > 0) record(0, i, v, d.at(0.0), gear, y, lanes);
     int cursor = 0;  // the driver's row at the last step
     for (long k = 0; k < steps; ++k) {
       const DriverInput in = d.at(k * step, cursor);
-      if (!half_implicit_step<M>(v, in, gear, y, step, &aux)) {
+      if (!half_implicit_step<M>(v, in, gear, y, step, &aux, lanes)) {
         failed_at = (k + 1) * step;
         break;
       }
@@ -105,8 +118,9 @@ struct BatchKernel {
       max_r = max_of(max_r, fabs(y[M::kYawRate]));
       max_roll = max_of(max_roll, fabs(M::roll_of(y)));
       if (sample_every > 0 && (k + 1) % sample_every == 0)
-        record(int((k + 1) / sample_every), i, v, in, gear, y);
+        record(int((k + 1) / sample_every), i, v, in, gear, y, lanes);
     }
+    if (!lanes.leader()) return;
     const double m[kBatchMetricCount] = {y[M::kX], y[M::kY], y[M::kYaw], y[M::kVx], max_ay, max_r, max_roll, failed_at};
     for (int k = 0; k < kBatchMetricCount; ++k) metrics[long(k) * count + i] = m[k];
     for (int k = 0; k < M::kStates; ++k) final_state[long(k) * count + i] = y[k];
@@ -123,9 +137,9 @@ inline std::vector<long> batch_steps(const BatchOptions& o) {
 
 // The loop's settings from the options, and the result's arrays sized for n vehicles (host code;
 // the CPU and GPU batches share it).
-template <class M>
-BatchKernel<M> configure_batch(const BatchOptions& o, long n_vehicles, long n_drivers, long n, BatchResult& r) {
-  BatchKernel<M> k;
+template <class M, int Lanes = 1>
+BatchKernel<M, Lanes> configure_batch(const BatchOptions& o, long n_vehicles, long n_drivers, long n, BatchResult& r) {
+  BatchKernel<M, Lanes> k;
   k.n_vehicles = n_vehicles;
   k.n_drivers = n_drivers;
   k.step = o.step;
