@@ -464,7 +464,7 @@ void sample_posterior(const Target& target, const CalibrationOptions& opt, Calib
     if (res.draws >= 4 && sampling_done(opt, cp, res)) break;
     // Blocks grow with the chain (a quarter of the draws so far), so convergence checks and
     // checkpoint writes cost O(N log N) overall instead of O(N^2).
-    const long block = std::max<long>(opt.block, res.draws / 4);
+    const long block = opt.growing_blocks ? std::max<long>(opt.block, res.draws / 4) : opt.block;
     const int n = static_cast<int>(std::min<long>(block, std::max<long>(opt.max_draws - res.draws, 1)));
     sampler->advance(n, false, &cp.records);
     save();

@@ -42,6 +42,10 @@ struct CalibrationOptions {
   double max_rhat = 1.01;       // rank-normalised split R-hat per parameter
   int warmup = 1000;            // iterations per chain with adaptation, discarded
   int block = 500;              // iterations per chain between convergence checks / checkpoints
+  // Blocks grow to a quarter of the draws so far (checks and checkpoints then cost O(N log N) over a
+  // long run); false: a check every `block` iterations, for samplers whose iterations are few and
+  // each far dearer than a check (i-SIR: a GPU launch per step).
+  bool growing_blocks = true;
   long max_draws = 100000;      // per chain; reaching it ends the run as not converged
   std::string checkpoint_path;  // empty: no checkpoint
   std::string fingerprint;      // identifies data + options; a checkpoint with another is reported and ignored

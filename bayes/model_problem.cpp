@@ -74,16 +74,46 @@ double ModelProblem::log_prior(const Eigen::VectorXd& x) const {
   return lp;
 }
 
-std::vector<std::vector<double>> ModelProblem::predict(const std::vector<Eigen::VectorXd>& xs) const {
-  // Only points inside the support are run: a simulation outside its parameters' range may not
-  // even start.
+// Only points inside the support are run: a simulation outside its parameters' range may not even
+// start.
+std::vector<Eigen::VectorXd> ModelProblem::inside_support(const std::vector<Eigen::VectorXd>& xs,
+                                                          std::vector<std::size_t>& where) const {
   std::vector<Eigen::VectorXd> inside;
-  std::vector<std::size_t> where;
+  where.clear();
   for (std::size_t i = 0; i < xs.size(); ++i)
     if (std::isfinite(log_prior(xs[i]))) {
       inside.push_back(xs[i]);
       where.push_back(i);
     }
+  return inside;
+}
+
+std::vector<Eigen::VectorXd> ModelProblem::run_sse(const std::vector<Eigen::VectorXd>& xs) const {
+  std::vector<std::size_t> where;
+  const std::vector<Eigen::VectorXd> inside = inside_support(xs, where);
+  std::vector<Eigen::VectorXd> out(xs.size(), Eigen::VectorXd::Constant(num_channels(), kNaN));
+  if (inside.empty()) return out;
+  runs_ += static_cast<long>(inside.size());
+  std::vector<std::vector<double>> ran;
+  try {
+    batch_sse_(inside, ran);
+  } catch (const std::exception&) {
+    ran.assign(inside.size(), {});
+  }
+  for (std::size_t k = 0; k < inside.size(); ++k) {
+    bool ok = k < ran.size() && ran[k].size() == static_cast<std::size_t>(num_channels());
+    for (int c = 0; ok && c < num_channels(); ++c) ok = std::isfinite(ran[k][c]);
+    if (ok)
+      out[where[k]] = Eigen::Map<const Eigen::VectorXd>(ran[k].data(), num_channels());
+    else
+      ++failed_runs_;
+  }
+  return out;
+}
+
+std::vector<std::vector<double>> ModelProblem::predict(const std::vector<Eigen::VectorXd>& xs) const {
+  std::vector<std::size_t> where;
+  const std::vector<Eigen::VectorXd> inside = inside_support(xs, where);
   std::vector<std::vector<double>> out(xs.size()), ran;
   if (inside.empty()) return out;
   runs_ += static_cast<long>(inside.size());
@@ -134,8 +164,13 @@ std::vector<Eigen::VectorXd> ModelProblem::sse(const std::vector<Eigen::VectorXd
     }
   }
   if (todo.empty()) return out;
-  const auto f = predict(todo);
-  for (std::size_t k = 0; k < todo.size(); ++k) out[where[k]] = sse_of(f[k]);
+  if (batch_sse_) {
+    const auto f = run_sse(todo);
+    for (std::size_t k = 0; k < todo.size(); ++k) out[where[k]] = f[k];
+  } else {
+    const auto f = predict(todo);
+    for (std::size_t k = 0; k < todo.size(); ++k) out[where[k]] = sse_of(f[k]);
+  }
   std::lock_guard<std::mutex> lock(cache_mutex_);
   if (cache_.size() + todo.size() > kCacheLimit) {
     // Full: start again from this call's points, hits included (a sampler asks for its chains'

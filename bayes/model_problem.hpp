@@ -53,6 +53,11 @@ struct ModelChannel {
 using BatchForward =
     std::function<void(const std::vector<Eigen::VectorXd>& params, std::vector<std::vector<double>>& out)>;
 
+// out[i]: each channel's SSE for params[i] (ModelProblem::sse_of of its predictions, to round-off),
+// an empty vector when that run failed. A forward model that compares where it runs (a GPU batch)
+// returns these few numbers per run instead of its predictions.
+using BatchSse = std::function<void(const std::vector<Eigen::VectorXd>& params, std::vector<std::vector<double>>& out)>;
+
 class ModelProblem {
  public:
   // Throws InputError for no parameters, a fixed or inverted prior, an empty channel, or channel
@@ -72,6 +77,8 @@ class ModelProblem {
   // SSE per channel for each x (one batch); NaN entries for a failed run or a point outside the
   // support. Results are remembered, so a Gibbs step at a point just evaluated costs no run.
   std::vector<Eigen::VectorXd> sse(const std::vector<Eigen::VectorXd>& xs) const;
+  // From now on sse() asks `f` for the sums instead of the predictions (predict() is unchanged).
+  void set_batch_sse(BatchSse f) { batch_sse_ = std::move(f); }
   // The per-channel SSE of one prediction vector.
   Eigen::VectorXd sse_of(const std::vector<double>& prediction) const;
   // log p(theta, s^2 | y) up to a constant, from a point's SSE.
@@ -96,6 +103,12 @@ class ModelProblem {
   std::vector<ModelParameter> parameters_;
   std::vector<ModelChannel> channels_;
   BatchForward forward_;
+  BatchSse batch_sse_;  // optional
+  // xs inside the prior's support (only these are run), and where each stands in xs.
+  std::vector<Eigen::VectorXd> inside_support(const std::vector<Eigen::VectorXd>& xs,
+                                              std::vector<std::size_t>& where) const;
+  // SSE per channel of each x through batch_sse_; NaN entries for a failed run or a point outside.
+  std::vector<Eigen::VectorXd> run_sse(const std::vector<Eigen::VectorXd>& xs) const;
   std::size_t rows_ = 0;
   std::vector<std::size_t> offset_;  // first row of each channel in a prediction vector
   Eigen::VectorXd tau_;              // each channel's residual correlation time (1: white noise)

@@ -79,8 +79,8 @@ TERRACAL_HD_INLINE FourWheelForces four_wheel_contacts(const RomVehicle& v, doub
       c.dxe = -xe * tire.longitudinal_stiffness / tire.longitudinal_damping;
       c.dye = -ye * tire.lateral_stiffness / tire.lateral_damping;
     } else if (v.has(kEffectTireRelaxation)) {
-      const TmeasyRelaxed r = tmeasy_relaxed(tire, k[j], sl[j], vw[j].x, vw[j].y, G::of_wheel(y + M::kSpin, w),
-                                             st[j].rdyn, xe, ye);
+      const TmeasyRelaxed r =
+          tmeasy_relaxed(tire, k[j], sl[j], vw[j].x, vw[j].y, G::of_wheel(y + M::kSpin, w), st[j].rdyn, xe, ye);
       c.fx = r.fx;
       c.fy = r.fy;
       c.dxe = r.dxe;

@@ -30,6 +30,13 @@ void check_batch(const std::vector<RomVehicle>& vehicles, const std::vector<cons
       throw InputError(fmt::format("batch: {} per-driver {} for {} drivers (expected none or {})", per->size(),
                                    per == &o.end_times ? "end times" : "initial speeds", drivers.size(),
                                    drivers.size()));
+  if (!o.targets.empty() && o.targets.size() != drivers.size())
+    throw InputError(fmt::format("batch: {} target sets for {} drivers (expected none or {})", o.targets.size(),
+                                 drivers.size(), drivers.size()));
+  for (const BatchTargets* t : o.targets)
+    if (o.output_rate <= 0 || o.channels.empty() || !t || t->s0.size() != t->w.size() || t->s1.size() != t->w.size() ||
+        t->y.size() != t->w.size() * o.channels.size())
+      throw InputError("batch: targets need an output rate, channels, and s0, s1, w and y for every row");
   for (double t : o.end_times)
     if (!(t > 0 && std::isfinite(t))) throw InputError(fmt::format("batch: end time {}: expected > 0 s", t));
   for (double v : o.initial_speeds)
@@ -45,6 +52,10 @@ void run_cpu(const std::vector<RomVehicle>& vehicles, const std::vector<DriverSe
   BatchKernel<M> k = configure_batch<M>(o, static_cast<long>(vehicles.size()), static_cast<long>(views.size()), n, r);
   k.vehicles = vehicles.data();
   k.drivers = views.data();
+  std::vector<BatchTargetView> targets;
+  for (const BatchTargets* t : o.targets)
+    targets.push_back({t->s0.data(), t->s1.data(), t->w.data(), t->y.data(), t->rows()});
+  if (!targets.empty()) k.targets = targets.data();
   const std::vector<long> steps = batch_steps(o);
   if (!o.end_times.empty()) k.driver_steps = steps.data();
   if (!o.initial_speeds.empty()) k.initial_speeds = o.initial_speeds.data();
@@ -52,6 +63,7 @@ void run_cpu(const std::vector<RomVehicle>& vehicles, const std::vector<DriverSe
   k.metrics = r.metrics.data();
   k.channels = r.channels.data();
   k.final_state = r.final_state.data();
+  k.sse = r.sse.data();
   parallel_for_cpu(n, k);
   r.chunks = 1;
 }

@@ -35,6 +35,17 @@ enum BatchMetric : int {
 inline constexpr const char* kBatchMetricNames[] = {"final_x",    "final_y",          "final_yaw",    "final_vx",
                                                     "max_abs_ay", "max_abs_yaw_rate", "max_abs_roll", "failed_at"};
 
+// What a run is compared with, for a batch that returns each run's sum of squared differences per
+// channel (BatchResult::sse) in place of its samples: a calibrator's GPU step then copies a few
+// numbers per run instead of every sample. Row r, in time order, lies between the run's samples
+// s0[r] and s1[r] (s1 = s0 + 1, or s0 at the last sample) at weight w[r] towards s1, as
+// (1 - w) x[s0] + w x[s1]; y[c * rows + r] is its observed value of the batch's channel c.
+struct BatchTargets {
+  std::vector<int> s0, s1;
+  std::vector<double> w, y;
+  long rows() const { return static_cast<long>(w.size()); }
+};
+
 struct BatchOptions {
   RomModel model = RomModel::k18Dof;
   double step = 1e-3;          // half-implicit step [s]
@@ -49,6 +60,9 @@ struct BatchOptions {
   // of the sum of all (a GPU thread steps one vehicle, so a launch lasts as long as its longest
   // run). Channel samples past a run's own end are left at 0.
   std::vector<double> initial_speeds, end_times;
+  // Per driver (one entry per driver given), or empty: with them the batch returns BatchResult::sse
+  // and no channel samples (output_rate and channels still set the samples compared).
+  std::vector<const BatchTargets*> targets;
 };
 
 struct BatchResult {
@@ -57,6 +71,7 @@ struct BatchResult {
   std::vector<double> metrics;      // [metric][vehicle]
   std::vector<double> channels;     // [channel][sample][vehicle]
   std::vector<double> final_state;  // [state][vehicle]
+  std::vector<double> sse;          // [channel][vehicle], with BatchOptions::targets
   int states = 0;
   long failed = 0;          // vehicles whose state diverged
   double wall_seconds = 0;      // the stepping, launches and copies included

@@ -129,11 +129,31 @@ void run_device(const std::vector<RomVehicle>& vehicles, const std::vector<const
     views.push_back(it->second);
   }
   DeviceArray<DriverSeriesView> d_views(views.data(), views.size());
+  // Targets alike: each distinct set copied once.
+  std::vector<std::unique_ptr<DeviceArray<int>>> target_rows;
+  std::vector<std::unique_ptr<DeviceArray<double>>> target_values;
+  std::vector<BatchTargetView> target_views;
+  std::map<const BatchTargets*, BatchTargetView> copied_targets;
+  for (const BatchTargets* t : o.targets) {
+    auto [it, fresh] = copied_targets.try_emplace(t);
+    if (fresh) {
+      target_rows.push_back(std::make_unique<DeviceArray<int>>(t->s0.data(), t->s0.size()));
+      target_rows.push_back(std::make_unique<DeviceArray<int>>(t->s1.data(), t->s1.size()));
+      target_values.push_back(std::make_unique<DeviceArray<double>>(t->w.data(), t->w.size()));
+      target_values.push_back(std::make_unique<DeviceArray<double>>(t->y.data(), t->y.size()));
+      it->second = {target_rows[target_rows.size() - 2]->p, target_rows.back()->p,
+                    target_values[target_values.size() - 2]->p, target_values.back()->p, t->rows()};
+    }
+    target_views.push_back(it->second);
+  }
+  DeviceArray<BatchTargetView> d_targets(target_views.data(), target_views.size());
 
   BatchKernel<M, Lanes> k =
       configure_batch<M, Lanes>(o, static_cast<long>(vehicles.size()), static_cast<long>(views.size()), n, r);
   k.vehicles = d_vehicles;
   k.drivers = d_views.p;
+  k.targets = d_targets.p;  // null without targets
+  const bool compared = !o.targets.empty();
   const std::vector<long> steps = batch_steps(o);
   DeviceArray<long> d_steps(steps.data(), o.end_times.empty() ? 0 : steps.size());
   DeviceArray<double> d_speeds(o.initial_speeds.data(), o.initial_speeds.size());
@@ -141,7 +161,8 @@ void run_device(const std::vector<RomVehicle>& vehicles, const std::vector<const
   k.initial_speeds = d_speeds.p;
 
   // Outputs per vehicle; the chunk is what fits in 80 % of the free memory (or max_chunk).
-  const std::size_t out_doubles = kBatchMetricCount + static_cast<std::size_t>(k.n_channels) * k.samples + M::kStates;
+  const std::size_t per_channel = compared ? 1 : static_cast<std::size_t>(k.samples);  // a sum, or the samples
+  const std::size_t out_doubles = kBatchMetricCount + static_cast<std::size_t>(k.n_channels) * per_channel + M::kStates;
   std::size_t free_bytes = 0, total_bytes = 0;
   TERRACAL_CUDA_CHECK(cudaMemGetInfo(&free_bytes, &total_bytes));
   free_bytes += device_scratch(kOutputScratch).bytes;  // the previous batch's outputs, reused
@@ -158,11 +179,14 @@ void run_device(const std::vector<RomVehicle>& vehicles, const std::vector<const
     k.first = first;
     k.count = count;
     k.metrics = d_out;
-    k.channels = d_out + kBatchMetricCount * count;
-    k.final_state = k.channels + static_cast<std::size_t>(k.n_channels) * k.samples * count;
+    double* per_run = d_out + kBatchMetricCount * count;  // the samples, or the sums
+    k.channels = compared ? nullptr : per_run;
+    k.sse = compared ? per_run : nullptr;
+    k.final_state = per_run + static_cast<std::size_t>(k.n_channels) * per_channel * count;
     // Samples past a run's own end (a shorter manoeuvre in a launch with a longer one) read 0.
-    TERRACAL_CUDA_CHECK(
-        cudaMemset(k.channels, 0, static_cast<std::size_t>(k.n_channels) * k.samples * count * sizeof(double)));
+    if (!compared)
+      TERRACAL_CUDA_CHECK(
+          cudaMemset(k.channels, 0, static_cast<std::size_t>(k.n_channels) * k.samples * count * sizeof(double)));
     const auto launched = std::chrono::steady_clock::now();
     parallel_for_cuda_spread(count * Lanes, k);
     TERRACAL_CUDA_CHECK(cudaDeviceSynchronize());
@@ -173,7 +197,9 @@ void run_device(const std::vector<RomVehicle>& vehicles, const std::vector<const
                                        count * sizeof(double), rows, cudaMemcpyDeviceToHost));
     };
     fetch(k.metrics, r.metrics, kBatchMetricCount);
-    if (k.n_channels > 0) fetch(k.channels, r.channels, static_cast<std::size_t>(k.n_channels) * k.samples);
+    if (k.n_channels > 0 && !compared)
+      fetch(k.channels, r.channels, static_cast<std::size_t>(k.n_channels) * k.samples);
+    if (compared) fetch(k.sse, r.sse, static_cast<std::size_t>(k.n_channels));
     fetch(k.final_state, r.final_state, M::kStates);
     ++r.chunks;
   }

@@ -16,6 +16,22 @@
 
 namespace terracal::rom {
 
+// BatchTargets as a kernel reads them (host or device pointers).
+struct BatchTargetView {
+  const int* s0 = nullptr;
+  const int* s1 = nullptr;
+  const double* w = nullptr;
+  const double* y = nullptr;
+  long rows = 0;
+};
+
+// A run's comparison with its targets so far: the previous sample's values, the sums, the next row.
+struct BatchComparison {
+  double prev[kBatchChannelCount] = {};
+  double sum[kBatchChannelCount] = {};
+  long row = 0;
+};
+
 template <class M, int Lanes = 1>
 struct BatchKernel {
   using Group = WheelGroup<Lanes>;
@@ -39,6 +55,10 @@ struct BatchKernel {
   double* metrics = nullptr;      // [metric][count]
   double* channels = nullptr;     // [channel][sample][count]
   double* final_state = nullptr;  // [state][count]
+  // With targets (n_drivers entries): each run's sums of squared differences go to sse
+  // ([channel][count]) and no sample to channels.
+  const BatchTargetView* targets = nullptr;
+  double* sse = nullptr;
 
   TERRACAL_HD static double channel_value(int c, const double* y, const RomAux& aux) {
     switch (c) {
@@ -65,16 +85,39 @@ struct BatchKernel {
 
   // A sample at state y: ax and ay from the right-hand side there, with the inputs of the step that
   // led to it, as a single run samples them (rom_run.cpp, sample_at).
+  // With targets, the sample is compared instead (`cmp`, `t`).
   TERRACAL_HD void record(int s, long i, const RomVehicle& v, const DriverInput& in, int gear, const double* y,
-                          const Group& lanes) const {
+                          const Group& lanes, BatchComparison& cmp, const BatchTargetView* t) const {
     RomAux aux;
     if (sample_aux) {
       double dy[M::kStates];
       M::rhs(v, in, gear, y, dy, &aux, true, true, lanes);
     }
+    if (t) {
+      compare(s, y, aux, *t, cmp);
+      return;
+    }
     if (!lanes.leader()) return;
     for (int c = 0; c < n_channels; ++c)
       channels[(long(c) * samples + s) * count + i] = channel_value(channel[c], y, aux);
+  }
+
+  // The rows whose later sample is s, interpolated as the calibrator's forward model does on the
+  // host (rom_forward.cpp), their squared differences added in row order.
+  TERRACAL_HD void compare(int s, const double* y, const RomAux& aux, const BatchTargetView& t,
+                           BatchComparison& cmp) const {
+    double value[kBatchChannelCount];
+    for (int c = 0; c < n_channels; ++c) value[c] = channel_value(channel[c], y, aux);
+    for (; cmp.row < t.rows && t.s1[cmp.row] == s; ++cmp.row) {
+      const long r = cmp.row;
+      const double w = t.w[r];
+      const bool same = t.s0[r] == s;
+      for (int c = 0; c < n_channels; ++c) {
+        const double d = t.y[c * t.rows + r] - ((1 - w) * (same ? value[c] : cmp.prev[c]) + w * value[c]);
+        cmp.sum[c] += d * d;
+      }
+    }
+    for (int c = 0; c < n_channels; ++c) cmp.prev[c] = value[c];
   }
 
   // Iteration t: vehicle t / Lanes of this chunk, wheel t % Lanes (the GPU's threads; the CPU's
@@ -86,8 +129,10 @@ struct BatchKernel {
     const Group lanes;  // one lane: groups share a vehicle through warp shuffles, on the GPU only
 #endif
     const long i = t / Lanes, g = first + i;
-    if (n_vehicles == 1) {
-      simulate(vehicles[0], i, g, lanes);  // shared: every thread reads the same (cached) parameters
+    if (n_vehicles == 1 || Lanes > 1) {
+      // Shared: every thread reads the same (cached) parameters; or a group's lanes read their one
+      // vehicle's fields together.
+      simulate(vehicles[n_vehicles == 1 ? 0 : g], i, g, lanes);
     } else {
       // Own parameters: a private copy, which the GPU lays out thread-interleaved (its local
       // memory), so neighbouring threads' reads of one field coalesce instead of striding by
@@ -106,7 +151,9 @@ struct BatchKernel {
     int gear = M::initial_state(v, initial_speeds ? initial_speeds[di] : initial_speed, y);
     RomAux aux;
     double max_ay = 0, max_r = 0, max_roll = 0, failed_at = -1;
-    if (sample_every > 0) record(0, i, v, d.at(0.0), gear, y, lanes);
+    BatchComparison cmp;
+    const BatchTargetView* t = targets ? &targets[di] : nullptr;
+    if (sample_every > 0) record(0, i, v, d.at(0.0), gear, y, lanes, cmp, t);
     int cursor = 0;  // the driver's row at the last step
     for (long k = 0; k < steps; ++k) {
       const DriverInput in = d.at(k * step, cursor);
@@ -118,12 +165,14 @@ struct BatchKernel {
       max_r = max_of(max_r, fabs(y[M::kYawRate]));
       max_roll = max_of(max_roll, fabs(M::roll_of(y)));
       if (sample_every > 0 && (k + 1) % sample_every == 0)
-        record(int((k + 1) / sample_every), i, v, in, gear, y, lanes);
+        record(int((k + 1) / sample_every), i, v, in, gear, y, lanes, cmp, t);
     }
     if (!lanes.leader()) return;
     const double m[kBatchMetricCount] = {y[M::kX], y[M::kY], y[M::kYaw], y[M::kVx], max_ay, max_r, max_roll, failed_at};
     for (int k = 0; k < kBatchMetricCount; ++k) metrics[long(k) * count + i] = m[k];
     for (int k = 0; k < M::kStates; ++k) final_state[long(k) * count + i] = y[k];
+    if (t)
+      for (int c = 0; c < n_channels; ++c) sse[long(c) * count + i] = cmp.sum[c];
   }
 };
 
@@ -157,7 +206,10 @@ BatchKernel<M, Lanes> configure_batch(const BatchOptions& o, long n_vehicles, lo
   r.samples = k.samples;
   r.states = M::kStates;
   r.metrics.assign(static_cast<std::size_t>(kBatchMetricCount) * n, 0.0);
-  r.channels.assign(static_cast<std::size_t>(k.n_channels) * k.samples * n, 0.0);
+  // With targets, sums in place of samples.
+  const bool compared = !o.targets.empty();
+  r.channels.assign(compared ? 0 : static_cast<std::size_t>(k.n_channels) * k.samples * n, 0.0);
+  r.sse.assign(compared ? static_cast<std::size_t>(k.n_channels) * n : 0, 0.0);
   r.final_state.assign(static_cast<std::size_t>(M::kStates) * n, 0.0);
   return k;
 }

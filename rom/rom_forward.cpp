@@ -19,6 +19,19 @@ namespace terracal::rom {
 namespace {
 // Batches of fewer runs than this per CPU thread run on the CPU even where the device is a GPU.
 constexpr int kSmallBatchRunsPerThread = 8;
+
+// Where a reference row at `time` lies among a batch's `samples` samples at `rate`: linear between
+// s0 and s1 at weight w towards s1.
+struct BetweenSamples {
+  int s0 = 0, s1 = 0;
+  double w = 0;
+};
+inline BetweenSamples between_samples(double time, double rate, int samples) {
+  double s = time * rate;
+  if (std::fabs(s - std::round(s)) < 1e-9) s = std::round(s);  // on a sample: that sample, to the bit
+  const int s0 = std::clamp(static_cast<int>(std::floor(s)), 0, samples - 1);
+  return {s0, std::min(s0 + 1, samples - 1), std::clamp(s - s0, 0.0, 1.0)};
+}
 }  // namespace
 
 BatchChannel batch_channel(RomChannel c) {
@@ -53,6 +66,19 @@ RomForward::RomForward(RomForwardSetup setup) : s_(std::move(setup)) {
     const double steps = std::max(1.0, std::round(dt / s_.step));
     rate_.push_back(1.0 / (steps * s_.step));
     rows_ += r.time.size();
+    // The batch runs one sample beyond the last time; each row lies between two samples.
+    const double rate = rate_.back();
+    const long every = static_cast<long>(1.0 / (rate * s_.step) + 0.5);
+    samples_.push_back(static_cast<int>(static_cast<long>((r.end_time() + 1.0 / rate) / s_.step + 0.5) / every) + 1);
+    BatchTargets t;
+    for (double time : r.time) {
+      const BetweenSamples b = between_samples(time, rate, samples_.back());
+      t.s0.push_back(b.s0);
+      t.s1.push_back(b.s1);
+      t.w.push_back(b.w);
+    }
+    for (RomChannel c : s_.channels) t.y.insert(t.y.end(), r.values[c].begin(), r.values[c].end());
+    targets_.push_back(std::move(t));
   }
 }
 
@@ -66,7 +92,7 @@ RomVehicle RomForward::vehicle(const std::vector<double>& p) const {
 // reference group[r] is run i + r n, with that reference's driver, initial speed and end time.
 void RomForward::run_group(const std::vector<std::size_t>& group, const std::vector<RomVehicle>& vehicles,
                            const std::vector<std::size_t>& first_row, std::vector<std::vector<double>>& out,
-                           std::vector<char>& ok) const {
+                           std::vector<char>& ok, bool compare) const {
   const long n = static_cast<long>(vehicles.size());
   const long runs = n * static_cast<long>(group.size());
   const double rate = rate_[group[0]];
@@ -91,6 +117,7 @@ void RomForward::run_group(const std::vector<std::size_t>& group, const std::vec
     drivers.insert(drivers.end(), n, &ref.driver);
     o.initial_speeds.insert(o.initial_speeds.end(), n, ref.initial_speed);
     o.end_times.insert(o.end_times.end(), n, ref.end_time() + 1.0 / rate);  // a sample beyond the last time
+    if (compare) o.targets.insert(o.targets.end(), n, &targets_[k]);
   }
   o.end_time = *std::max_element(o.end_times.begin(), o.end_times.end());
   run_rom_batch(all, drivers, runs, o, batch_);
@@ -100,36 +127,31 @@ void RomForward::run_group(const std::vector<std::size_t>& group, const std::vec
   stats_.stepping_seconds += b.stepping_seconds;
   for (std::size_t r = 0; r < group.size(); ++r) {
     const RomReference& ref = (*s_.references)[group[r]];
-    // This reference's own samples (the batch holds the longest run's).
-    const long every = static_cast<long>(1.0 / (rate * s_.step) + 0.5);
-    const int samples = static_cast<int>(static_cast<long>(o.end_times[r * n] / s_.step + 0.5) / every) + 1;
+    const int samples = samples_[group[r]];
 #pragma omp parallel for schedule(static)
     for (long i = 0; i < n; ++i) {
       const long run = static_cast<long>(r) * n + i;
       if (b.metrics[kMetFailedAt * runs + run] >= 0) ok[i] = 0;
       if (!ok[i]) continue;
       for (std::size_t c = 0; c < s_.channels.size(); ++c) {
+        if (compare) {
+          out[i][c] += b.sse[c * runs + run];
+          continue;
+        }
         double* dst = out[i].data() + c * rows_ + first_row[group[r]];
+        const auto at = [&](int sample) { return b.channels[(c * b.samples + sample) * runs + run]; };
         for (std::size_t row = 0; row < ref.time.size(); ++row) {
-          // Linear between the batch's samples s = time * rate.
-          double s = ref.time[row] * rate;
-          if (std::fabs(s - std::round(s)) < 1e-9) s = std::round(s);  // on a sample: that sample, to the bit
-          const int s0 = std::clamp(static_cast<int>(std::floor(s)), 0, samples - 1);
-          const int s1 = std::min(s0 + 1, samples - 1);
-          const double w = std::clamp(s - s0, 0.0, 1.0);
-          const auto at = [&](int sample) { return b.channels[(c * b.samples + sample) * runs + run]; };
-          dst[row] = (1 - w) * at(s0) + w * at(s1);
+          const BetweenSamples p = between_samples(ref.time[row], rate, samples);
+          dst[row] = (1 - p.w) * at(p.s0) + p.w * at(p.s1);
         }
       }
     }
   }
 }
 
-void RomForward::operator()(const std::vector<std::vector<double>>& params,
-                            std::vector<std::vector<double>>& out) const {
-  const auto start = std::chrono::steady_clock::now();
-  out.assign(params.size(), std::vector<double>(s_.channels.size() * rows_));
-  std::vector<char> ok(params.size(), 1);
+std::vector<RomVehicle> RomForward::vehicles_of(const std::vector<std::vector<double>>& params,
+                                                std::vector<char>& ok) const {
+  ok.assign(params.size(), 1);
   std::vector<RomVehicle> vehicles(params.size());
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < params.size(); ++i) {
@@ -141,22 +163,48 @@ void RomForward::operator()(const std::vector<std::vector<double>>& params,
       vehicles[i] = s_.base;  // runs, but its result is dropped
     }
   }
+  return vehicles;
+}
+
+// References sampled at one rate run as one batch: each parameter set once per reference.
+std::vector<std::vector<std::size_t>> RomForward::groups() const {
+  std::vector<std::vector<std::size_t>> out;
+  std::vector<char> done(s_.references->size(), 0);
+  for (std::size_t k0 = 0; k0 < s_.references->size(); ++k0) {
+    if (done[k0]) continue;
+    out.emplace_back();
+    for (std::size_t k = k0; k < s_.references->size(); ++k)
+      if (!done[k] && rate_[k] == rate_[k0]) {
+        out.back().push_back(k);
+        done[k] = 1;
+      }
+  }
+  return out;
+}
+
+void RomForward::operator()(const std::vector<std::vector<double>>& params,
+                            std::vector<std::vector<double>>& out) const {
+  const auto start = std::chrono::steady_clock::now();
+  out.assign(params.size(), std::vector<double>(s_.channels.size() * rows_));
+  std::vector<char> ok;
+  const std::vector<RomVehicle> vehicles = vehicles_of(params, ok);
   // The first row of each reference in a channel's block.
   std::vector<std::size_t> first_row(s_.references->size(), 0);
   for (std::size_t k = 1; k < first_row.size(); ++k)
     first_row[k] = first_row[k - 1] + (*s_.references)[k - 1].time.size();
-  // References sampled at one rate run as one batch: each parameter set once per reference.
-  std::vector<char> done(s_.references->size(), 0);
-  for (std::size_t k0 = 0; k0 < s_.references->size(); ++k0) {
-    if (done[k0]) continue;
-    std::vector<std::size_t> group;
-    for (std::size_t k = k0; k < s_.references->size(); ++k)
-      if (!done[k] && rate_[k] == rate_[k0]) {
-        group.push_back(k);
-        done[k] = 1;
-      }
-    run_group(group, vehicles, first_row, out, ok);
-  }
+  for (const auto& group : groups()) run_group(group, vehicles, first_row, out, ok, false);
+  for (std::size_t i = 0; i < params.size(); ++i)
+    if (!ok[i]) out[i].clear();
+  stats_.call_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void RomForward::sse(const std::vector<std::vector<double>>& params, std::vector<std::vector<double>>& out) const {
+  const auto start = std::chrono::steady_clock::now();
+  out.assign(params.size(), std::vector<double>(s_.channels.size(), 0.0));
+  std::vector<char> ok;
+  const std::vector<RomVehicle> vehicles = vehicles_of(params, ok);
+  const std::vector<std::size_t> first_row(s_.references->size(), 0);  // unused when comparing
+  for (const auto& group : groups()) run_group(group, vehicles, first_row, out, ok, true);
   for (std::size_t i = 0; i < params.size(); ++i)
     if (!ok[i]) out[i].clear();
   stats_.call_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

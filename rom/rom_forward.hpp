@@ -41,6 +41,11 @@ class RomForward {
   // out[i]: for params[i], every channel's rows over all references (channel-major, then reference,
   // then sample), or empty when the vehicle failed on some reference or its parameters are invalid.
   void operator()(const std::vector<std::vector<double>>& params, std::vector<std::vector<double>>& out) const;
+  // out[i]: for params[i], each channel's sum over every reference's rows of (observed - predicted)^2,
+  // the observed values being the references' own; empty where operator() gives an empty vector. The
+  // sums of operator()'s predictions to round-off, but the batch compares its samples where it runs
+  // (BatchTargets): a GPU step copies 4 numbers per run back instead of every sample.
+  void sse(const std::vector<std::vector<double>>& params, std::vector<std::vector<double>>& out) const;
   // The vehicle of one parameter vector (the base with the values applied).
   RomVehicle vehicle(const std::vector<double>& p) const;
   const RomForwardSetup& setup() const { return s_; }
@@ -49,11 +54,18 @@ class RomForward {
 
  private:
   RomForwardSetup s_;
+  // The vehicles of params (an invalid set: the base, its ok 0), and the references grouped by rate.
+  std::vector<RomVehicle> vehicles_of(const std::vector<std::vector<double>>& params, std::vector<char>& ok) const;
+  std::vector<std::vector<std::size_t>> groups() const;
+  // One batch of every vehicle on every reference of `group`: predictions into out, or with
+  // `compare` each run's sums added into out.
   void run_group(const std::vector<std::size_t>& group, const std::vector<RomVehicle>& vehicles,
                  const std::vector<std::size_t>& first_row, std::vector<std::vector<double>>& out,
-                 std::vector<char>& ok) const;
+                 std::vector<char>& ok, bool compare) const;
 
   std::vector<double> rate_;  // output rate per reference [Hz]
+  std::vector<int> samples_;  // the batch's samples per reference
+  std::vector<BatchTargets> targets_;  // per reference: its rows on the batch's samples, its values
   // A call's batch and its result, kept for the next call: a GPU step's batch holds a few hundred MB.
   mutable std::vector<RomVehicle> all_;
   mutable BatchResult batch_;

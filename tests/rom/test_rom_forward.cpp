@@ -1,7 +1,8 @@
 // The ROM as the calibrator's forward model: each parameter set's predictions are its own single
 // run sampled at the reference's times (on the output grid exactly, between samples linearly); a
-// parameter set that makes an invalid vehicle fails alone; the GPU batch gives the CPU batch's
-// log-likelihoods within 1e-9 relative.
+// parameter set that makes an invalid vehicle fails alone; the batch's own sums of squared
+// differences are the predictions'; the GPU batch gives the CPU batch's log-likelihoods within 1e-9
+// relative, through its predictions and through its own sums.
 #include <cmath>
 
 #include <catch2/catch.hpp>
@@ -120,6 +121,47 @@ TEST_CASE("rom forward: a parameter set that makes an invalid vehicle fails alon
                   InputError);
 }
 
+TEST_CASE("rom forward: the batch's own sums of squared differences are those of its predictions", "[rom][forward]") {
+  // On the output grid, off it (interpolated), and two references of one rate in one batch; the
+  // references' values are a made-up signal per channel.
+  std::vector<RomReference> refs = {reference("grid", grid(0.02, 101), 10.0),
+                                    reference("offgrid", grid(0.0237, 60), 6.0),
+                                    reference("short", grid(0.02, 40), 4.0)};
+  for (RomReference& r : refs)
+    for (int c = 0; c < kRomChannelCount; ++c)
+      for (std::size_t i = 0; i < r.time.size(); ++i) r.values[c][i] = 0.3 * c + std::sin(1.7 * r.time[i] + c);
+  const std::vector<RomChannel> channels = {kRcVx, kRcYawRate, kRcRoll, kRcAy};
+  const RomForward f({hmmwv(),
+                      RomModel::k18Dof,
+                      {"tire_cornering_scale_front", "cg_height"},
+                      channels,
+                      &refs,
+                      1e-3,
+                      BatchDevice::kCpu});
+  // The last set's CG 5 m up makes an invalid vehicle: no sums.
+  const std::vector<std::vector<double>> params = {{1.0, 0.713}, {0.7, 0.8}, {1.6, 0.6}, {1.0, 5.0}};
+  std::vector<std::vector<double>> predicted, sums;
+  f(params, predicted);
+  f.sse(params, sums);
+  REQUIRE(sums.size() == params.size());
+  CHECK(sums[3].empty());
+  for (std::size_t i = 0; i < 3; ++i) {
+    REQUIRE(sums[i].size() == channels.size());
+    for (std::size_t c = 0; c < channels.size(); ++c) {
+      double want = 0;
+      std::size_t row = 0;
+      for (const RomReference& r : refs)
+        for (std::size_t k = 0; k < r.time.size(); ++k, ++row) {
+          const double d = r.values[channels[c]][k] - predicted[i][c * f.rows_per_channel() + row];
+          want += d * d;
+        }
+      INFO("set " << i << ", channel " << kRomChannelNames[channels[c]]);
+      CHECK(want > 1.0);
+      CHECK(std::fabs(sums[i][c] - want) <= 1e-12 * want);
+    }
+  }
+}
+
 TEST_CASE("rom forward: GPU and CPU batches give the same log-likelihoods within 1e-9 relative",
           "[rom][forward][gpu]") {
   if (!test::cuda_device_or_skip("rom forward GPU/CPU log-likelihood")) return;
@@ -170,18 +212,41 @@ TEST_CASE("rom forward: GPU and CPU batches give the same log-likelihoods within
       (*fp)(p, out);
     };
   };
-  const bayes::ModelProblem on_cpu(ps, obs, wrap(cpu)), on_gpu(ps, obs, wrap(gpu));
+  bayes::ModelProblem on_cpu(ps, obs, wrap(cpu)), on_gpu(ps, obs, wrap(gpu)), gpu_sums(ps, obs, wrap(gpu));
+  // The GPU's own sums compare with the references' values: make them the observations.
+  for (std::size_t c = 0; c < channels.size(); ++c) {
+    std::size_t row = 0;
+    for (RomReference& r : refs)
+      for (std::size_t k = 0; k < r.time.size(); ++k) r.values[channels[c]][k] = obs[c].y[row++];
+  }
+  const RomForward gpu_compare({hmmwv(),
+                                RomModel::k18Dof,
+                                {"tire_cornering_scale_front", "torque_scale"},
+                                channels,
+                                &refs,
+                                1e-3,
+                                BatchDevice::kCuda,
+                                false});
+  gpu_sums.set_batch_sse(
+      [fp = &gpu_compare](const std::vector<Eigen::VectorXd>& xs, std::vector<std::vector<double>>& out) {
+        std::vector<std::vector<double>> p;
+        for (const auto& x : xs) p.emplace_back(x.data(), x.data() + x.size());
+        fp->sse(p, out);
+      });
   std::vector<Eigen::VectorXd> xs, nv(64, Eigen::VectorXd::Constant(4, 1e-3));
   for (int i = 0; i < 64; ++i) xs.push_back(Eigen::Vector2d(0.8 + 0.01 * i, 0.85 + 0.008 * i));
-  std::vector<double> lc, lg;
+  std::vector<double> lc, lg, ls;
   on_cpu.target().log_density_batch(xs, nv, lc);
   on_gpu.target().log_density_batch(xs, nv, lg);
-  double worst = 0;
+  gpu_sums.target().log_density_batch(xs, nv, ls);
+  double worst = 0, worst_sums = 0;
   for (int i = 0; i < 64; ++i) {
-    INFO("set " << i << ": " << lc[i] << " (CPU), " << lg[i] << " (GPU)");
+    INFO("set " << i << ": " << lc[i] << " (CPU), " << lg[i] << " (GPU), " << ls[i] << " (GPU sums)");
     REQUIRE(std::isfinite(lc[i]));
     worst = std::max(worst, std::fabs(lg[i] - lc[i]) / std::fabs(lc[i]));
+    worst_sums = std::max(worst_sums, std::fabs(ls[i] - lc[i]) / std::fabs(lc[i]));
   }
-  INFO("largest relative difference " << worst);
+  INFO("largest relative difference " << worst << ", with the GPU's own sums " << worst_sums);
   CHECK(worst < 1e-9);
+  CHECK(worst_sums < 1e-9);
 }
