@@ -223,8 +223,8 @@ RomCalibrationOutcome run_rom_calibration(const RomCalibrationSettings& s) {
   };
   bayes::ModelProblem pb(params, channels, batch);
   // On a GPU the samplers' batches compare where they run: a launch of 8,064 runs then copies 4 sums
-  // per run back instead of about 270 MB of samples. The CPU keeps the predictions (the same chains
-  // as before, bit for bit).
+  // per run back instead of about 270 MB of samples. The CPU keeps the predictions (and the sums
+  // of sse_of).
   if (s.device == rom::BatchDevice::kCuda)
     pb.set_batch_sse([&](const std::vector<Eigen::VectorXd>& xs, std::vector<std::vector<double>>& sums) {
       std::vector<std::vector<double>> ps;
