@@ -55,6 +55,14 @@ double sampled(const RomRunResult& r, RomChannel c, double t, double dt) {
   return (1 - w) * value(r.samples[i]) + w * value(r.samples[i + 1]);
 }
 
+// The 18-DOF HMMWV compared on vx, yaw rate, roll and ay, at a 1 ms step.
+const std::vector<RomChannel> kChannels = {kRcVx, kRcYawRate, kRcRoll, kRcAy};
+RomForward hmmwv_forward(const std::vector<RomReference>& refs, std::vector<std::string> params,
+                         BatchDevice device = BatchDevice::kCpu, bool small_batches_on_cpu = true) {
+  return RomForward(
+      {hmmwv(), RomModel::k18Dof, std::move(params), kChannels, &refs, 1e-3, device, small_batches_on_cpu});
+}
+
 }  // namespace
 
 TEST_CASE("rom forward: each parameter set's predictions are its own single run at the reference times",
@@ -65,14 +73,8 @@ TEST_CASE("rom forward: each parameter set's predictions are its own single run 
   const std::vector<RomReference> refs = {reference("grid", grid(0.02, 101), 10.0),
                                           reference("offgrid", grid(0.0237, 60), 6.0),
                                           reference("short", grid(0.02, 40), 4.0, brake)};
-  const std::vector<RomChannel> channels = {kRcVx, kRcYawRate, kRcRoll, kRcAy};
-  const RomForward f({hmmwv(),
-                      RomModel::k18Dof,
-                      {"tire_cornering_scale_front", "roll_stiffness_front"},
-                      channels,
-                      &refs,
-                      1e-3,
-                      BatchDevice::kCpu});
+  const std::vector<RomChannel>& channels = kChannels;
+  const RomForward f = hmmwv_forward(refs, {"tire_cornering_scale_front", "roll_stiffness_front"});
   const std::vector<std::vector<double>> params = {{1.0, 31000}, {0.7, 45000}, {1.6, 20000}};
   std::vector<std::vector<double>> out;
   f(params, out);
@@ -130,14 +132,8 @@ TEST_CASE("rom forward: the batch's own sums of squared differences are those of
   for (RomReference& r : refs)
     for (int c = 0; c < kRomChannelCount; ++c)
       for (std::size_t i = 0; i < r.time.size(); ++i) r.values[c][i] = 0.3 * c + std::sin(1.7 * r.time[i] + c);
-  const std::vector<RomChannel> channels = {kRcVx, kRcYawRate, kRcRoll, kRcAy};
-  const RomForward f({hmmwv(),
-                      RomModel::k18Dof,
-                      {"tire_cornering_scale_front", "cg_height"},
-                      channels,
-                      &refs,
-                      1e-3,
-                      BatchDevice::kCpu});
+  const std::vector<RomChannel>& channels = kChannels;
+  const RomForward f = hmmwv_forward(refs, {"tire_cornering_scale_front", "cg_height"});
   // The last set's CG 5 m up makes an invalid vehicle: no sums.
   const std::vector<std::vector<double>> params = {{1.0, 0.713}, {0.7, 0.8}, {1.6, 0.6}, {1.0, 5.0}};
   std::vector<std::vector<double>> predicted, sums;
@@ -169,23 +165,11 @@ TEST_CASE("rom forward: GPU and CPU batches give the same log-likelihoods within
   const DriverSeries brake = DriverSeries::from_rows({0, 0.3, 0.8}, {0, -0.2, -0.2}, {0.2, 0, 0}, {0, 0.4, 0.4});
   std::vector<RomReference> refs = {reference("a", grid(0.02, 101), 10.0), reference("b", grid(0.05, 40), 5.0),
                                     reference("c", grid(0.02, 40), 4.0, brake)};
-  const std::vector<RomChannel> channels = {kRcVx, kRcYawRate, kRcRoll, kRcAy};
+  const std::vector<RomChannel>& channels = kChannels;
   // Observations: the preset's predictions plus a deterministic wiggle.
-  const RomForward cpu({hmmwv(),
-                        RomModel::k18Dof,
-                        {"tire_cornering_scale_front", "torque_scale"},
-                        channels,
-                        &refs,
-                        1e-3,
-                        BatchDevice::kCpu});
-  const RomForward gpu({hmmwv(),
-                        RomModel::k18Dof,
-                        {"tire_cornering_scale_front", "torque_scale"},
-                        channels,
-                        &refs,
-                        1e-3,
-                        BatchDevice::kCuda,
-                        false});  // every batch on the GPU, however small
+  const RomForward cpu = hmmwv_forward(refs, {"tire_cornering_scale_front", "torque_scale"});
+  // Every batch on the GPU, however small.
+  const RomForward gpu = hmmwv_forward(refs, {"tire_cornering_scale_front", "torque_scale"}, BatchDevice::kCuda, false);
   std::vector<std::vector<double>> base;
   cpu({{1.0, 1.0}}, base);
   std::vector<bayes::ModelChannel> obs;
@@ -219,14 +203,8 @@ TEST_CASE("rom forward: GPU and CPU batches give the same log-likelihoods within
     for (RomReference& r : refs)
       for (std::size_t k = 0; k < r.time.size(); ++k) r.values[channels[c]][k] = obs[c].y[row++];
   }
-  const RomForward gpu_compare({hmmwv(),
-                                RomModel::k18Dof,
-                                {"tire_cornering_scale_front", "torque_scale"},
-                                channels,
-                                &refs,
-                                1e-3,
-                                BatchDevice::kCuda,
-                                false});
+  const RomForward gpu_compare =
+      hmmwv_forward(refs, {"tire_cornering_scale_front", "torque_scale"}, BatchDevice::kCuda, false);
   gpu_sums.set_batch_sse(
       [fp = &gpu_compare](const std::vector<Eigen::VectorXd>& xs, std::vector<std::vector<double>>& out) {
         std::vector<std::vector<double>> p;
