@@ -274,10 +274,12 @@ RomCalibrationOutcome run_rom_calibration(const RomCalibrationSettings& s) {
     o.local_moves = false;
     o.adaptation_points = std::max(o.adaptation_points, o.chains * (o.tries - 1));
   }
-  // Convergence checks every 25 steps; with i-SIR after every step: its steps are few and each a GPU
-  // launch of a few hundred ms, against about a millisecond for a check.
+  // Convergence checks at fixed intervals (calibrate-rom writes no checkpoint, and a check costs about
+  // a millisecond): every 25 Metropolis-Hastings steps (about a second of runs on 2 cores), after every
+  // i-SIR step (a GPU launch of a few hundred ms). Blocks growing with the chain ran up to a quarter
+  // past convergence.
   o.block = s.sampler == bayes::SamplerKind::kEnsemble ? 200 : o.tries > 1 ? 1 : 25;
-  o.growing_blocks = o.tries == 1;
+  o.growing_blocks = s.sampler == bayes::SamplerKind::kEnsemble;
   o.max_draws = s.max_draws;
   o.progress = [&](const bayes::CalibrationProgress& p) {
     if (p.stage == "adapted") spdlog::info("calibrate-rom: proposal adapted to the posterior: {}", p.message);
