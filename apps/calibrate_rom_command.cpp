@@ -64,6 +64,10 @@ Command add_calibrate_rom(CLI::App& app) {
   sub->add_option("--global-points", s.global_points, "random points of the global search")
       ->check(whole_in(0, 10000000))
       ->capture_default_str();
+  sub->add_option("--starts", s.starts,
+                  "least-squares solves, from the global search's best points; the best fit is kept")
+      ->check(whole_in(1, 100))
+      ->capture_default_str();
   sub->add_option("--step", s.step, "the ROM's fixed step [s]")
       ->check(in_range(Range{1e-5, 0.01, false, false}))
       ->capture_default_str();

@@ -237,7 +237,7 @@ RomCalibrationOutcome run_rom_calibration(const RomCalibrationSettings& s) {
                fmt::join(out.parameters, ", "), fmt::join(channel_names, ", "), refs.size());
 
   bayes::CalibrationResult& res = out.result;
-  const bayes::ModelPointOptions po{.seed = s.seed, .global_points = s.global_points};
+  const bayes::ModelPointOptions po{.seed = s.seed, .global_points = s.global_points, .starts = s.starts};
   res.point = bayes::estimate_model_point(pb, po);
   if (s.correlated_noise) {
     pb.set_correlation_times(pb.correlation_times(res.point.x));
@@ -252,6 +252,11 @@ RomCalibrationOutcome run_rom_calibration(const RomCalibrationSettings& s) {
     at += fmt::format("{}{} = {:.4g} +- {:.2g}", j ? ", " : "", out.parameters[j], res.point.x[j],
                       std::sqrt(res.point.covariance(j, j)));
   spdlog::info("calibrate-rom: point estimate after {} runs: {} ({})", pb.runs(), at, res.point.ceres_report);
+  if (res.point.start_objectives.size() > 1)
+    spdlog::info(
+        "calibrate-rom: least squares from {} starts (the vehicle's own values first, then the global "
+        "search's best) ended at {:.6g} (the posterior with the noise profiled out, negated); kept start {}",
+        res.point.start_objectives.size(), fmt::join(res.point.start_objectives, ", "), res.point.start + 1);
   res.names = out.parameters;
   res.num_params = pb.dim();
   for (const auto& c : channels) res.names.push_back("sigma2_" + c.name);
@@ -267,6 +272,12 @@ RomCalibrationOutcome run_rom_calibration(const RomCalibrationSettings& s) {
   // 4 steps of warm-up instead of 10 took 3-4 s off a 40 s run on a GPU with the same R-hat
   // (docs/decisions.md, "ROM calibration on a GPU").
   o.warmup = s.warmup >= 0 ? s.warmup : o.tries > 1 ? 4 : 40;
+  // Importance sampling goes on until its weights hold 300 effective points: a 10-parameter t fitted
+  // to the 50-150 that the first round at the posterior's own weights keeps on 256-point CPU rounds
+  // is a noisy proposal, and chains stuck on it. Dev VM, seeds 1 / 2 / 3: 94 / - / 161 s -> 82 / 86 /
+  // 91 s (600: no faster; docs/decisions.md, "ROM calibration sampler"). A GPU's rounds of 2,016
+  // points stop above this anyway.
+  o.adaptation_final_ess = 300;
   if (o.tries > 1) {
     // No random-walk move: a second launch per step, and on the full-vehicle references it did not
     // shorten the runs (seed 1: 55 against 60 s; seed 3: 82 against 65 s; docs/decisions.md,
@@ -278,7 +289,9 @@ RomCalibrationOutcome run_rom_calibration(const RomCalibrationSettings& s) {
   // a millisecond): every 25 Metropolis-Hastings steps (about a second of runs on 2 cores), after every
   // i-SIR step (a GPU launch of a few hundred ms). Blocks growing with the chain ran up to a quarter
   // past convergence.
-  o.block = s.sampler == bayes::SamplerKind::kEnsemble ? 200 : o.tries > 1 ? 1 : 25;
+  o.block = s.sampler == bayes::SamplerKind::kEnsemble           ? 200
+            : o.tries > 1 && s.device == rom::BatchDevice::kCuda ? 1
+                                                                 : 25;
   o.growing_blocks = s.sampler == bayes::SamplerKind::kEnsemble;
   o.max_draws = s.max_draws;
   o.progress = [&](const bayes::CalibrationProgress& p) {

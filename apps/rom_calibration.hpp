@@ -32,6 +32,7 @@ struct RomCalibrationSettings {
   long max_draws = 20000;  // per walker
   int warmup = -1;         // steps per chain; -1: 40, 10 with tries > 1 (ensemble: 300 is a better start)
   int global_points = 256;
+  int starts = 3;      // least-squares solves from the global search's best points
   double step = 1e-3;  // the ROM's half-implicit step [s]
   rom::BatchDevice device = rom::BatchDevice::kCpu;
   bool plots = true;

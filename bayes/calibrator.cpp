@@ -405,6 +405,7 @@ void sample_posterior(const Target& target, const CalibrationOptions& opt, Calib
     ProposalAdaptationOptions ao;
     ao.max_rounds = opt.adaptation_rounds;
     ao.points = std::max(opt.adaptation_points, 2 * dim + 2);
+    ao.final_ess = opt.adaptation_final_ess;
     const AdaptedProposal a =
         adapt_proposal(*sampled, proposal.x, proposal.covariance, res.point.noise_var, ao, rng);
     proposal.x = a.mean;

@@ -60,6 +60,9 @@ struct CalibrationOptions {
   // chains x (tries - 1) runs per step, for a GPU; bayes/independence.hpp).
   int tries = 1;
   int adaptation_points = 256;  // runs per round of importance sampling (one batch)
+  // Rounds at the posterior's own weights continue until the weights' ESS over all rounds reaches
+  // this (proposal_adaptation.hpp); 0: the first such round ends adaptation.
+  double adaptation_final_ess = 0;
   double proposal_scale = 1.3;  // independence sampler: proposal covariance = scale^2 x the adapted one
   std::function<void(const CalibrationProgress&)> progress;  // called after warm-up and each block
 };

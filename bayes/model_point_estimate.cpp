@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <vector>
 
 #include <ceres/ceres.h>
@@ -29,13 +30,16 @@ double profile_objective(const ModelProblem& pb, const Eigen::VectorXd& x, const
   return f;
 }
 
-// Start, then uniform draws inside the bounds, in batches; the best by the profile objective.
-Eigen::VectorXd global_search(const ModelProblem& pb, const ModelPointOptions& o, int& evaluations) {
+// The start (each parameter's `initial`), then uniform draws inside the bounds, in batches, ranked
+// by the profile objective. One start: the best of them all. More: the initial point (a vehicle's or
+// soil's own values are the likeliest basin) and the starts - 1 best draws.
+std::vector<Eigen::VectorXd> global_search(const ModelProblem& pb, const ModelPointOptions& o, int& evaluations) {
   Rng rng = Rng::for_stream(o.seed, 7);
-  Eigen::VectorXd best(pb.dim());
-  for (int j = 0; j < pb.dim(); ++j) best[j] = pb.parameter(j).initial;
-  double best_f = profile_objective(pb, best, pb.sse({best})[0]);
+  Eigen::VectorXd initial(pb.dim());
+  for (int j = 0; j < pb.dim(); ++j) initial[j] = pb.parameter(j).initial;
+  const double initial_f = profile_objective(pb, initial, pb.sse({initial})[0]);
   evaluations = 1;
+  std::vector<std::pair<double, Eigen::VectorXd>> ranked;  // (objective, draw), the best `starts`, best first
   for (int done = 0; done < o.global_points;) {
     const int n = std::min(o.batch, o.global_points - done);
     std::vector<Eigen::VectorXd> xs(n, Eigen::VectorXd(pb.dim()));
@@ -45,20 +49,27 @@ Eigen::VectorXd global_search(const ModelProblem& pb, const ModelPointOptions& o
         x[j] = pr.lower + (pr.upper - pr.lower) * rng.uniform();
       }
     const auto s = pb.sse(xs);
-    for (int i = 0; i < n; ++i)
-      if (const double f = profile_objective(pb, xs[i], s[i]); f < best_f) {
-        best_f = f;
-        best = xs[i];
-      }
+    for (int i = 0; i < n; ++i) {
+      const double f = profile_objective(pb, xs[i], s[i]);
+      if (!std::isfinite(f)) continue;
+      const auto at = std::find_if(ranked.begin(), ranked.end(), [&](const auto& r) { return f < r.first; });
+      if (at - ranked.begin() < o.starts) ranked.insert(at, {f, xs[i]});
+      if (static_cast<int>(ranked.size()) > o.starts) ranked.pop_back();
+    }
     done += n;
     evaluations += n;
   }
-  if (!std::isfinite(best_f))
+  std::vector<Eigen::VectorXd> out;
+  if (std::isfinite(initial_f) && (o.starts > 1 || ranked.empty() || initial_f <= ranked.front().first))
+    out.push_back(initial);
+  for (auto& r : ranked)
+    if (static_cast<int>(out.size()) < o.starts) out.push_back(std::move(r.second));
+  if (out.empty())
     throw RunError(
         fmt::format("calibration: none of the {} points of the global search ran; check the references "
                     "and the priors",
                     evaluations));
-  return best;
+  return out;
 }
 
 // Weighted residuals (f - y)/s_c of every row, their Jacobian by central differences (one-sided at a
@@ -245,20 +256,48 @@ void laplace_covariance(const ModelProblem& pb, const ModelPointOptions& o, Poin
   est.covariance = scale.asDiagonal() * cov_u * scale.asDiagonal();
 }
 
-PointEstimate estimate_model_point(const ModelProblem& pb, const ModelPointOptions& o) {
-  PointEstimate est;
-  est.x = global_search(pb, o, est.global_evaluations);
+namespace {
+
+// One least-squares round at est's noise scales, then the scales at its result; true once they have
+// settled (moved by < 1e-9 relative): the point is then the least-squares point of its own noise.
+bool polish_round(const ModelProblem& pb, const ModelPointOptions& o, PointEstimate& est) {
+  const Eigen::VectorXd before = est.noise_var;
+  polish(pb, o, est);
   update_noise(pb, est);
-  // Each solve weights the channels by the noise it started with; rounds repeat until the noise
-  // scales (and so the weights) settle: the result is the least-squares point of its own noise.
-  for (int round = 0; round < o.polish_rounds; ++round) {
-    const Eigen::VectorXd before = est.noise_var;
-    polish(pb, o, est);
+  return ((est.noise_var - before).array().abs() <= 1e-9 * before.array()).all();
+}
+
+}  // namespace
+
+// Every start gets one round, and the best by the profile objective goes on. Where weights follow the
+// noise, a start in a poor basin can settle there: a channel it fits badly gets a large noise
+// variance, so little weight, and the fit no longer pulls on it. The profile objective does not move
+// with the weights. (One round each, not a full solve each: the rounds after the first move the
+// point little, and on the HMMWV the starts' first rounds already differ by 10^4 in the objective.)
+PointEstimate estimate_model_point(const ModelProblem& pb, const ModelPointOptions& o) {
+  if (o.starts < 1) throw std::invalid_argument("estimate_model_point: starts must be at least 1");
+  int evaluations = 0;
+  const std::vector<Eigen::VectorXd> starts = global_search(pb, o, evaluations);
+  PointEstimate best;
+  bool settled = o.polish_rounds <= 0;
+  std::vector<double> objectives;
+  for (std::size_t k = 0; k < starts.size(); ++k) {
+    PointEstimate est;
+    est.x = starts[k];
     update_noise(pb, est);
-    if (((est.noise_var - before).array().abs() <= 1e-9 * before.array()).all()) break;
+    const bool done = o.polish_rounds <= 0 || polish_round(pb, o, est);
+    objectives.push_back(profile_objective(pb, est.x, pb.sse({est.x})[0]));
+    if (k == 0 || objectives[k] < objectives[best.start]) {
+      best = std::move(est);
+      best.start = static_cast<int>(k);
+      settled = done;
+    }
   }
-  laplace_covariance(pb, o, est);
-  return est;
+  for (int round = 1; round < o.polish_rounds && !settled; ++round) settled = polish_round(pb, o, best);
+  best.global_evaluations = evaluations;
+  best.start_objectives = std::move(objectives);
+  laplace_covariance(pb, o, best);
+  return best;
 }
 
 }  // namespace terracal::bayes

@@ -3,7 +3,8 @@
 //   1. global search: the start (each parameter's `initial`) and `global_points` points drawn
 //      uniformly inside the priors' bounds, run as batches of `batch` and ranked by the posterior
 //      with the noise variances profiled out, sum_c (N_c/2) log(SSE_c/N_c) - log prior;
-//   2. least squares from the best of them (Ceres, bounded by the priors, residuals divided by each
+//   2. least squares from the best of them, or from the start and the best few (Ceres, bounded by the priors, residuals
+//   divided by each
 //      channel's noise scale, re-estimated between rounds until it settles), the Jacobian by central differences of
 //      the forward model: one batch of 2 dim runs per Jacobian;
 //   3. the Laplace covariance (J^T J)^-1 at the optimum, floored in directions the data leave open,
@@ -19,6 +20,10 @@ struct ModelPointOptions {
   std::uint64_t seed = 1;
   int global_points = 256;  // random points of the global search
   int batch = 256;          // points per forward call in the global search
+  // Least-squares starts: 1, the best of the initial point and the global search's; more, the initial
+  // point and the global search's starts - 1 best. Each gets one round; the best by the profile
+  // objective goes on: one start can settle in a poor basin where the noise weights hold it.
+  int starts = 1;
   int polish_rounds = 4;    // at most; rounds stop once the noise scales change by < 1e-9 relative
   int max_iterations = 15;  // Ceres iterations per round
   // Central-difference step, relative to max(|x|, 1e-3 (upper - lower)): large enough to step over

@@ -4,6 +4,7 @@
 // free parameters (DENSE_SVD, scaled by the residual variance). The MCMC stage starts from here.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -27,6 +28,10 @@ struct PointEstimate {
   double weighted_rss = 0;           // sum over types of sum ((y - f)/w)^2
   int global_evaluations = 0;
   std::string ceres_report;  // Ceres' brief report of the last solve
+  // Simulation-backed problems (model_point_estimate.hpp): each least-squares start's final
+  // objective (the posterior with the noise profiled out, negated), and the index of the one kept.
+  std::vector<double> start_objectives;
+  int start = 0;
 };
 
 // Throws RunError if no feasible point is found.

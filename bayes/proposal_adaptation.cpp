@@ -159,7 +159,7 @@ AdaptedProposal adapt_proposal(const Target& target, const Eigen::VectorXd& mean
     a.ess = ess;
     if (beta == 1.0) {
       a.reached_posterior = true;
-      break;
+      if (ess >= opt.final_ess) break;
     }
   }
   return a;

@@ -24,6 +24,9 @@ struct ProposalAdaptationOptions {
   int points = 256;            // draws per round (one batch of forward runs)
   int max_rounds = 12;         // rounds at most
   double min_ess_fraction = 0.2;  // tempering keeps the weights' ESS at this fraction of `points`
+  // Rounds at beta = 1 continue until the weights' ESS over all rounds' points reaches this (0: the
+  // first round at beta = 1 ends): a covariance fitted to few effective points is a noisy proposal.
+  double final_ess = 0;
   double df = 4.0;             // the t proposal's degrees of freedom
   double scale = 1.3;          // proposal covariance = scale^2 * the fitted covariance
 };

@@ -194,6 +194,56 @@ TEST_CASE("model problem: the point estimate of a line seen by two channels is t
   }
 }
 
+// One parameter whose fit has two basins: y = (1 + phi(theta)) t against data y = t + noise, phi the
+// lower of a narrow well reaching 0 at theta = 2 and a wide one bottoming at 0.2 at theta = 7. The
+// initial point lies in the narrow well; most of the box lies in the wide one, so the global search's
+// best draws lie there too, and least squares from them stops at theta = 7.
+TEST_CASE("model point estimate: more starts take the initial point's basin where the global search's best misleads",
+          "[bayes][model_problem]") {
+  auto phi = [](double th) { return std::min(std::pow((th - 2) / 0.2, 2), 0.2 + std::pow((th - 7) / 3, 2)); };
+  ModelChannel ch{"y", "m", {}, {}, {}, {"run"}};
+  Rng rng(7);
+  for (int i = 1; i <= 20; ++i) {
+    ch.x.push_back(i);
+    ch.curve.push_back(0);
+    ch.y.push_back(i + 0.05 * rng.normal());
+  }
+  const std::vector<double> ts = ch.x;
+  BatchForward forward = [ts, phi](const std::vector<VectorXd>& ps, std::vector<std::vector<double>>& out) {
+    out.assign(ps.size(), {});
+    for (std::size_t i = 0; i < ps.size(); ++i)
+      for (double t : ts) out[i].push_back((1 + phi(ps[i][0])) * t);
+  };
+  const ModelProblem pb({{"theta", "-", uniform(0, 10), 2.15}}, {ch}, forward);
+  const ModelPointOptions one{.seed = 3, .global_points = 8};
+  const PointEstimate single = estimate_model_point(pb, one);
+  INFO("one start: theta " << single.x[0] << " (" << single.ceres_report << ")");
+  REQUIRE(std::abs(single.x[0] - 7) < 0.05);  // the premise: the best draw misleads a single solve
+  REQUIRE(single.start_objectives.size() == 1);
+  // The best fit: phi = max(0, sum t (y - t) / sum t^2), reached at theta = 2 +- 0.2 sqrt(phi).
+  double num = 0, den = 0;
+  for (std::size_t i = 0; i < ts.size(); ++i) {
+    num += ts[i] * (ch.y[i] - ts[i]);
+    den += ts[i] * ts[i];
+  }
+  const double best_phi = std::max(0.0, num / den);
+  for (int starts : {2, 3}) {
+    ModelPointOptions o = one;
+    o.starts = starts;
+    const PointEstimate est = estimate_model_point(pb, o);
+    INFO(starts << " starts: theta " << est.x[0] << ", phi " << phi(est.x[0]) << " (best " << best_phi
+                << "), objectives " << est.start_objectives[0] << ", " << est.start_objectives[1] << "; kept "
+                << est.start);
+    REQUIRE(est.start_objectives.size() == std::size_t(starts));
+    CHECK(std::abs(est.x[0] - 2) < 0.01);
+    CHECK(std::abs(phi(est.x[0]) - best_phi) < 1e-6);
+    CHECK(est.start == 0);  // the initial point's solve
+    for (int k = 1; k < starts; ++k) CHECK(est.start_objectives[0] < est.start_objectives[k] - 50);
+    CHECK(est.global_evaluations == 9);
+  }
+  CHECK_THROWS_AS(estimate_model_point(pb, ModelPointOptions{.starts = 0}), std::invalid_argument);
+}
+
 TEST_CASE("model problem: the Laplace covariance counts each channel's rows divided by its correlation time",
           "[bayes][model_problem]") {
   // A channel whose residuals have correlation time tau carries 1/tau of its rows' information: with

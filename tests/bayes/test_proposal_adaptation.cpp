@@ -82,6 +82,37 @@ TEST_CASE("proposal adaptation: a proposal 8 sd off and 10 times too narrow move
         Approx(0.6 / std::sqrt(2.0)).margin(0.15));
 }
 
+TEST_CASE("proposal adaptation: rounds at the posterior's weights go on until the final ESS is reached",
+          "[bayes][adaptation]") {
+  // From the same off, narrow start: the default ends at the first round at beta = 1, which keeps
+  // the tempering target (a fifth of a round's points); with final_ess the rounds go on at beta = 1
+  // until the weights of all rounds hold that many effective points, and the moments it fits are
+  // then within the tighter standard errors that effective size gives.
+  const Gaussian3 g;
+  const Target t = g.target();
+  const VectorXd start = g.mu + 8.0 * g.S.diagonal().cwiseSqrt();
+  const MatrixXd narrow = 0.01 * MatrixXd::Identity(3, 3);
+  Rng r1(7), r2(7);
+  ProposalAdaptationOptions o;
+  o.max_rounds = 30;
+  const AdaptedProposal first = adapt_proposal(t, start, narrow, VectorXd(), o, r1);
+  o.final_ess = 400;
+  const AdaptedProposal more = adapt_proposal(t, start, narrow, VectorXd(), o, r2);
+  INFO("first: " << first.rounds << " rounds, ESS " << first.ess << "; with final_ess: " << more.rounds
+                 << " rounds, ESS " << more.ess);
+  REQUIRE(first.reached_posterior);
+  REQUIRE(more.reached_posterior);
+  REQUIRE(first.ess < o.final_ess);  // the premise: the default stops short of it
+  CHECK(more.beta == 1.0);
+  CHECK(more.ess >= o.final_ess);
+  CHECK(more.rounds > first.rounds);
+  CHECK(more.rounds < o.max_rounds);
+  for (int j = 0; j < 3; ++j) {
+    CHECK(std::abs(more.mean[j] - g.mu[j]) < 3 * std::sqrt(g.S(j, j) / more.ess));
+    CHECK(more.covariance(j, j) == Approx(g.S(j, j)).epsilon(3 * std::sqrt(2 / more.ess)));
+  }
+}
+
 TEST_CASE("proposal adaptation: failed points get no weight", "[bayes][adaptation]") {
   const Gaussian3 g;
   Target t = g.target();
