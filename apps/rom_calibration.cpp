@@ -274,9 +274,9 @@ RomCalibrationOutcome run_rom_calibration(const RomCalibrationSettings& s) {
   o.warmup = s.warmup >= 0 ? s.warmup : o.tries > 1 ? 4 : 40;
   // Importance sampling goes on until its weights hold 300 effective points: a 10-parameter t fitted
   // to the 50-150 that the first round at the posterior's own weights keeps on 256-point CPU rounds
-  // is a noisy proposal, and chains stuck on it. Dev VM, seeds 1 / 2 / 3: 94 / - / 161 s -> 82 / 86 /
-  // 91 s (600: no faster; docs/decisions.md, "ROM calibration sampler"). A GPU's rounds of 2,016
-  // points stop above this anyway.
+  // is a noisy proposal, on which chains stick. Dev VM (three starts), seeds 1 / 2 / 3: 94 / - / 161 s
+  // -> 82 / 86 / 91 s; 600 was no faster (docs/decisions.md, "ROM calibration sampler"). A GPU's
+  // rounds of 2,016 points stop above this anyway.
   o.adaptation_final_ess = 300;
   if (o.tries > 1) {
     // No random-walk move: a second launch per step, and on the full-vehicle references it did not
