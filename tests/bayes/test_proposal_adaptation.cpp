@@ -37,6 +37,23 @@ struct Gaussian3 {
   }
 };
 
+// Adaptation on g from a proposal 8 sd off and 10 times too narrow.
+AdaptedProposal adapt_from_off_start(const Gaussian3& g, const ProposalAdaptationOptions& o, std::uint64_t seed) {
+  const VectorXd start = g.mu + 8.0 * g.S.diagonal().cwiseSqrt();
+  const MatrixXd narrow = 0.01 * MatrixXd::Identity(3, 3);
+  Rng rng(seed);
+  return adapt_proposal(g.target(), start, narrow, VectorXd(), o, rng);
+}
+
+// Moments of a weighted sample of effective size ESS: the mean within 3 standard errors
+// (sd / sqrt(ESS)), the variance within 3 of its relative standard error sqrt(2 / ESS).
+void check_moments(const Gaussian3& g, const AdaptedProposal& a) {
+  for (int j = 0; j < 3; ++j) {
+    CHECK(std::abs(a.mean[j] - g.mu[j]) < 3 * std::sqrt(g.S(j, j) / a.ess));
+    CHECK(a.covariance(j, j) == Approx(g.S(j, j)).epsilon(3 * std::sqrt(2 / a.ess)));
+  }
+}
+
 }  // namespace
 
 TEST_CASE("proposal adaptation: effective sample size and the tempering exponent", "[bayes][adaptation]") {
@@ -61,23 +78,14 @@ TEST_CASE("proposal adaptation: effective sample size and the tempering exponent
 TEST_CASE("proposal adaptation: a proposal 8 sd off and 10 times too narrow moves onto a Gaussian target",
           "[bayes][adaptation]") {
   const Gaussian3 g;
-  const Target t = g.target();
-  const VectorXd start = g.mu + 8.0 * g.S.diagonal().cwiseSqrt();
-  const MatrixXd narrow = 0.01 * MatrixXd::Identity(3, 3);
-  Rng rng(7);
-  const AdaptedProposal a = adapt_proposal(t, start, narrow, VectorXd(), ProposalAdaptationOptions{}, rng);
+  const AdaptedProposal a = adapt_from_off_start(g, ProposalAdaptationOptions{}, 7);
   INFO("rounds " << a.rounds << ", beta " << a.beta << ", ESS " << a.ess << "\nmean " << a.mean.transpose()
                  << "\ncovariance\n"
                  << a.covariance);
   REQUIRE(a.reached_posterior);
   CHECK(a.beta == 1.0);
   CHECK(a.rounds > 1);  // the first round's weights were too uneven: it had to temper
-  // Moments of a weighted sample of effective size ESS: the mean within 3 standard errors
-  // (sd / sqrt(ESS)), the variance within 3 of its relative standard error sqrt(2 / ESS).
-  for (int j = 0; j < 3; ++j) {
-    CHECK(std::abs(a.mean[j] - g.mu[j]) < 3 * std::sqrt(g.S(j, j) / a.ess));
-    CHECK(a.covariance(j, j) == Approx(g.S(j, j)).epsilon(3 * std::sqrt(2 / a.ess)));
-  }
+  check_moments(g, a);
   CHECK(a.covariance(0, 1) / std::sqrt(a.covariance(0, 0) * a.covariance(1, 1)) ==
         Approx(0.6 / std::sqrt(2.0)).margin(0.15));
 }
@@ -89,15 +97,11 @@ TEST_CASE("proposal adaptation: rounds at the posterior's weights go on until th
   // until the weights of all rounds hold that many effective points, and the moments it fits are
   // then within the tighter standard errors that effective size gives.
   const Gaussian3 g;
-  const Target t = g.target();
-  const VectorXd start = g.mu + 8.0 * g.S.diagonal().cwiseSqrt();
-  const MatrixXd narrow = 0.01 * MatrixXd::Identity(3, 3);
-  Rng r1(7), r2(7);
   ProposalAdaptationOptions o;
   o.max_rounds = 30;
-  const AdaptedProposal first = adapt_proposal(t, start, narrow, VectorXd(), o, r1);
+  const AdaptedProposal first = adapt_from_off_start(g, o, 7);
   o.final_ess = 400;
-  const AdaptedProposal more = adapt_proposal(t, start, narrow, VectorXd(), o, r2);
+  const AdaptedProposal more = adapt_from_off_start(g, o, 7);
   INFO("first: " << first.rounds << " rounds, ESS " << first.ess << "; with final_ess: " << more.rounds
                  << " rounds, ESS " << more.ess);
   REQUIRE(first.reached_posterior);
@@ -107,10 +111,7 @@ TEST_CASE("proposal adaptation: rounds at the posterior's weights go on until th
   CHECK(more.ess >= o.final_ess);
   CHECK(more.rounds > first.rounds);
   CHECK(more.rounds < o.max_rounds);
-  for (int j = 0; j < 3; ++j) {
-    CHECK(std::abs(more.mean[j] - g.mu[j]) < 3 * std::sqrt(g.S(j, j) / more.ess));
-    CHECK(more.covariance(j, j) == Approx(g.S(j, j)).epsilon(3 * std::sqrt(2 / more.ess)));
-  }
+  check_moments(g, more);
 }
 
 TEST_CASE("proposal adaptation: failed points get no weight", "[bayes][adaptation]") {
