@@ -65,6 +65,7 @@ RomForward::RomForward(RomForwardSetup setup) : s_(std::move(setup)) {
     for (std::size_t i = 1; i < r.time.size(); ++i) dt = std::min(dt, r.time[i] - r.time[i - 1]);
     const double steps = std::max(1.0, std::round(dt / s_.step));
     rate_.push_back(1.0 / (steps * s_.step));
+    first_row_.push_back(rows_);
     rows_ += r.time.size();
     // The batch runs one sample beyond the last time; each row lies between two samples.
     const double rate = rate_.back();
@@ -91,8 +92,7 @@ RomVehicle RomForward::vehicle(const std::vector<double>& p) const {
 // One batch of every vehicle on every reference of `group` (all sampled at one rate): vehicle i on
 // reference group[r] is run i + r n, with that reference's driver, initial speed and end time.
 void RomForward::run_group(const std::vector<std::size_t>& group, const std::vector<RomVehicle>& vehicles,
-                           const std::vector<std::size_t>& first_row, std::vector<std::vector<double>>& out,
-                           std::vector<char>& ok, bool compare) const {
+                           std::vector<std::vector<double>>& out, std::vector<char>& ok, bool compare) const {
   const long n = static_cast<long>(vehicles.size());
   const long runs = n * static_cast<long>(group.size());
   const double rate = rate_[group[0]];
@@ -126,8 +126,7 @@ void RomForward::run_group(const std::vector<std::size_t>& group, const std::vec
   stats_.wall_seconds += b.wall_seconds;
   stats_.stepping_seconds += b.stepping_seconds;
   for (std::size_t r = 0; r < group.size(); ++r) {
-    const RomReference& ref = (*s_.references)[group[r]];
-    const int samples = samples_[group[r]];
+    const BatchTargets& t = targets_[group[r]];  // the reference's rows on the batch's samples
 #pragma omp parallel for schedule(static)
     for (long i = 0; i < n; ++i) {
       const long run = static_cast<long>(r) * n + i;
@@ -138,12 +137,10 @@ void RomForward::run_group(const std::vector<std::size_t>& group, const std::vec
           out[i][c] += b.sse[c * runs + run];
           continue;
         }
-        double* dst = out[i].data() + c * rows_ + first_row[group[r]];
+        double* dst = out[i].data() + c * rows_ + first_row_[group[r]];
         const auto at = [&](int sample) { return b.channels[(c * b.samples + sample) * runs + run]; };
-        for (std::size_t row = 0; row < ref.time.size(); ++row) {
-          const BetweenSamples p = between_samples(ref.time[row], rate, samples);
-          dst[row] = (1 - p.w) * at(p.s0) + p.w * at(p.s1);
-        }
+        for (std::size_t row = 0; row < t.w.size(); ++row)
+          dst[row] = (1 - t.w[row]) * at(t.s0[row]) + t.w[row] * at(t.s1[row]);
       }
     }
   }
@@ -188,11 +185,7 @@ void RomForward::operator()(const std::vector<std::vector<double>>& params,
   out.assign(params.size(), std::vector<double>(s_.channels.size() * rows_));
   std::vector<char> ok;
   const std::vector<RomVehicle> vehicles = vehicles_of(params, ok);
-  // The first row of each reference in a channel's block.
-  std::vector<std::size_t> first_row(s_.references->size(), 0);
-  for (std::size_t k = 1; k < first_row.size(); ++k)
-    first_row[k] = first_row[k - 1] + (*s_.references)[k - 1].time.size();
-  for (const auto& group : groups()) run_group(group, vehicles, first_row, out, ok, false);
+  for (const auto& group : groups()) run_group(group, vehicles, out, ok, false);
   for (std::size_t i = 0; i < params.size(); ++i)
     if (!ok[i]) out[i].clear();
   stats_.call_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -203,8 +196,7 @@ void RomForward::sse(const std::vector<std::vector<double>>& params, std::vector
   out.assign(params.size(), std::vector<double>(s_.channels.size(), 0.0));
   std::vector<char> ok;
   const std::vector<RomVehicle> vehicles = vehicles_of(params, ok);
-  const std::vector<std::size_t> first_row(s_.references->size(), 0);  // unused when comparing
-  for (const auto& group : groups()) run_group(group, vehicles, first_row, out, ok, true);
+  for (const auto& group : groups()) run_group(group, vehicles, out, ok, true);
   for (std::size_t i = 0; i < params.size(); ++i)
     if (!ok[i]) out[i].clear();
   stats_.call_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -60,12 +60,12 @@ class RomForward {
   // One batch of every vehicle on every reference of `group`: predictions into out, or with
   // `compare` each run's sums added into out.
   void run_group(const std::vector<std::size_t>& group, const std::vector<RomVehicle>& vehicles,
-                 const std::vector<std::size_t>& first_row, std::vector<std::vector<double>>& out,
-                 std::vector<char>& ok, bool compare) const;
+                 std::vector<std::vector<double>>& out, std::vector<char>& ok, bool compare) const;
 
   std::vector<double> rate_;  // output rate per reference [Hz]
   std::vector<int> samples_;  // the batch's samples per reference
   std::vector<BatchTargets> targets_;  // per reference: its rows on the batch's samples, its values
+  std::vector<std::size_t> first_row_;  // per reference: its first row in a channel's block
   // A call's batch and its result, kept for the next call: a GPU step's batch holds a few hundred MB.
   mutable std::vector<RomVehicle> all_;
   mutable BatchResult batch_;
