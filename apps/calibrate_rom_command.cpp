@@ -65,7 +65,8 @@ Command add_calibrate_rom(CLI::App& app) {
       ->check(whole_in(0, 10000000))
       ->capture_default_str();
   sub->add_option("--starts", s.starts,
-                  "least-squares solves, from the global search's best points; the best fit is kept")
+                  "least-squares starts: the vehicle's own values and the global search's N - 1 best; one round "
+                  "each, then the best fit goes on")
       ->check(whole_in(1, 100))
       ->capture_default_str();
   sub->add_option("--step", s.step, "the ROM's fixed step [s]")

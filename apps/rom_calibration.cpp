@@ -286,8 +286,8 @@ RomCalibrationOutcome run_rom_calibration(const RomCalibrationSettings& s) {
     o.adaptation_points = std::max(o.adaptation_points, o.chains * (o.tries - 1));
   }
   // Convergence checks at fixed intervals (calibrate-rom writes no checkpoint, and a check costs about
-  // a millisecond): every 25 Metropolis-Hastings steps (about a second of runs on 2 cores), after every
-  // i-SIR step (a GPU launch of a few hundred ms). Blocks growing with the chain ran up to a quarter
+  // a millisecond): every 25 steps on the CPU (about a second of runs on 2 cores), after every i-SIR
+  // step on a GPU (a launch of a few hundred ms). Blocks growing with the chain ran up to a quarter
   // past convergence.
   o.block = s.sampler == bayes::SamplerKind::kEnsemble           ? 200
             : o.tries > 1 && s.device == rom::BatchDevice::kCuda ? 1

@@ -169,6 +169,7 @@ TEST_CASE("bad input, calibrate-rom: references and parameter files", "[apps][ca
       {"--reference " + root + "/ok --model 30dof", "30dof"},
       {"--reference " + root + "/ok --tries -3", "--tries: value -3 is outside [0, 100000]"},
       {"--reference " + root + "/ok --warmup -2", "--warmup: value -2 is outside [-1, 1000000]"},
+      {"--reference " + root + "/ok --starts 0", "--starts: value 0 is outside [1, 100]"},
       {"--reference " + root + "/ok --params " + root + "/overlap.json",
        "'roll_stiffness_total' and 'roll_stiffness_front' set the same vehicle values", true},
   };
