@@ -43,13 +43,18 @@ Command add_calibrate_rom(CLI::App& app) {
              "independence (t proposal from the least-squares fit, one batch per step) or ensemble (affine-invariant)");
   sub->add_option("--chains", s.chains,
                   "chains run side by side, one batch per step (ensemble: walkers, even, at least 2 x parameters + 2); "
-                  "0: 4, 32 with tries > 1 (ensemble: that minimum)")
+                  "0: 4, 24 with tries > 1 (ensemble: that minimum)")
       ->check(whole_in(0, 100000))
       ->capture_default_str();
   sub->add_option("--tries", s.tries,
                   "independence sampler: points per chain and step; 1: Metropolis-Hastings, more: i-SIR (chains x "
                   "(tries - 1) runs per batch); 0: 1 on the CPU, 64 on a GPU")
       ->check(whole_in(0, 100000))
+      ->capture_default_str();
+  sub->add_option("--lookahead", s.lookahead,
+                  "independence sampler: steps whose proposals run as one batch; 0: as many as one GPU launch holds "
+                  "at once with tries > 1 on a GPU, else 1")
+      ->check(whole_in(0, 1000))
       ->capture_default_str();
   sub->add_option("--min-ess", s.min_ess, "bulk effective sample size required for every parameter")
       ->check(in_range(Range{0, 1e9, true, false}))

@@ -197,6 +197,16 @@ void write_fits(const RomCalibrationSettings& s, const std::vector<rom::RomRefer
   }
 }
 
+// i-SIR on a GPU: as many steps' proposals per batch as one launch holds at once. A launch lasts about
+// one run's time up to the GPU's capacity (one thread per run past one wave of four-lane vehicles),
+// so the steps cost little more than one (docs/decisions.md, "ROM calibration on a GPU"). 1 elsewhere:
+// CPU threads take as long for a step's runs in one batch as in two.
+int auto_lookahead(const RomCalibrationSettings& s, const bayes::CalibrationOptions& o, std::size_t references) {
+  if (o.tries < 2 || s.device != rom::BatchDevice::kCuda) return 1;
+  const long per_step = long(o.chains) * (o.tries - 1) * long(references);
+  return int(std::clamp<long>(rom::gpu_batch_capacity(s.model) / std::max(per_step, 1L), 1, 64));
+}
+
 }  // namespace
 
 RomCalibrationOutcome run_rom_calibration(const RomCalibrationSettings& s) {
@@ -265,7 +275,11 @@ RomCalibrationOutcome run_rom_calibration(const RomCalibrationSettings& s) {
   o.sampler = s.sampler;
   const bool independence = s.sampler == bayes::SamplerKind::kIndependence;
   o.tries = !independence ? 1 : s.tries > 0 ? s.tries : s.device == rom::BatchDevice::kCuda ? 64 : 1;
-  o.chains = s.chains > 0 ? s.chains : !independence ? 2 * (pb.dim() + 1) : o.tries > 1 ? 32 : 4;
+  // i-SIR: 24 chains, so that a GPU launch holds 5 steps' proposals (lookahead) instead of 4 with 32.
+  // H200, seeds 1-8 of the pipeline-rom references: 9.0-13.0 s against 10.6-20.3 s with 32 chains
+  // (docs/decisions.md, "ROM calibration on a GPU").
+  o.chains = s.chains > 0 ? s.chains : !independence ? 2 * (pb.dim() + 1) : o.tries > 1 ? 24 : 4;
+  o.lookahead = s.lookahead > 0 ? s.lookahead : independence ? auto_lookahead(s, o, refs.size()) : 1;
   o.min_ess = s.min_ess;
   o.max_rhat = s.max_rhat;
   // i-SIR moves in 92-95 % of its steps, so a chain leaves its dispersed start within a step or two:
@@ -301,8 +315,9 @@ RomCalibrationOutcome run_rom_calibration(const RomCalibrationSettings& s) {
                    p.draws_per_chain, p.max_rhat, p.min_ess, pb.runs());
   };
   bayes::sample_posterior(pb.target(), o, res);
-  spdlog::info("calibrate-rom: {} ({} chains, {} per step; acceptance rate {:.3g})", res.termination, o.chains,
+  spdlog::info("calibrate-rom: {} ({} chains, {} per step{}; acceptance rate {:.3g})", res.termination, o.chains,
                o.tries > 1 ? fmt::format("i-SIR with {} tries", o.tries) : std::string("Metropolis-Hastings"),
+               o.lookahead > 1 ? fmt::format(", the proposals of {} steps per batch", o.lookahead) : "",
                res.acceptance_rate);
   out.runs = pb.runs();
   out.failed_runs = pb.failed_runs();
@@ -349,6 +364,7 @@ RomCalibrationOutcome run_rom_calibration(const RomCalibrationSettings& s) {
               {"sampler", s.sampler == bayes::SamplerKind::kEnsemble ? "ensemble" : "independence"},
               {"chains", res.chains},
               {"tries", o.tries},
+              {"lookahead", o.lookahead},
               {"draws", res.draws},
               {"seed", s.seed},
               {"converged", res.converged},

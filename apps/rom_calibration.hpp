@@ -22,11 +22,14 @@ struct RomCalibrationSettings {
   std::string out;
   std::uint64_t seed = 1;
   bayes::SamplerKind sampler = bayes::SamplerKind::kIndependence;  // or kEnsemble
-  int chains = 0;        // chains (ensemble: walkers); 0: 4, 32 with tries > 1 (ensemble: 2 (parameters + 1))
+  int chains = 0;  // chains (ensemble: walkers); 0: 4, 24 with tries > 1 (ensemble: 2 (parameters + 1))
   // Independence sampler: points per chain and step; 1: Metropolis-Hastings, more: i-SIR, one batch of
   // chains x (tries - 1) runs per step; 0: 1 on the CPU, 64 on a GPU (docs/decisions.md, "ROM
   // calibration on a GPU").
   int tries = 0;
+  // Independence sampler: steps whose proposals go into one batch (they do not depend on the chains'
+  // states); 0: as many as one GPU launch holds at once with i-SIR on a GPU, else 1.
+  int lookahead = 0;
   double min_ess = 400;  // bulk ESS per parameter
   double max_rhat = 1.01;
   long max_draws = 20000;  // per walker

@@ -357,6 +357,8 @@ CalibrationResult calibrate(const CalibrationProblem& pb, const CalibrationOptio
 void sample_posterior(const Target& target, const CalibrationOptions& opt, CalibrationResult& res) {
   if (opt.chains < 2) throw InputError(fmt::format("chains {}: at least 2 chains are needed for R-hat", opt.chains));
   if (opt.tries < 1) throw InputError(fmt::format("tries {}: expected at least 1 point per chain and step", opt.tries));
+  if (opt.lookahead < 1)
+    throw InputError(fmt::format("lookahead {}: expected at least 1 step per batch of proposals", opt.lookahead));
   const int dim = target.dim;
   int count = opt.chains;
   if (opt.sampler == SamplerKind::kEnsemble)
@@ -430,7 +432,8 @@ void sample_posterior(const Target& target, const CalibrationOptions& opt, Calib
                                             opt.seed, box.get(),
                                             IndependenceOptions{.scale = opt.proposal_scale,
                                                                 .local_moves = opt.local_moves,
-                                                                .tries = opt.tries},
+                                                                .tries = opt.tries,
+                                                                .lookahead = opt.lookahead},
                                             refit_in_warmup);
     return std::make_unique<Ensemble>(target, starts, res.point.noise_var, opt.seed);
   };

@@ -59,6 +59,9 @@ struct CalibrationOptions {
   // Independence sampler: points per chain and step (1: Metropolis-Hastings; more: i-SIR, one batch of
   // chains x (tries - 1) runs per step, for a GPU; bayes/independence.hpp).
   int tries = 1;
+  // Independence sampler: steps whose proposals are evaluated as one batch (IndependenceOptions::
+  // lookahead; for a GPU that holds several steps' runs in one launch). Needs a collapsed target.
+  int lookahead = 1;
   int adaptation_points = 256;  // runs per round of importance sampling (one batch)
   // Rounds at the posterior's own weights continue until the weights' ESS over all rounds reaches
   // this (proposal_adaptation.hpp); 0: the first such round ends adaptation.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <stdexcept>
 #include <utility>
@@ -19,6 +20,10 @@ IndependenceSampler::IndependenceSampler(const Target& target, const Independenc
   check_target(target);
   if (!(opt_.df > 0) || !(opt_.scale > 0)) throw std::invalid_argument("IndependenceOptions: df and scale must be > 0");
   if (opt_.tries < 1) throw std::invalid_argument("IndependenceOptions: tries must be >= 1");
+  if (opt_.lookahead < 1) throw std::invalid_argument("IndependenceOptions: lookahead must be >= 1");
+  if (opt_.lookahead > 1 && target.nuisance_dim > 0 && !target.log_marginal_batch)
+    throw std::invalid_argument(
+        "IndependenceOptions: lookahead > 1 needs a target whose moves do not depend on the nuisance (collapsed)");
   if (x_.empty() || nuisance_.size() != x_.size())
     throw std::invalid_argument("IndependenceSampler: one nuisance vector per chain, at least one chain");
   if (mean.size() != target.dim || covariance.rows() != target.dim || covariance.cols() != target.dim)
@@ -67,34 +72,70 @@ Eigen::VectorXd IndependenceSampler::draw() {
 // The log densities the moves accept on, of `per` proposals per chain (chain k's are ys[k per ..
 // (k + 1) per)), as one batch where the target has one; failures counted per chain.
 void IndependenceSampler::evaluate(const std::vector<Eigen::VectorXd>& ys, std::size_t per, std::vector<double>& lps) {
+  evaluate_raw(ys, per, lps);
+  for (std::size_t i = 0; i < ys.size(); ++i) lps[i] = checked_log_density(lps[i], stats_[i / per]);
+}
+
+// The same before the failure conventions (NaN where a run failed or the batch threw). Points
+// past the chains' first block (drawn ahead) belong to chain (i / per) mod chains.
+void IndependenceSampler::evaluate_raw(const std::vector<Eigen::VectorXd>& ys, std::size_t per,
+                                       std::vector<double>& lps) const {
   const std::size_t n = ys.size();
   lps.assign(n, 0.0);
+  const auto nuisance_of = [&](std::size_t i) -> const Eigen::VectorXd& { return nuisance_[(i / per) % x_.size()]; };
   if (target_->log_marginal_batch || target_->log_density_batch) {
     try {
       if (collapsed()) {
         target_->log_marginal_batch(ys, lps);
       } else {
         std::vector<Eigen::VectorXd> nv;
-        for (std::size_t i = 0; i < n; ++i) nv.push_back(nuisance_[i / per]);
+        for (std::size_t i = 0; i < n; ++i) nv.push_back(nuisance_of(i));
         target_->log_density_batch(ys, nv, lps);
       }
     } catch (const std::exception&) {
       lps.assign(n, std::numeric_limits<double>::quiet_NaN());
     }
     if (lps.size() != n) throw std::logic_error("Target.log_density_batch: wrong number of results");
-    for (std::size_t i = 0; i < n; ++i) lps[i] = checked_log_density(lps[i], stats_[i / per]);
   } else {
-    for (std::size_t i = 0; i < n; ++i) lps[i] = safe_log_density(*target_, ys[i], nuisance_[i / per], stats_[i / per]);
+    for (std::size_t i = 0; i < n; ++i) {
+      try {
+        lps[i] = target_->log_density(ys[i], nuisance_of(i));
+      } catch (const std::exception&) {
+        lps[i] = std::numeric_limits<double>::quiet_NaN();
+      }
+    }
   }
+}
+
+// This step's `per` fresh proposals per chain and their log densities (failures counted now, for
+// the step that uses them). With lookahead > 1 the next `lookahead` steps' proposals are drawn and
+// evaluated as one batch when the last batch is used up.
+void IndependenceSampler::next_proposals(std::size_t per, std::vector<Eigen::VectorXd>& ys, std::vector<double>& lps) {
+  const std::size_t block = x_.size() * per;
+  if (ahead_next_ + block > ahead_ys_.size()) {
+    ahead_ys_.resize(block * static_cast<std::size_t>(opt_.lookahead));
+    for (auto& y : ahead_ys_) y = draw();
+    evaluate_raw(ahead_ys_, per, ahead_lps_);
+    ahead_next_ = 0;
+  }
+  const auto from = static_cast<std::ptrdiff_t>(ahead_next_), to = from + static_cast<std::ptrdiff_t>(block);
+  ys.assign(std::make_move_iterator(ahead_ys_.begin() + from), std::make_move_iterator(ahead_ys_.begin() + to));
+  lps.assign(ahead_lps_.begin() + from, ahead_lps_.begin() + to);
+  ahead_next_ += block;
+  if (ahead_next_ == ahead_ys_.size()) {
+    ahead_ys_.clear();
+    ahead_lps_.clear();
+    ahead_next_ = 0;
+  }
+  for (std::size_t i = 0; i < block; ++i) lps[i] = checked_log_density(lps[i], stats_[i / per]);
 }
 
 // Metropolis-Hastings with the independence proposal: one run per chain.
 std::vector<char> IndependenceSampler::metropolis_move() {
   const std::size_t n = x_.size();
-  std::vector<Eigen::VectorXd> ys(n);
-  for (auto& y : ys) y = draw();
-  std::vector<double> lps(n);
-  evaluate(ys, 1, lps);
+  std::vector<Eigen::VectorXd> ys;
+  std::vector<double> lps;
+  next_proposals(1, ys, lps);
   std::vector<char> moved(n, 0);
   for (std::size_t k = 0; k < n; ++k) {
     const double lq = log_q(ys[k]);
@@ -117,10 +158,9 @@ std::vector<char> IndependenceSampler::metropolis_move() {
 // a small one). A failed run has no weight.
 std::vector<char> IndependenceSampler::resample_move() {
   const std::size_t n = x_.size(), fresh = static_cast<std::size_t>(opt_.tries - 1);
-  std::vector<Eigen::VectorXd> ys(n * fresh);
-  for (auto& y : ys) y = draw();
+  std::vector<Eigen::VectorXd> ys;
   std::vector<double> lps;
-  evaluate(ys, fresh, lps);
+  next_proposals(fresh, ys, lps);
   std::vector<char> moved(n, 0);
   std::vector<double> log_w(fresh + 1), lq(fresh);
   for (std::size_t k = 0; k < n; ++k) {
@@ -203,6 +243,10 @@ void IndependenceSampler::refit(const std::vector<Eigen::VectorXd>& draws) {
   const Eigen::MatrixXd old_chol = chol_;
   set_proposal(m, c);
   if (mean_ == old_mean && chol_ == old_chol) return;  // not positive definite: kept
+  // Proposals drawn ahead came from the old proposal: weighed by the new one they would be wrong.
+  ahead_ys_.clear();
+  ahead_lps_.clear();
+  ahead_next_ = 0;
   for (std::size_t k = 0; k < x_.size(); ++k) logq_[k] = log_q(x_[k]);
 }
 
@@ -211,7 +255,14 @@ nlohmann::json IndependenceSampler::save() const {
   for (double v : logp_) logp.push_back(encode_double(v));
   for (double v : logq_) logq.push_back(encode_double(v));
   for (const auto& s : stats_) stats.push_back(stats_to_json(s));
+  // The proposals drawn ahead and not yet used, so that a resumed run takes the same steps.
+  nlohmann::json ahead_lps = nlohmann::json::array();
+  const std::vector<Eigen::VectorXd> ahead(ahead_ys_.begin() + static_cast<std::ptrdiff_t>(ahead_next_),
+                                           ahead_ys_.end());
+  for (std::size_t i = ahead_next_; i < ahead_lps_.size(); ++i) ahead_lps.push_back(encode_double(ahead_lps_[i]));
   return {{"sampler", "independence"},
+          {"ahead", vectors_to_json(ahead)},
+          {"ahead_log_densities", ahead_lps},
           {"mean", vector_to_json(mean_)},
           {"chol", matrix_to_json(chol_)},
           {"states", vectors_to_json(x_)},
@@ -234,12 +285,22 @@ void IndependenceSampler::load(const nlohmann::json& j) {
   const auto &jp = j.at("log_densities"), &jq = j.at("log_proposals"), &js = j.at("stats");
   if (jp.size() != k || jq.size() != k || js.size() != k)
     throw std::invalid_argument("IndependenceSampler::load: wrong chain count");
-  std::vector<double> logp, logq;
+  std::vector<double> logp, logq, ahead_lps;
   std::vector<ChainStats> stats;
   for (std::size_t i = 0; i < k; ++i) {
     logp.push_back(decode_double(jp[i]));
     logq.push_back(decode_double(jq[i]));
     stats.push_back(stats_from_json(js[i]));
+  }
+  // Checkpoints written before proposals were drawn ahead have none.
+  std::vector<Eigen::VectorXd> ahead;
+  if (j.contains("ahead")) {
+    const auto& ja = j.at("ahead");
+    const auto& jl = j.at("ahead_log_densities");
+    if (!ja.is_array() || !jl.is_array() || ja.size() != jl.size() || ja.size() % k != 0)
+      throw std::invalid_argument("IndependenceSampler::load: proposals drawn ahead do not fit the chains");
+    ahead = vectors_from_json(ja, ja.size(), d);
+    for (const auto& v : jl) ahead_lps.push_back(decode_double(v));
   }
   Rng rng = rng_;
   rng.set_state(j.at("rng").get<std::string>());
@@ -251,6 +312,9 @@ void IndependenceSampler::load(const nlohmann::json& j) {
   logq_ = std::move(logq);
   stats_ = std::move(stats);
   rng_ = std::move(rng);
+  ahead_ys_ = std::move(ahead);
+  ahead_lps_ = std::move(ahead_lps);
+  ahead_next_ = 0;
 }
 
 }  // namespace terracal::bayes

@@ -37,6 +37,13 @@ struct IndependenceOptions {
   // state drawn from the current one and tries - 1 proposals by importance weight (one batch of
   // chains x (tries - 1) runs per step).
   int tries = 1;
+  // Steps whose fresh proposals are drawn and evaluated as one batch, then served step by step:
+  // they do not depend on the chains' states, so a GPU that holds several steps' runs in one launch
+  // runs them in about the time of one step's. The chains are the same Markov chains (a step's
+  // proposals are drawn before it, from the proposal it uses); only the random numbers' order
+  // differs from 1. Needs a target whose moves do not depend on the chains' nuisance (collapsed,
+  // or none). Proposals drawn for steps that are never taken are not counted anywhere.
+  int lookahead = 1;
 };
 
 class IndependenceSampler {
@@ -69,6 +76,8 @@ class IndependenceSampler {
   void set_proposal(const Eigen::VectorXd& mean, const Eigen::MatrixXd& covariance);
   double log_q(const Eigen::VectorXd& x) const;  // the proposal's log density, up to a constant
   void evaluate(const std::vector<Eigen::VectorXd>& ys, std::size_t per, std::vector<double>& lps);
+  void evaluate_raw(const std::vector<Eigen::VectorXd>& ys, std::size_t per, std::vector<double>& lps) const;
+  void next_proposals(std::size_t per, std::vector<Eigen::VectorXd>& ys, std::vector<double>& lps);
   std::vector<char> metropolis_move();
   std::vector<char> resample_move();
   Eigen::VectorXd draw();
@@ -81,6 +90,11 @@ class IndependenceSampler {
   std::vector<double> logp_, logq_;
   std::vector<ChainStats> stats_;
   Rng rng_;
+  // Proposals drawn ahead (lookahead > 1) and their log densities as the target returned them; the
+  // next step's block starts at ahead_next_.
+  std::vector<Eigen::VectorXd> ahead_ys_;
+  std::vector<double> ahead_lps_;
+  std::size_t ahead_next_ = 0;
 };
 
 }  // namespace terracal::bayes

@@ -4,6 +4,9 @@
 // stays within the 2 s simulated. Two cases: all vehicles sharing one parameter set and driver, and
 // every vehicle with its own parameters (mass and friction varied).
 // Usage: bench_rom_batch [cuda|cpu] [max_vehicles=4e6]
+//        bench_rom_batch cuda wave: one launch's time against the batch's size, at a calibrator's
+//        shape (18-DOF, every run its own parameters, a 10 s manoeuvre): how many runs one launch
+//        holds before it lasts longer (docs/decisions.md, "ROM calibration on a GPU").
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -15,8 +18,43 @@
 using namespace terracal;
 using namespace terracal::rom;
 
+namespace {
+
+// Batches of 2,016 to 64,512 runs of the 18-DOF model with varied parameters over one 10 s
+// manoeuvre (steering both ways, as a lane change), timed launch by launch.
+void wave_sweep(const RomVehicle& base) {
+  const DriverSeries d =
+      DriverSeries::from_rows({0, 2, 3, 4, 5, 6, 10}, {0, 0, 0.3, -0.3, 0.3, 0, 0}, {0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5},
+                              {0, 0, 0, 0, 0, 0, 0}, "wave inputs");
+  BatchOptions o;
+  o.end_time = 10.0;
+  o.initial_speed = 10.0;
+  o.model = RomModel::k18Dof;
+  o.device = BatchDevice::kCuda;
+  std::printf("one launch holds %ld runs of one thread each\n", gpu_batch_capacity(o.model));
+  std::printf("%10s %12s %14s %16s\n", "runs", "wall [s]", "stepping [s]", "run-steps/s");
+  for (long n : {2016L, 4032L, 8064L, 12096L, 16128L, 24192L, 32256L, 40320L, 64512L}) {
+    std::vector<RomVehicle> vs(n, base);
+    for (long i = 0; i < n; ++i) {
+      vs[i].mass *= 0.9 + 0.2 * (i % 1000) / 1000.0;
+      vs[i].friction = 0.5 + 0.5 * (i % 777) / 777.0;
+    }
+    run_rom_batch(vs, {&d}, n, o);  // warm-up: the device's buffers at this size
+    const BatchResult r = run_rom_batch(vs, {&d}, n, o);
+    std::printf("%10ld %12.3f %14.3f %16.3g\n", n, r.wall_seconds, r.stepping_seconds,
+                n * (o.end_time / o.step) / r.stepping_seconds);
+    std::fflush(stdout);
+  }
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   const std::string device = argc > 1 ? argv[1] : "cuda";
+  if (argc > 2 && std::string(argv[2]) == "wave") {
+    wave_sweep(load_rom_vehicle("hmmwv"));
+    return 0;
+  }
   const long max_n = argc > 2 ? static_cast<long>(std::atof(argv[2])) : 4000000;
   const RomVehicle base = load_rom_vehicle("hmmwv");
   const DriverSeries d = DriverSeries::from_rows({0, 0.5, 1.0, 1.5, 2.0}, {0, 0.3, -0.3, 0.1, 0},

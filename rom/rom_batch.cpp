@@ -78,6 +78,15 @@ bool cuda_batch_available() {
 #endif
 }
 
+long gpu_batch_capacity(RomModel model) {
+#if TERRACAL_HAVE_CUDA
+  return gpu_batch_capacity_cuda(model);
+#else
+  (void)model;
+  return 0;
+#endif
+}
+
 BatchResult run_rom_batch(const std::vector<RomVehicle>& vehicles, const std::vector<const DriverSeries*>& drivers,
                           long n, const BatchOptions& o) {
   BatchResult r;

@@ -93,4 +93,8 @@ void run_rom_batch(const std::vector<RomVehicle>& vehicles, const std::vector<co
 
 bool cuda_batch_available();
 
+// How many runs of `model` one GPU launch holds at once, one thread per run: a batch up to this size
+// lasts about one run's time. 0 without a CUDA device or in a build without CUDA.
+long gpu_batch_capacity(RomModel model);
+
 }  // namespace terracal::rom

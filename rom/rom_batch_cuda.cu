@@ -234,4 +234,19 @@ void run_rom_batch_cuda(const std::vector<RomVehicle>& vehicles, const std::vect
   r.failed = count_failed(r);
 }
 
+long gpu_batch_capacity_cuda(RomModel model) {
+  int count = 0;
+  if (cudaGetDeviceCount(&count) != cudaSuccess || count == 0) return 0;
+  long runs = 0;
+  with_model(model, [&](auto m) {
+    // Threads that fit on an SM at the single-lane kernel's registers, asked in two-warp blocks (an
+    // SM takes at most 32 blocks: one-warp blocks would cap it at 1,024 threads).
+    int per_sm = 0;
+    TERRACAL_CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(
+        &per_sm, parallel_for_kernel<BatchKernel<decltype(m), 1>>, 64, 0));
+    runs = 64L * per_sm * cuda_sm_count();
+  });
+  return runs;
+}
+
 }  // namespace terracal::rom

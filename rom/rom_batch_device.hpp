@@ -10,4 +10,7 @@ namespace terracal::rom {
 void run_rom_batch_cuda(const std::vector<RomVehicle>& vehicles, const std::vector<const DriverSeries*>& drivers, long n,
                         const BatchOptions& options, BatchResult& r);
 
+// gpu_batch_capacity on the device (0 where none is present).
+long gpu_batch_capacity_cuda(RomModel model);
+
 }  // namespace terracal::rom

@@ -10,6 +10,8 @@ TEST_CASE("bad input, calibrate-rom: options", "[cli][bad_input]") {
       {"no least-squares start", {}, base + "--starts 0", {"--starts", "0", "[1, 100]"}},
       {"too many least-squares starts", {}, base + "--starts 101", {"--starts", "101", "[1, 100]"}},
       {"starts not a number", {}, base + "--starts three", {"--starts", "three"}},
+      {"negative lookahead", {}, base + "--lookahead -1", {"--lookahead", "-1", "[0, 1000]"}},
+      {"lookahead too long", {}, base + "--lookahead 1001", {"--lookahead", "1001", "[0, 1000]"}},
       {"negative global points", {}, base + "--global-points -1", {"--global-points", "-1"}},
       {"unknown sampler", {}, base + "--sampler gibbs", {"--sampler", "gibbs"}},
       {"unknown device", {}, base + "--device tpu", {"--device", "tpu"}},

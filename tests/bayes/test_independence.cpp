@@ -196,6 +196,21 @@ std::vector<double> snapshot(const IndependenceSampler& s) {
   return d;
 }
 
+// `t` with a batch evaluation that counts its calls and checks that each holds `expected` points (0:
+// any number), with one nuisance per point.
+Target counted_batches(const Target& t, std::size_t expected, int& calls, bool& sizes_ok) {
+  Target batched = t;
+  batched.log_density_batch = [t, expected, &calls, &sizes_ok](const std::vector<VectorXd>& xs,
+                                                               const std::vector<VectorXd>& nus,
+                                                               std::vector<double>& out) {
+    ++calls;
+    sizes_ok = sizes_ok && (expected == 0 || xs.size() == expected) && nus.size() == xs.size();
+    out.resize(xs.size());
+    for (std::size_t i = 0; i < xs.size(); ++i) out[i] = t.log_density(xs[i], nus[i]);
+  };
+  return batched;
+}
+
 }  // namespace
 
 TEST_CASE("independence: an imperfect t proposal still samples a correlated 3-D Gaussian exactly",
@@ -519,14 +534,7 @@ TEST_CASE("independence: i-SIR with an imperfect t proposal samples a correlated
   const int chains = 16, steps = 600;
   int calls = 0;
   bool sizes_ok = true;
-  Target batched = t;
-  batched.log_density_batch = [&](const std::vector<VectorXd>& xs, const std::vector<VectorXd>& nus,
-                                  std::vector<double>& out) {
-    ++calls;
-    sizes_ok = sizes_ok && xs.size() == std::size_t(chains * (opt.tries - 1)) && nus.size() == xs.size();
-    out.resize(xs.size());
-    for (std::size_t i = 0; i < xs.size(); ++i) out[i] = t.log_density(xs[i], nus[i]);
-  };
+  const Target batched = counted_batches(t, std::size_t(chains * (opt.tries - 1)), calls, sizes_ok);
   IndependenceSampler s(batched, opt, m0, 2.0 * cov, copies(chains, g.mu), copies(chains, VectorXd()), Rng(31));
   const std::vector<Chains> x = run_recording(s, steps);
   CHECK(calls == steps);  // one batch of chains x (tries - 1) points per step
@@ -594,4 +602,94 @@ TEST_CASE("independence: i-SIR never picks a failed point, and evaluates each ch
   for (const auto& st : s.stats()) failed += st.failed_evaluations, moved += st.accepted;
   CHECK(failed > 100);  // the proposal reaches past 2.1 often: the failures were met and counted
   CHECK(moved > chains * 400 / 2);
+}
+
+TEST_CASE("independence: proposals drawn ahead for several steps: one batch per lookahead, the same posterior",
+          "[bayes][independence]") {
+  const Gauss3 g;
+  const Target t = g.target();
+  const MatrixXd cov = g.cov();
+  const VectorXd m0 = g.mu + 0.5 * g.sd;  // the imperfect proposal of the i-SIR test above
+  const int chains = 16, steps = 600;
+  for (const IndependenceOptions opt :
+       {IndependenceOptions{.tries = 8, .lookahead = 3}, IndependenceOptions{.tries = 1, .lookahead = 4}}) {
+    const std::size_t per = std::size_t(std::max(opt.tries - 1, 1));
+    int calls = 0;
+    bool sizes_ok = true;
+    const Target batched = counted_batches(t, chains * per * std::size_t(opt.lookahead), calls, sizes_ok);
+    IndependenceSampler s(batched, opt, m0, 2.0 * cov, copies(chains, g.mu), copies(chains, VectorXd()), Rng(31));
+    const std::vector<Chains> x = run_recording(s, steps);
+    INFO("tries " << opt.tries << ", lookahead " << opt.lookahead);
+    CHECK(calls == steps / opt.lookahead);
+    CHECK(sizes_ok);
+    for (int j = 0; j < 3; ++j) {
+      const double m = pooled_mean(x[j]), se = mcse(x[j]), sd = pooled_sd(x[j]);
+      INFO("x" << j << ": mean " << m << ", truth " << g.mu[j] << ", MCSE " << se << ", sd " << sd);
+      CHECK(std::abs(m - g.mu[j]) < 4 * se);
+      CHECK(std::abs(sd - g.sd[j]) < 0.1 * g.sd[j]);
+    }
+    // The stay probability is the kernel's: a step that reused another step's proposals, or weighed
+    // them with the wrong state, would show here.
+    const double stay = 1.0 - pooled_acceptance(s);
+    const double theory = opt.tries > 1 ? stationary_stay(g.mu, cov, opt, m0, 2.0 * cov, 100000, 32)
+                                        : 1.0 - stationary_acceptance(g.mu, cov, opt, m0, 2.0 * cov, 100000, 33);
+    INFO("stay " << stay << ", stationary value " << theory);
+    CHECK(std::abs(stay - theory) < 0.02);
+  }
+}
+
+TEST_CASE("independence: proposals drawn ahead survive a checkpoint and are dropped by a refit",
+          "[bayes][independence]") {
+  const Gauss3 g;
+  const Target plain = g.target();
+  int calls = 0;
+  bool sizes_ok = true;
+  const Target t = counted_batches(plain, 0, calls, sizes_ok);
+  const IndependenceOptions opt{.tries = 4, .lookahead = 3};
+  const int chains = 4;
+  IndependenceSampler s(t, opt, g.mu, g.cov(), copies(chains, g.mu), copies(chains, VectorXd()), Rng(7));
+  for (int i = 0; i < 7; ++i) s.step();  // two batches; the second's last two steps are still ahead
+  REQUIRE(calls == 3);
+  const std::string saved = s.save().dump();
+  IndependenceSampler fresh(t, opt, VectorXd::Zero(3), 3.0 * g.cov(), copies(chains, g.mu + g.sd),
+                            copies(chains, VectorXd()), Rng(99));
+  fresh.load(nlohmann::json::parse(saved));
+  calls = 0;
+  for (int i = 0; i < 2; ++i) {
+    s.step();
+    fresh.step();
+    REQUIRE(snapshot(s) == snapshot(fresh));
+  }
+  CHECK(calls == 0);  // both served the two steps from the proposals drawn ahead
+  for (int i = 0; i < 9; ++i) {
+    s.step();
+    fresh.step();
+  }
+  CHECK(snapshot(s) == snapshot(fresh));
+  CHECK(calls == 6);
+
+  // A refit changes the proposal: what was drawn from the old one is dropped, the next step draws anew.
+  s.step();  // one of three steps used
+  std::vector<VectorXd> pool;
+  Rng rng(3);
+  const MatrixXd l = g.cov().llt().matrixL();
+  for (int i = 0; i < 200; ++i) {
+    VectorXd z(3);
+    for (int j = 0; j < 3; ++j) z[j] = rng.normal();
+    pool.push_back(g.mu + l * z);
+  }
+  calls = 0;
+  s.refit(pool);
+  s.step();
+  CHECK(calls == 1);
+  CHECK(s.save().at("ahead").size() == std::size_t(2 * chains * (opt.tries - 1)));
+
+  // Lookahead needs moves that do not depend on a chain's own nuisance, and at least one step.
+  const NormalInverseGamma nig;
+  CHECK_THROWS_AS(IndependenceSampler(nig.target(), {.lookahead = 2}, vec({1}), MatrixXd::Ones(1, 1),
+                                      copies(2, vec({1})), copies(2, vec({1})), Rng(1)),
+                  std::invalid_argument);
+  CHECK_THROWS_AS(
+      IndependenceSampler(plain, {.lookahead = 0}, g.mu, g.cov(), copies(2, g.mu), copies(2, VectorXd()), Rng(1)),
+      std::invalid_argument);
 }
