@@ -96,6 +96,38 @@ TEST_CASE("rom batch: GPU and CPU batches of 1000 different vehicles agree withi
   }
 }
 
+TEST_CASE("rom batch: a GPU batch as large as one launch holds (one lane per run) equals the CPU's",
+          "[rom][batch][gpu]") {
+  // The calibrator's lookahead fills a launch to gpu_batch_capacity runs, past the four-lane kernel's
+  // wave: this batch runs the one-lane kernel.
+  if (!test::cuda_device_or_skip("rom batch at the GPU's capacity")) {
+    CHECK(gpu_batch_capacity(RomModel::k18Dof) == 0);  // no device: nothing to fill
+    return;
+  }
+  const long n = gpu_batch_capacity(RomModel::k18Dof);
+  REQUIRE(n >= 64);
+  CHECK(n % 64 == 0);
+  const auto vehicles = varied_vehicles(n);
+  const DriverSeries d = lane_change();
+  BatchOptions o;
+  o.model = RomModel::k18Dof;
+  o.end_time = 1.0;
+  o.initial_speed = 12.0;
+  o.output_rate = 50;
+  o.channels = {kChVx, kChAy};
+  o.device = BatchDevice::kCpu;
+  const BatchResult cpu = run_rom_batch(vehicles, {&d}, n, o);
+  o.device = BatchDevice::kCuda;
+  const BatchResult gpu = run_rom_batch(vehicles, {&d}, n, o);
+  double worst = 0;
+  for (std::size_t k = 0; k < cpu.channels.size(); ++k)
+    worst = std::max(worst, relative(gpu.channels[k], cpu.channels[k]));
+  INFO(n << " runs in " << gpu.chunks << " launch(es); largest relative difference " << worst);
+  CHECK(gpu.chunks == 1);
+  CHECK(worst < 1e-10);
+  CHECK(gpu.failed == cpu.failed);
+}
+
 TEST_CASE("rom batch: a GPU batch of mixed manoeuvres equals the CPU's, zeros past each run's end included",
           "[rom][batch][gpu]") {
   if (!test::cuda_device_or_skip("rom batch GPU mixed manoeuvres")) return;
