@@ -9,6 +9,7 @@
 #include <ceres/ceres.h>
 #include <fmt/format.h>
 
+#include "bayes/ceres_solve.hpp"
 #include "core/errors.hpp"
 #include "core/rng.hpp"
 
@@ -209,7 +210,7 @@ void polish(const ModelProblem& pb, const ModelPointOptions& o, PointEstimate& e
   options.parameter_tolerance = 1e-10;
   options.num_threads = 1;
   ceres::Solver::Summary summary;
-  ceres::Solve(options, &problem, &summary);
+  solve_quietly(options, &problem, &summary);
   est.ceres_report = summary.BriefReport();
   const Eigen::VectorXd candidate = cost->x_of(u.data());
   if (profile_objective(pb, candidate, pb.sse({candidate})[0]) <= profile_objective(pb, est.x, pb.sse({est.x})[0]))

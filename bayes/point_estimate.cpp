@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 #include <nlopt.hpp>
 
+#include "bayes/ceres_solve.hpp"
 #include "core/errors.hpp"
 
 namespace terracal::bayes {
@@ -360,7 +361,7 @@ void polish(const CalibrationProblem& pb, PointEstimate& est) {
   options.parameter_tolerance = 1e-12;
   options.num_threads = 1;  // deterministic
   ceres::Solver::Summary summary;
-  ceres::Solve(options, &problem, &summary);
+  solve_quietly(options, &problem, &summary);
   est.ceres_report = summary.BriefReport();
   const auto candidate = unscale(u, scale);
   // Keep the polished point only if it is feasible and no worse (Ceres cannot see Kc/r + Kphi > 0).
