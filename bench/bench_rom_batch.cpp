@@ -7,6 +7,9 @@
 //        bench_rom_batch cuda wave: one launch's time against the batch's size, at a calibrator's
 //        shape (18-DOF, every run its own parameters, a 10 s manoeuvre): how many runs one launch
 //        holds before it lasts longer (docs/decisions.md, "ROM calibration on a GPU").
+//        bench_rom_batch [cuda|cpu] calib [runs]: the same runs as the calibrator's forward model
+//        makes them (vx, yaw rate, roll and ay sampled at 100 Hz and compared with targets), against
+//        stepping alone: what sampling and comparing cost.
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -47,12 +50,56 @@ void wave_sweep(const RomVehicle& base) {
   }
 }
 
+// The wave manoeuvre's runs, varied as in wave_sweep, stepped alone and then sampled and compared as
+// calibrate-rom's batches are (four channels at 100 Hz, a target row at every sample), three times each.
+void calibrator_shape(const RomVehicle& base, BatchDevice device, long n) {
+  const DriverSeries d =
+      DriverSeries::from_rows({0, 2, 3, 4, 5, 6, 10}, {0, 0, 0.3, -0.3, 0.3, 0, 0}, {0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5},
+                              {0, 0, 0, 0, 0, 0, 0}, "wave inputs");
+  std::vector<RomVehicle> vs(n, base);
+  for (long i = 0; i < n; ++i) {
+    vs[i].mass *= 0.9 + 0.2 * (i % 1000) / 1000.0;
+    vs[i].friction = 0.5 + 0.5 * (i % 777) / 777.0;
+  }
+  BatchOptions stepping;
+  stepping.end_time = 10.0;
+  stepping.initial_speed = 10.0;
+  stepping.model = RomModel::k18Dof;
+  stepping.device = device;
+  BatchOptions compared = stepping;
+  compared.output_rate = 100;
+  compared.channels = {kChVx, kChYawRate, kChRoll, kChAy};
+  BatchTargets t;
+  const int samples = static_cast<int>(compared.end_time * compared.output_rate) + 1;
+  for (int s = 0; s < samples; ++s) {
+    t.s0.push_back(s);
+    t.s1.push_back(s);
+    t.w.push_back(0.0);
+  }
+  t.y.assign(compared.channels.size() * samples, 0.0);
+  compared.targets = {&t};
+  std::printf("%ld runs of 10 s, 18-DOF, own parameters, %s\n", n, device == BatchDevice::kCpu ? "cpu" : "cuda");
+  std::printf("%-30s %14s %16s\n", "batch", "stepping [s]", "run-steps/s");
+  for (int repeat = 0; repeat < 3; ++repeat)
+    for (const BatchOptions* o : {&stepping, &compared}) {
+      const BatchResult r = run_rom_batch(vs, {&d}, n, *o);
+      std::printf("%-30s %14.3f %16.3g\n", o == &stepping ? "stepping alone" : "4 channels compared at 100 Hz",
+                  r.stepping_seconds, n * (o->end_time / o->step) / r.stepping_seconds);
+      std::fflush(stdout);
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const std::string device = argc > 1 ? argv[1] : "cuda";
   if (argc > 2 && std::string(argv[2]) == "wave") {
     wave_sweep(load_rom_vehicle("hmmwv"));
+    return 0;
+  }
+  if (argc > 2 && std::string(argv[2]) == "calib") {
+    calibrator_shape(load_rom_vehicle("hmmwv"), device == "cpu" ? BatchDevice::kCpu : BatchDevice::kCuda,
+                     argc > 3 ? std::atol(argv[3]) : 8064);
     return 0;
   }
   const long max_n = argc > 2 ? static_cast<long>(std::atof(argv[2])) : 4000000;

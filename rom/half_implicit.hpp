@@ -18,12 +18,21 @@ namespace terracal::rom {
 inline constexpr double kMaxSpeed = 1000.0;  // [m/s]
 inline constexpr double kMaxSpin = 20000.0;  // wheel or crank [rad/s]
 
+// Nothing to do at the start of a step.
+struct NoStartHook {
+  TERRACAL_HD void operator()(const double*, const RomAux&) const {}
+};
+
 // `g`: the lanes that share the vehicle's wheels (rom/wheel_group.hpp); each ends with the same state.
-template <class M, class G = OneLanePerVehicle>
+// `at_start(y, aux)` sees the state at the start of the step with the right-hand side's aux there
+// (accelerations, loads) before the step changes it: a sample taken at that time needs no right-hand
+// side of its own.
+template <class M, class G = OneLanePerVehicle, class AtStart = NoStartHook>
 TERRACAL_HD bool half_implicit_step(const RomVehicle& v, const DriverInput& in, int& gear, double* y, double h,
-                                    RomAux* aux, const G& g = G{}) {
+                                    RomAux* aux, const G& g = G{}, const AtStart& at_start = AtStart{}) {
   double dy[M::kStates];
   M::rhs(v, in, gear, y, dy, aux, false, false, g);
+  at_start(y, *aux);
   for (int i = 0; i < M::kStates; ++i)
     if (!M::is_position(i)) y[i] += h * dy[i];
   for (int w = 0; w < M::kWheels; ++w) {

@@ -83,16 +83,11 @@ struct BatchKernel {
     }
   }
 
-  // A sample at state y: ax and ay from the right-hand side there, with the inputs of the step that
-  // led to it, as a single run samples them (rom_run.cpp, sample_at).
-  // With targets, the sample is compared instead (`cmp`, `t`).
-  TERRACAL_HD void record(int s, long i, const RomVehicle& v, const DriverInput& in, int gear, const double* y,
-                          const Group& lanes, BatchComparison& cmp, const BatchTargetView* t) const {
-    RomAux aux;
-    if (sample_aux) {
-      double dy[M::kStates];
-      M::rhs(v, in, gear, y, dy, &aux, true, true, lanes);
-    }
+  // Sample s at state y with the right-hand side's aux there (ax, ay): the next step's, whose inputs are
+  // those at the sample's time, as a single run samples them (rom_run.cpp). With targets, the sample is
+  // compared instead (`cmp`, `t`).
+  TERRACAL_HD void record(int s, long i, const double* y, const RomAux& aux, const Group& lanes, BatchComparison& cmp,
+                          const BatchTargetView* t) const {
     if (t) {
       compare(s, y, aux, *t, cmp);
       return;
@@ -153,19 +148,33 @@ struct BatchKernel {
     double max_ay = 0, max_r = 0, max_roll = 0, failed_at = -1;
     BatchComparison cmp;
     const BatchTargetView* t = targets ? &targets[di] : nullptr;
-    if (sample_every > 0) record(0, i, v, d.at(0.0), gear, y, lanes, cmp, t);
+    // A sample is taken at the start of the next step, from that step's right-hand side (no
+    // right-hand side of its own: one in sample_every fewer); the last one after the loop.
+    int pending = sample_every > 0 ? 0 : -1;
+    const auto take_pending = [&](const double* ys, const RomAux& a) {
+      if (pending < 0) return;
+      record(pending, i, ys, a, lanes, cmp, t);
+      pending = -1;
+    };
     int cursor = 0;  // the driver's row at the last step
     for (long k = 0; k < steps; ++k) {
       const DriverInput in = d.at(k * step, cursor);
-      if (!half_implicit_step<M>(v, in, gear, y, step, &aux, lanes)) {
+      if (!half_implicit_step<M>(v, in, gear, y, step, &aux, lanes, take_pending)) {
         failed_at = (k + 1) * step;
         break;
       }
       max_ay = max_of(max_ay, fabs(aux.ay));
       max_r = max_of(max_r, fabs(y[M::kYawRate]));
       max_roll = max_of(max_roll, fabs(M::roll_of(y)));
-      if (sample_every > 0 && (k + 1) % sample_every == 0)
-        record(int((k + 1) / sample_every), i, v, in, gear, y, lanes, cmp, t);
+      if (sample_every > 0 && (k + 1) % sample_every == 0) pending = int((k + 1) / sample_every);
+    }
+    if (pending >= 0) {
+      RomAux end;
+      if (sample_aux) {
+        double dy[M::kStates];
+        M::rhs(v, d.at(steps * step, cursor), gear, y, dy, &end, true, true, lanes);
+      }
+      take_pending(y, end);
     }
     if (!lanes.leader()) return;
     const double m[kBatchMetricCount] = {y[M::kX], y[M::kY], y[M::kYaw], y[M::kVx], max_ay, max_r, max_roll, failed_at};

@@ -63,8 +63,14 @@ void run_half_implicit(const RomVehicle& v, RomDriver& d, const RomRunOptions& o
   const long steps = std::lround(o.end_time / h);
   const long control_every = d.series ? 1 : std::max(1L, std::lround(d.control_period / h));
   DriverInput in = driver_input<M>(d, 0.0, y);
-  r.samples.push_back(sample_at<M>(v, in, gear, 0.0, y));
-  double next_out = dt_out;
+  // A sample at time t takes ax and ay from the right-hand side at t with the inputs from t on: the
+  // next step's (the batch takes them from that step and saves a right-hand side per sample).
+  double next_out = dt_out, pending = 0.0;  // the pending sample's time; < 0: none
+  const auto take_pending = [&](const double* ys, const RomAux& a) {
+    if (pending < 0) return;
+    r.samples.push_back(M::sample(v, pending, ys, a, gear));
+    pending = -1.0;
+  };
   RomAux aux;
   for (long k = 0; k < steps; ++k) {
     const double t = k * h;
@@ -72,7 +78,7 @@ void run_half_implicit(const RomVehicle& v, RomDriver& d, const RomRunOptions& o
       in = driver_input<M>(d, t, y);
       if (!d.series) r.held_inputs.emplace_back(t, in);
     }
-    if (!half_implicit_step<M>(v, in, gear, y, h, &aux))
+    if (!half_implicit_step<M>(v, in, gear, y, h, &aux, OneLanePerVehicle{}, take_pending))
       throw RunError(
           fmt::format("rom: the half-implicit scheme diverged at t = {:.4g} s with --step {} s: the step is "
                       "too large for this vehicle and manoeuvre; use a smaller --step or --integrator cvodes",
@@ -80,9 +86,14 @@ void run_half_implicit(const RomVehicle& v, RomDriver& d, const RomRunOptions& o
     ++r.steps;
     const double t1 = (k + 1) * h;
     if (t1 >= next_out - 1e-9 * h) {
-      r.samples.push_back(sample_at<M>(v, in, gear, t1, y));
+      pending = t1;
       next_out += dt_out;
     }
+  }
+  if (pending >= 0) {  // the last sample: the inputs at the end (a manoeuvre's held ones between its control times)
+    const double t_end = steps * h;
+    if (d.series || steps % control_every == 0) in = driver_input<M>(d, t_end, y);
+    r.samples.push_back(sample_at<M>(v, in, gear, pending, y));
   }
   r.rhs_evaluations = r.steps;
 }

@@ -203,3 +203,38 @@ TEST_CASE("rom batch: per-driver initial speeds and end times run each vehicle a
   bad.initial_speeds[4] = std::nan("");
   CHECK_THROWS_AS(run_rom_batch(vehicles, drivers, 6, bad), InputError);
 }
+
+TEST_CASE("rom batch: a sample's ay is the right-hand side's at its state with the inputs at its time",
+          "[rom][batch]") {
+  // Steady tires answer the steering at once: straight until 0.999 s, the wheel turned at 1.0 s. The
+  // sample at 1.0 s sees the turn (the state has not moved yet, the tires' slip angles have); the one
+  // at 0.99 s does not. A sample taken from the next step's right-hand side (mid-run) and one with
+  // its own (the run's end) give the same bits.
+  RomVehicle v = hmmwv();
+  v.effects &= ~kEffectTireRelaxation;
+  const DriverSeries d =
+      DriverSeries::from_rows({0, 0.999, 1.0, 2.0}, {0, 0, 0.5, 0.5}, {0.3, 0.3, 0.3, 0.3}, {0, 0, 0, 0});
+  BatchOptions o;
+  o.initial_speed = 12.0;
+  o.output_rate = 100;
+  o.channels = {kChAy};
+  o.end_time = 1.5;
+  const BatchResult mid = run_rom_batch({v}, {&d}, 1, o);
+  o.end_time = 1.0;
+  const BatchResult end = run_rom_batch({v}, {&d}, 1, o);
+  REQUIRE(mid.samples == 151);
+  REQUIRE(end.samples == 101);
+  CHECK(std::fabs(mid.channels[99]) < 1e-9);
+  CHECK(std::fabs(mid.channels[100]) > 0.5);
+  CHECK(mid.channels[100] == end.channels[100]);
+  const RomRunResult single = run(v, d, options(RomModel::k18Dof, 1.5, 12.0));
+  CHECK(single.samples[100].ay == mid.channels[100]);
+  // The right-hand side at the end state (1.0 s) with the inputs at 1.0 s (within round-off: this file
+  // is built without the ROM library's FMA), and not with those of the step before.
+  double dy[Rom18::kStates];
+  RomAux now, before;
+  Rom18::rhs(v, d.at(1.0), single.samples[100].gear - 1, end.final_state.data(), dy, &now, true);
+  Rom18::rhs(v, d.at(0.999), single.samples[100].gear - 1, end.final_state.data(), dy, &before, true);
+  CHECK(relative(now.ay, end.channels[100]) < 1e-12);
+  CHECK(relative(before.ay, end.channels[100]) > 0.1);
+}
