@@ -9,6 +9,7 @@
 #include <string>
 
 #include "../scratch_dir.hpp"
+#include "../test_paths.hpp"
 
 namespace terracal::test {
 
@@ -24,7 +25,7 @@ inline std::string read_file(const std::string& path) {
 
 inline CliResult run_cli(const std::string& args, const std::string& scratch) {
   const std::string out = scratch + "/stdout.txt", err = scratch + "/stderr.txt";
-  const std::string cmd = std::string(TERRACAL_EXE) + " " + args + " > " + out + " 2> " + err + " < /dev/null";
+  const std::string cmd = terracal_exe() + " " + args + " > " + out + " 2> " + err + " < /dev/null";
   const int status = std::system(cmd.c_str());
   CliResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -35,8 +36,6 @@ inline CliResult run_cli(const std::string& args, const std::string& scratch) {
 
 inline void write(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
 
-inline std::string demo_data(const std::string& file) {
-  return std::string(TERRACAL_SOURCE_DIR) + "/studies/demo/" + file;
-}
+inline std::string demo_data(const std::string& file) { return source_dir() + "/studies/demo/" + file; }
 
 }  // namespace terracal::test

@@ -13,8 +13,9 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/campaign_spec.hpp"
-#include "core/gnuplot.hpp"
 #include "cli_runner.hpp"
+#include "core/gnuplot.hpp"
+#include "tests/test_paths.hpp"
 
 using namespace terracal::test;
 namespace fs = std::filesystem;
@@ -154,7 +155,7 @@ TEST_CASE("campaign: kill -9 mid-job loses that job only; starting again finishe
   write(dir + "/wheel.json", kWheel);
   write(dir + "/sand2.json", soil_with_friction(32));
   write(dir + "/spec.json", spec_text("[9.81, 3.71]"));
-  const std::string cmd = std::string(TERRACAL_EXE) + " campaign " + dir + "/spec.json --out " + dir + "/c";
+  const std::string cmd = terracal::test::terracal_exe() + " campaign " + dir + "/spec.json --out " + dir + "/c";
   REQUIRE(std::system((cmd + " > " + dir + "/first.log 2>&1 & echo $! > " + dir + "/pid").c_str()) == 0);
   // Wait until the fifth job is in flight (its temporary folder exists), then kill the campaign.
   bool seen = false;
@@ -207,7 +208,7 @@ TEST_CASE("campaign: a CRM soil's copy per gravity carries that gravity; keys fo
   const ScratchDir scratch("campaign_jobs");
   const std::string dir = scratch.str();
   write(dir + "/wheel.json", kWheel);
-  const std::string soil = std::string(TERRACAL_SOURCE_DIR) + "/studies/pipeline/bevameter_soil_2022.json";
+  const std::string soil = terracal::test::source_dir() + "/studies/pipeline/bevameter_soil_2022.json";
   write(dir + "/spec.json", R"({"soils": [{"name": "bed", "crm": ")" + soil +
                                 R"("}], "gravities": [9.81, 1.62], "wheels": [{"name": "w", "wheel": "wheel.json"}]})");
   const auto jobs = terracal::app::campaign_jobs(terracal::app::read_campaign_spec(dir + "/spec.json"));

@@ -14,6 +14,7 @@
 
 #include "../skip.hpp"
 #include "cli_runner.hpp"
+#include "tests/test_paths.hpp"
 
 using namespace terracal::test;
 namespace fs = std::filesystem;
@@ -33,7 +34,7 @@ void write_campaign(const std::string& dir) {
 }
 
 std::string mpirun(int ranks) {
-  return fmt::format("mpirun --allow-run-as-root --oversubscribe -n {} {}", ranks, TERRACAL_EXE);
+  return fmt::format("mpirun --allow-run-as-root --oversubscribe -n {} {}", ranks, terracal::test::terracal_exe());
 }
 
 bool have_mpi() {
@@ -200,7 +201,7 @@ TEST_CASE("campaign under mpirun --enable-recovery: a killed rank's job goes bac
   const std::string out = dir + "/c";
   REQUIRE(std::system(fmt::format("(mpirun --allow-run-as-root --oversubscribe --enable-recovery -n 3 {} campaign "
                                   "{}/spec.json --out {} > {}/log.txt 2>&1; echo \"rc=$?\" >> {}/log.txt) &",
-                                  TERRACAL_EXE, dir, out, dir, dir)
+                                  terracal::test::terracal_exe(), dir, out, dir, dir)
                           .c_str()) == 0);
   REQUIRE(kill_rank_mid_job(1, out));
   for (int i = 0; i < 2400 && read_file(dir + "/log.txt").find("rc=") == std::string::npos; ++i)

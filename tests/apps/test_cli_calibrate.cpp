@@ -16,10 +16,11 @@
 #include <nlohmann/json.hpp>
 
 #include "bayes/posterior_h5.hpp"
+#include "cli_runner.hpp"
 #include "core/gnuplot.hpp"
 #include "lowfi/scm_soil.hpp"
 #include "lowfi/scm_steady_wheel.hpp"
-#include "cli_runner.hpp"
+#include "tests/test_paths.hpp"
 
 using namespace terracal::test;
 namespace fs = std::filesystem;
@@ -110,9 +111,9 @@ TEST_CASE("a killed calibration resumes and ends with exactly the draws of an un
     const std::string log = dir + "/child.log";
     freopen(log.c_str(), "w", stderr);
     freopen("/dev/null", "w", stdout);
-    execl(TERRACAL_EXE, TERRACAL_EXE, "calibrate", "--plate", demo_data("plate.csv").c_str(), "--shear",
-          demo_data("shear.csv").c_str(), "--out", out.c_str(), "--seed", "11", "--min-ess", "6000", "--no-plots",
-          nullptr);
+    execl(terracal::test::terracal_exe().c_str(), terracal::test::terracal_exe().c_str(), "calibrate", "--plate",
+          demo_data("plate.csv").c_str(), "--shear", demo_data("shear.csv").c_str(), "--out", out.c_str(), "--seed",
+          "11", "--min-ess", "6000", "--no-plots", nullptr);
     _exit(127);
   }
   // Wait for the checkpoint after warm-up and at least one block of draws (the file is replaced,

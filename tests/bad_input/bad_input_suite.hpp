@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "../apps/cli_runner.hpp"
+#include "tests/test_paths.hpp"
 
 namespace terracal::test {
 
@@ -32,7 +33,7 @@ struct BadInput {
 // The placeholders of args and phrases: {out} ({dir}/out), {dir} (the case's scratch folder), {demo}
 // (the demo's data set: plate.csv, shear.csv, truth.json) and {soil} (a CRM soil of the pipeline study).
 inline std::string expand(std::string text, const std::string& dir) {
-  const std::string studies = std::string(TERRACAL_SOURCE_DIR) + "/studies";
+  const std::string studies = terracal::test::source_dir() + "/studies";
   const std::pair<std::string, std::string> names[] = {{"{out}", dir + "/out"},
                                                        {"{dir}", dir},
                                                        {"{demo}", studies + "/demo"},

@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bad_input_suite.hpp"
+#include "tests/test_paths.hpp"
 
 using terracal::test::BadInput;
 using terracal::test::InputFile;
@@ -15,7 +16,7 @@ const std::string kCrm = "bevameter --solver crm --soil {soil} --device cpu --te
 // The pipeline study's CRM soil with `key` set to `value`.
 InputFile soil_with(const std::string& name, const std::string& key, const nlohmann::json& value) {
   nlohmann::json j = nlohmann::json::parse(
-      terracal::test::read_file(std::string(TERRACAL_SOURCE_DIR) + "/studies/pipeline/bevameter_soil_2022.json"));
+      terracal::test::read_file(terracal::test::source_dir() + "/studies/pipeline/bevameter_soil_2022.json"));
   j[key] = value;
   return {name, j.dump()};
 }

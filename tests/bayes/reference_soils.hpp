@@ -5,6 +5,7 @@
 
 #include "bayes/scm_parameters.hpp"
 #include "core/csv.hpp"
+#include "tests/test_paths.hpp"
 
 namespace terracal::test {
 
@@ -15,7 +16,7 @@ struct ReferenceSoil {
 
 // k = 0.01 m where the table leaves it empty.
 inline std::vector<ReferenceSoil> reference_soils() {
-  const auto t = CsvTable::read(std::string(TERRACAL_REFERENCE_DIR) + "/bekker_wong_soils.csv");
+  const auto t = CsvTable::read(terracal::test::reference_dir() + "/bekker_wong_soils.csv");
   std::vector<ReferenceSoil> soils;
   for (std::size_t i = 0; i < t.rows(); ++i) {
     ReferenceSoil s;

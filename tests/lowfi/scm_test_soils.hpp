@@ -6,6 +6,7 @@
 #include "core/errors.hpp"
 #include "lowfi/scm_soil.hpp"
 #include "lowfi/scm_terrain.hpp"
+#include "tests/test_paths.hpp"
 
 namespace terracal::test {
 
@@ -23,7 +24,7 @@ inline lowfi::ScmSoil scm_soil_of_row(const CsvTable& t, std::size_t i) {
   return s;
 }
 
-inline CsvTable wong_soils() { return CsvTable::read(std::string(TERRACAL_REFERENCE_DIR) + "/bekker_wong_soils.csv"); }
+inline CsvTable wong_soils() { return CsvTable::read(terracal::test::reference_dir() + "/bekker_wong_soils.csv"); }
 
 // LETE sand of Wong's table, with its Janosi k, and Chrono's default elastic stiffness and damping:
 // stiff enough that the 108 kg wheel sinks only 3 mm, a third of it elastic.

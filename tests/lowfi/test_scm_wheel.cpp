@@ -9,6 +9,7 @@
 #include "core/errors.hpp"
 #include "lowfi/wong_reece.hpp"
 #include "scm_test_soils.hpp"
+#include "tests/test_paths.hpp"
 #include "virtual_bevameter/wheel_rig.hpp"
 
 using namespace terracal;
@@ -218,7 +219,7 @@ TEST_CASE("SCM wheel with Chrono's damping rolls steadily on every reference soi
     s.janosi_k = wong.optional_number(i, "janosi_k_m").value_or(0.025);
     soils.push_back({wong.text(i, "soil") + " " + wong.text(i, "moisture_percent"), s});
   }
-  const auto chrono = CsvTable::read(std::string(TERRACAL_REFERENCE_DIR) + "/chrono_scm_presets.csv");
+  const auto chrono = CsvTable::read(terracal::test::reference_dir() + "/chrono_scm_presets.csv");
   for (std::size_t i = 0; i < chrono.rows(); ++i) {
     lowfi::ScmSoil s = test::scm_soil_of_row(chrono, i);
     s.janosi_k = chrono.number(i, "janosi_k_m");
