@@ -97,13 +97,7 @@ void IndependenceSampler::evaluate_raw(const std::vector<Eigen::VectorXd>& ys, s
     }
     if (lps.size() != n) throw std::logic_error("Target.log_density_batch: wrong number of results");
   } else {
-    for (std::size_t i = 0; i < n; ++i) {
-      try {
-        lps[i] = target_->log_density(ys[i], nuisance_of(i));
-      } catch (const std::exception&) {
-        lps[i] = std::numeric_limits<double>::quiet_NaN();
-      }
-    }
+    for (std::size_t i = 0; i < n; ++i) lps[i] = raw_log_density(*target_, ys[i], nuisance_of(i));
   }
 }
 

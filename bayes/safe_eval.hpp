@@ -26,16 +26,20 @@ inline double checked_log_density(double lp, ChainStats& stats) {
   return lp;
 }
 
+// log density as the target gives it, NaN where it throws (the failure conventions not yet applied:
+// samplers that count a failure later, when a move uses the value, call this).
+inline double raw_log_density(const Target& target, const Eigen::VectorXd& x, const Eigen::VectorXd& nuisance) {
+  try {
+    return target.log_density(x, nuisance);
+  } catch (const std::exception&) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+}
+
 // log density, or -inf (counted in stats.failed_evaluations) when the evaluation failed.
 inline double safe_log_density(const Target& target, const Eigen::VectorXd& x, const Eigen::VectorXd& nuisance,
                                ChainStats& stats) {
-  double lp;
-  try {
-    lp = target.log_density(x, nuisance);
-  } catch (const std::exception&) {
-    lp = std::numeric_limits<double>::quiet_NaN();
-  }
-  return checked_log_density(lp, stats);
+  return checked_log_density(raw_log_density(target, x, nuisance), stats);
 }
 
 // A starting point must be inside the support: a chain started at -inf has no direction to go.
