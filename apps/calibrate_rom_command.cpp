@@ -48,7 +48,7 @@ Command add_calibrate_rom(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--tries", s.tries,
                   "independence sampler: points per chain and step; 1: Metropolis-Hastings, more: i-SIR (chains x "
-                  "(tries - 1) runs per batch); 0: 1 on the CPU, 64 on a GPU")
+                  "(tries - 1) runs per batch); 0: 1 on the CPU, 96 on a GPU")
       ->check(whole_in(0, 100000))
       ->capture_default_str();
   sub->add_option("--lookahead", s.lookahead,

@@ -24,7 +24,7 @@ struct RomCalibrationSettings {
   bayes::SamplerKind sampler = bayes::SamplerKind::kIndependence;  // or kEnsemble
   int chains = 0;  // chains (ensemble: walkers); 0: 4, 24 with tries > 1 (ensemble: 2 (parameters + 1))
   // Independence sampler: points per chain and step; 1: Metropolis-Hastings, more: i-SIR, one batch of
-  // chains x (tries - 1) runs per step; 0: 1 on the CPU, 64 on a GPU (docs/decisions.md, "ROM
+  // chains x (tries - 1) runs per step; 0: 1 on the CPU, 96 on a GPU (docs/decisions.md, "ROM
   // calibration on a GPU").
   int tries = 0;
   // Independence sampler: steps whose proposals go into one batch (they do not depend on the chains'
