@@ -13,6 +13,7 @@
 #include "apps/rom_calibration.hpp"
 #include "apps/rom_choices.hpp"
 #include "core/atomic_file.hpp"
+#include "core/errors.hpp"
 
 namespace terracal::app {
 
@@ -21,6 +22,19 @@ struct CalibrateRomArgs {
   RomCalibrationSettings s;
   std::string references, device = "auto";
 };
+
+// Delayed acceptance screens the random-walk move, which runs with Metropolis-Hastings only (i-SIR
+// steps without it).
+void check_delayed_acceptance(const RomCalibrationSettings& s) {
+  if (s.delayed_acceptance <= 0) return;
+  const int tries = s.tries > 0 ? s.tries : s.device == rom::BatchDevice::kCuda ? 96 : 1;
+  if (s.sampler != bayes::SamplerKind::kIndependence || tries > 1)
+    throw InputError(fmt::format(
+        "--delayed-acceptance on: expected the independence sampler with Metropolis-Hastings (--tries 1), whose "
+        "random-walk move it screens; got --sampler {} with tries {}",
+        s.sampler == bayes::SamplerKind::kIndependence ? "independence" : "ensemble", tries));
+}
+
 }  // namespace
 
 Command add_calibrate_rom(CLI::App& app) {
@@ -56,6 +70,10 @@ Command add_calibrate_rom(CLI::App& app) {
                   "at once with tries > 1 on a GPU, else 1")
       ->check(whole_in(0, 1000))
       ->capture_default_str();
+  const std::map<std::string, int> on_off{{"auto", -1}, {"on", 1}, {"off", 0}};
+  add_choice(sub, "--delayed-acceptance", s.delayed_acceptance, on_off,
+             "Metropolis-Hastings: test each random-walk move on a t fitted to the posterior first and run only those "
+             "that pass (the posterior stays exact); auto: on with tries 1");
   sub->add_option("--min-ess", s.min_ess, "bulk effective sample size required for every parameter")
       ->check(in_range(Range{0, 1e9, true, false}))
       ->capture_default_str();
@@ -89,6 +107,7 @@ Command add_calibrate_rom(CLI::App& app) {
     const OutDir out = prepare_out_dir("--out", a->s.out);
     a->s.references = rom::split_dirs(a->references, "--reference");
     a->s.device = batch_device(a->device);
+    check_delayed_acceptance(a->s);
     std::filesystem::create_directories(a->s.out);
     const RomCalibrationOutcome r = run_rom_calibration(a->s);
     fmt::print(

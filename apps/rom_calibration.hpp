@@ -30,6 +30,10 @@ struct RomCalibrationSettings {
   // Independence sampler: steps whose proposals go into one batch (they do not depend on the chains'
   // states); 0: as many as one GPU launch holds at once with i-SIR on a GPU, else 1.
   int lookahead = 0;
+  // Independence sampler, Metropolis-Hastings: random-walk moves first tested on a surrogate of the
+  // posterior (a t fitted to it), only those that pass it run; -1: on with tries 1 (docs/decisions.md,
+  // "Delayed acceptance"), 0 off, 1 on.
+  int delayed_acceptance = -1;
   double min_ess = 400;  // bulk ESS per parameter
   double max_rhat = 1.01;
   long max_draws = 20000;  // per walker

@@ -359,6 +359,9 @@ void sample_posterior(const Target& target, const CalibrationOptions& opt, Calib
   if (opt.tries < 1) throw InputError(fmt::format("tries {}: expected at least 1 point per chain and step", opt.tries));
   if (opt.lookahead < 1)
     throw InputError(fmt::format("lookahead {}: expected at least 1 step per batch of proposals", opt.lookahead));
+  if (opt.delayed_acceptance && (opt.sampler != SamplerKind::kIndependence || !opt.local_moves))
+    throw InputError("delayed acceptance screens the independence sampler's random-walk move: it needs that sampler "
+                     "with local moves");
   const int dim = target.dim;
   int count = opt.chains;
   if (opt.sampler == SamplerKind::kEnsemble)
@@ -433,7 +436,8 @@ void sample_posterior(const Target& target, const CalibrationOptions& opt, Calib
                                             IndependenceOptions{.scale = opt.proposal_scale,
                                                                 .local_moves = opt.local_moves,
                                                                 .tries = opt.tries,
-                                                                .lookahead = opt.lookahead},
+                                                                .lookahead = opt.lookahead,
+                                                                .delayed_acceptance = opt.delayed_acceptance},
                                             refit_in_warmup);
     return std::make_unique<Ensemble>(target, starts, res.point.noise_var, opt.seed);
   };

@@ -62,6 +62,10 @@ struct CalibrationOptions {
   // Independence sampler: steps whose proposals are evaluated as one batch (IndependenceOptions::
   // lookahead; for a GPU that holds several steps' runs in one launch). Needs a collapsed target.
   int lookahead = 1;
+  // Independence sampler with local moves: each random-walk move is first tested on a surrogate of the
+  // posterior (a t with the adapted proposal's mean and covariance), and only the moves that pass it
+  // run (IndependenceOptions::delayed_acceptance; the target stays exact).
+  bool delayed_acceptance = false;
   int adaptation_points = 256;  // runs per round of importance sampling (one batch)
   // Rounds at the posterior's own weights continue until the weights' ESS over all rounds reaches
   // this (proposal_adaptation.hpp); 0: the first such round ends adaptation.

@@ -21,6 +21,9 @@ IndependenceSampler::IndependenceSampler(const Target& target, const Independenc
   if (!(opt_.df > 0) || !(opt_.scale > 0)) throw std::invalid_argument("IndependenceOptions: df and scale must be > 0");
   if (opt_.tries < 1) throw std::invalid_argument("IndependenceOptions: tries must be >= 1");
   if (opt_.lookahead < 1) throw std::invalid_argument("IndependenceOptions: lookahead must be >= 1");
+  if (opt_.delayed_acceptance && !opt_.local_moves)
+    throw std::invalid_argument(
+        "IndependenceOptions: delayed acceptance screens the random-walk move: needs local_moves");
   if (opt_.lookahead > 1 && target.nuisance_dim > 0 && !target.log_marginal_batch)
     throw std::invalid_argument(
         "IndependenceOptions: lookahead > 1 needs a target whose moves do not depend on the nuisance (collapsed)");
@@ -61,6 +64,15 @@ double IndependenceSampler::log_q(const Eigen::VectorXd& x) const {
   return -0.5 * (opt_.df + double(x.size())) * std::log1p(z.squaredNorm() / opt_.df);
 }
 
+// A t with the proposal's degrees of freedom, mean and covariance before `scale` (chol_ / scale is
+// its Cholesky factor): narrower than the proposal, so it screens, and with polynomial tails, so
+// pi / pit stays bounded where the posterior is heavier-tailed than a Gaussian (with a Gaussian
+// surrogate a chain that reached such a tail sat there: the second stage's pit(x) / pi(x) is tiny).
+double IndependenceSampler::log_surrogate(const Eigen::VectorXd& x) const {
+  const Eigen::VectorXd z = chol_.triangularView<Eigen::Lower>().solve(x - mean_);
+  return -0.5 * (opt_.df + double(x.size())) * std::log1p(opt_.scale * opt_.scale * z.squaredNorm() / opt_.df);
+}
+
 // mean + L z / sqrt(w), z standard normal, w ~ Gamma(df/2, rate df/2): a multivariate t.
 Eigen::VectorXd IndependenceSampler::draw() {
   Eigen::VectorXd z(mean_.size());
@@ -80,9 +92,17 @@ void IndependenceSampler::evaluate(const std::vector<Eigen::VectorXd>& ys, std::
 // past the chains' first block (drawn ahead) belong to chain (i / per) mod chains.
 void IndependenceSampler::evaluate_raw(const std::vector<Eigen::VectorXd>& ys, std::size_t per,
                                        std::vector<double>& lps) const {
+  std::vector<std::size_t> chain_of(ys.size());
+  for (std::size_t i = 0; i < ys.size(); ++i) chain_of[i] = (i / per) % x_.size();
+  evaluate_raw(ys, chain_of, lps);
+}
+
+// The same for points of any chains: ys[i] is evaluated with chain chain_of[i]'s nuisance.
+void IndependenceSampler::evaluate_raw(const std::vector<Eigen::VectorXd>& ys, const std::vector<std::size_t>& chain_of,
+                                       std::vector<double>& lps) const {
   const std::size_t n = ys.size();
   lps.assign(n, 0.0);
-  const auto nuisance_of = [&](std::size_t i) -> const Eigen::VectorXd& { return nuisance_[(i / per) % x_.size()]; };
+  const auto nuisance_of = [&](std::size_t i) -> const Eigen::VectorXd& { return nuisance_[chain_of[i]]; };
   if (target_->log_marginal_batch || target_->log_density_batch) {
     try {
       if (collapsed()) {
@@ -124,6 +144,13 @@ void IndependenceSampler::next_proposals(std::size_t per, std::vector<Eigen::Vec
   for (std::size_t i = 0; i < block; ++i) lps[i] = checked_log_density(lps[i], stats_[i / per]);
 }
 
+// Chain k takes the accepted point y, with its log density and its proposal log density.
+void IndependenceSampler::move_to(std::size_t k, Eigen::VectorXd y, double lp, double lq) {
+  x_[k] = std::move(y);
+  logp_[k] = lp;
+  logq_[k] = lq;
+}
+
 // Metropolis-Hastings with the independence proposal: one run per chain.
 std::vector<char> IndependenceSampler::metropolis_move() {
   const std::size_t n = x_.size();
@@ -135,9 +162,37 @@ std::vector<char> IndependenceSampler::metropolis_move() {
     const double lq = log_q(ys[k]);
     // pi(y) q(x) / (pi(x) q(y))
     if (!accept(log_density_ratio(lps[k], logp_[k]) + logq_[k] - lq, rng_)) continue;
-    x_[k] = std::move(ys[k]);
-    logp_[k] = lps[k];
-    logq_[k] = lq;
+    move_to(k, std::move(ys[k]), lps[k], lq);
+    moved[k] = 1;
+  }
+  return moved;
+}
+
+// Delayed acceptance's two stages for one proposal per chain, given each chain's first-stage log
+// ratio on the surrogate: the proposals that pass it are run as one batch, and the second stage
+// accepts on pi(y) pit(x) / (pi(x) pit(y)), which makes the two-stage kernel reversible with respect
+// to pi whatever the surrogate (Christen & Fox 2005).
+std::vector<char> IndependenceSampler::delayed_move(std::vector<Eigen::VectorXd>& ys,
+                                                    const std::vector<double>& first_stage) {
+  const std::size_t n = x_.size();
+  std::vector<std::size_t> passed;
+  std::vector<Eigen::VectorXd> run;
+  for (std::size_t k = 0; k < n; ++k)
+    if (accept(first_stage[k], rng_)) {
+      passed.push_back(k);
+      run.push_back(ys[k]);
+    }
+  std::vector<char> moved(n, 0);
+  if (passed.empty()) return moved;
+  std::vector<double> lps;
+  evaluate_raw(run, passed, lps);
+  for (std::size_t i = 0; i < passed.size(); ++i) {
+    const std::size_t k = passed[i];
+    const double lp = checked_log_density(lps[i], stats_[k]);
+    const double surrogate = log_surrogate(ys[k]) - log_surrogate(x_[k]);
+    if (!accept(log_density_ratio(lp, logp_[k]) - surrogate, rng_)) continue;
+    const double lq = log_q(ys[k]);  // before ys[k] is moved from
+    move_to(k, std::move(ys[k]), lp, lq);
     moved[k] = 1;
   }
   return moved;
@@ -180,28 +235,42 @@ std::vector<char> IndependenceSampler::resample_move() {
   return moved;
 }
 
+// The random-walk move x + (2.38 / sqrt(d)) L z, with L the fitted covariance's Cholesky factor:
+// symmetric, so the ratio is pi(y) / pi(x); with delayed acceptance pit(y) / pit(x) first, and only
+// the moves that pass it run.
+std::vector<char> IndependenceSampler::local_move() {
+  const std::size_t n = x_.size();
+  const double step = 2.38 / std::sqrt(double(mean_.size())) / opt_.scale;
+  std::vector<Eigen::VectorXd> ys(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    Eigen::VectorXd z(mean_.size());
+    for (Eigen::Index j = 0; j < z.size(); ++j) z[j] = rng_.normal();
+    ys[k] = x_[k] + step * (chol_ * z);
+  }
+  if (opt_.delayed_acceptance) {
+    std::vector<double> first(n);
+    for (std::size_t k = 0; k < n; ++k) first[k] = log_surrogate(ys[k]) - log_surrogate(x_[k]);
+    return delayed_move(ys, first);
+  }
+  std::vector<double> lps;
+  evaluate(ys, 1, lps);
+  std::vector<char> moved(n, 0);
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!accept(log_density_ratio(lps[k], logp_[k]), rng_)) continue;
+    const double lq = log_q(ys[k]);  // before ys[k] is moved from
+    move_to(k, std::move(ys[k]), lps[k], lq);
+    moved[k] = 1;
+  }
+  return moved;
+}
+
 void IndependenceSampler::step() {
   const std::size_t n = x_.size();
   for (auto& s : stats_) ++s.iterations;
   std::vector<char> moved = opt_.tries > 1 ? resample_move() : metropolis_move();
-  std::vector<Eigen::VectorXd> ys(n);
-  std::vector<double> lps(n);
   if (opt_.local_moves) {
-    // The local move: x + (2.38 / sqrt(d)) L z, symmetric, so the ratio is pi(y) / pi(x).
-    const double step = 2.38 / std::sqrt(double(mean_.size())) / opt_.scale;
-    for (std::size_t k = 0; k < n; ++k) {
-      Eigen::VectorXd z(mean_.size());
-      for (Eigen::Index j = 0; j < z.size(); ++j) z[j] = rng_.normal();
-      ys[k] = x_[k] + step * (chol_ * z);
-    }
-    evaluate(ys, 1, lps);
-    for (std::size_t k = 0; k < n; ++k) {
-      if (!accept(log_density_ratio(lps[k], logp_[k]), rng_)) continue;
-      x_[k] = std::move(ys[k]);
-      logp_[k] = lps[k];
-      logq_[k] = log_q(x_[k]);
-      moved[k] = 1;
-    }
+    const std::vector<char> local = local_move();
+    for (std::size_t k = 0; k < n; ++k) moved[k] = moved[k] || local[k];
   }
   for (std::size_t k = 0; k < n; ++k) stats_[k].accepted += moved[k];
   if (target_->nuisance_dim > 0 && collapsed()) {

@@ -44,6 +44,16 @@ struct IndependenceOptions {
   // differs from 1. Needs a target whose moves do not depend on the chains' nuisance (collapsed,
   // or none). Proposals drawn for steps that are never taken are not counted anywhere.
   int lookahead = 1;
+  // Delayed acceptance (Christen & Fox 2005, "Markov chain Monte Carlo using an approximation",
+  // J. Comput. Graph. Statist. 14(4)) for the random-walk move (needs local_moves): each move is first
+  // tested on a surrogate of the posterior, a t with the proposal's degrees of freedom, mean and
+  // covariance before `scale`, and only the moves that pass it are run; the second test on the run's
+  // density corrects for the surrogate (ratio pi(y) pit(x) / (pi(x) pit(y))), so the chain's target
+  // is exact. Most random-walk moves are rejected, and the surrogate predicts most of those: they
+  // cost no run. The independence move is not screened: its screen (pit(y) q(x) / (pit(x) q(y)))
+  // also turned away the moves that take a chain off a point the proposal under-weights, and chains
+  // sat there for hundreds of steps (docs/decisions.md, "Delayed acceptance").
+  bool delayed_acceptance = false;
 };
 
 class IndependenceSampler {
@@ -74,11 +84,17 @@ class IndependenceSampler {
 
  private:
   void set_proposal(const Eigen::VectorXd& mean, const Eigen::MatrixXd& covariance);
-  double log_q(const Eigen::VectorXd& x) const;  // the proposal's log density, up to a constant
+  double log_q(const Eigen::VectorXd& x) const;          // the proposal's log density, up to a constant
+  double log_surrogate(const Eigen::VectorXd& x) const;  // delayed acceptance's t, up to a constant
   void evaluate(const std::vector<Eigen::VectorXd>& ys, std::size_t per, std::vector<double>& lps);
   void evaluate_raw(const std::vector<Eigen::VectorXd>& ys, std::size_t per, std::vector<double>& lps) const;
+  void evaluate_raw(const std::vector<Eigen::VectorXd>& ys, const std::vector<std::size_t>& chain_of,
+                    std::vector<double>& lps) const;
+  std::vector<char> delayed_move(std::vector<Eigen::VectorXd>& ys, const std::vector<double>& first_stage);
   void next_proposals(std::size_t per, std::vector<Eigen::VectorXd>& ys, std::vector<double>& lps);
   std::vector<char> metropolis_move();
+  std::vector<char> local_move();
+  void move_to(std::size_t k, Eigen::VectorXd y, double lp, double lq);
   std::vector<char> resample_move();
   Eigen::VectorXd draw();
 

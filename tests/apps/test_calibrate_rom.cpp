@@ -177,6 +177,10 @@ TEST_CASE("bad input, calibrate-rom: references and parameter files", "[apps][ca
       {"--reference " + root + "/ok --tries -3", "--tries: value -3 is outside [0, 100000]"},
       {"--reference " + root + "/ok --warmup -2", "--warmup: value -2 is outside [-1, 1000000]"},
       {"--reference " + root + "/ok --starts 0", "--starts: value 0 is outside [1, 100]"},
+      {"--reference " + root + "/ok --delayed-acceptance maybe", "'maybe' is not one of auto|off|on"},
+      {"--reference " + root + "/ok --delayed-acceptance on --tries 8",
+       "--delayed-acceptance on: expected the independence sampler with Metropolis-Hastings"},
+      {"--reference " + root + "/ok --delayed-acceptance on --sampler ensemble", "got --sampler ensemble"},
       {"--reference " + root + "/ok --params " + root + "/overlap.json",
        "'roll_stiffness_total' and 'roll_stiffness_front' set the same vehicle values", true},
   };
