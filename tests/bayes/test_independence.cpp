@@ -112,6 +112,31 @@ std::vector<Chains> run_recording(IndependenceSampler& s, int steps) {
   return out;
 }
 
+// Draws x[j][chain][step] of Gauss3 `g`: each mean and covariance entry (the expectation of
+// (x_i - mu_i)(x_j - mu_j)) within 4 MCSE of the truth, the covariances also within 10 % of
+// sd_i sd_j, and R-hat below 1.01; each coordinate's ESS at least `min_ess`.
+void check_gauss3_draws(const Gauss3& g, const std::vector<Chains>& x, double min_ess) {
+  const MatrixXd cov = g.cov();
+  const std::size_t chains = x[0].size(), steps = x[0][0].size();
+  for (int j = 0; j < 3; ++j) {
+    const double m = pooled_mean(x[j]), se = mcse(x[j]), ess = ess_basic(x[j]);
+    INFO("x" << j << ": mean " << m << ", truth " << g.mu[j] << ", MCSE " << se << ", ESS " << ess);
+    CHECK(ess > min_ess);
+    CHECK(std::abs(m - g.mu[j]) < 4 * se);
+    CHECK(rhat_rank(x[j]) < 1.01);
+  }
+  for (int i = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j) {
+      Chains p(chains);
+      for (std::size_t k = 0; k < chains; ++k)
+        for (std::size_t n = 0; n < steps; ++n) p[k].push_back((x[i][k][n] - g.mu[i]) * (x[j][k][n] - g.mu[j]));
+      const double c = pooled_mean(p), se = mcse(p);
+      INFO("cov(" << i << "," << j << "): " << c << ", truth " << cov(i, j) << ", MCSE " << se);
+      CHECK(std::abs(c - cov(i, j)) < 4 * se);
+      CHECK(std::abs(c - cov(i, j)) < 0.1 * g.sd[i] * g.sd[j]);
+    }
+}
+
 double pooled_acceptance(const IndependenceSampler& s) {
   double acc = 0, it = 0;
   for (const auto& st : s.stats()) acc += double(st.accepted), it += double(st.iterations);
@@ -227,26 +252,8 @@ TEST_CASE("independence: an imperfect t proposal still samples a correlated 3-D 
   IndependenceSampler s(t, IndependenceOptions{}, m0, 2.0 * cov, copies(chains, g.mu), copies(chains, VectorXd()),
                         Rng(11));
   const std::vector<Chains> x = run_recording(s, steps);
-
-  for (int j = 0; j < 3; ++j) {
-    const double m = pooled_mean(x[j]), se = mcse(x[j]), ess = ess_basic(x[j]);
-    INFO("x" << j << ": mean " << m << ", truth " << g.mu[j] << ", MCSE " << se << ", ESS " << ess);
-    CHECK(ess > 3000);  // nearly independent draws: an independence sampler that barely moves fails here
-    CHECK(std::abs(m - g.mu[j]) < 4 * se);
-    CHECK(rhat_rank(x[j]) < 1.01);
-  }
-  // Covariance entries, each as the expectation of (x_i - mu_i)(x_j - mu_j): within 4 MCSE, and within
-  // 10 % of sd_i sd_j (10 % of the variances on the diagonal).
-  for (int i = 0; i < 3; ++i)
-    for (int j = i; j < 3; ++j) {
-      Chains p(chains);
-      for (int k = 0; k < chains; ++k)
-        for (int n = 0; n < steps; ++n) p[k].push_back((x[i][k][n] - g.mu[i]) * (x[j][k][n] - g.mu[j]));
-      const double c = pooled_mean(p), se = mcse(p);
-      INFO("cov(" << i << "," << j << "): " << c << ", truth " << cov(i, j) << ", MCSE " << se);
-      CHECK(std::abs(c - cov(i, j)) < 4 * se);
-      CHECK(std::abs(c - cov(i, j)) < 0.1 * g.sd[i] * g.sd[j]);
-    }
+  // Nearly independent draws: an independence sampler that barely moves fails the ESS of 3000.
+  check_gauss3_draws(g, x, 3000);
   // The acceptance rate is the one the kernel must have at stationarity (an error in the proposal's
   // density or in its draws shows here even where the moments above would hide it).
   const double acc = pooled_acceptance(s);
@@ -525,7 +532,6 @@ TEST_CASE("independence: invalid set-ups are refused", "[bayes][independence]") 
                   std::invalid_argument);
 }
 
-
 TEST_CASE("independence: i-SIR with an imperfect t proposal samples a correlated 3-D Gaussian exactly",
           "[bayes][independence]") {
   const Gauss3 g;
@@ -544,23 +550,7 @@ TEST_CASE("independence: i-SIR with an imperfect t proposal samples a correlated
   const std::vector<Chains> x = run_recording(s, steps);
   CHECK(calls == steps);  // one batch of chains x (tries - 1) points per step
   CHECK(sizes_ok);
-  for (int j = 0; j < 3; ++j) {
-    const double m = pooled_mean(x[j]), se = mcse(x[j]), ess = ess_basic(x[j]);
-    INFO("x" << j << ": mean " << m << ", truth " << g.mu[j] << ", MCSE " << se << ", ESS " << ess);
-    CHECK(ess > 0.45 * chains * steps);  // nearly independent draws with 8 tries (one try: about 0.2)
-    CHECK(std::abs(m - g.mu[j]) < 4 * se);
-    CHECK(rhat_rank(x[j]) < 1.01);
-  }
-  for (int i = 0; i < 3; ++i)
-    for (int j = i; j < 3; ++j) {
-      Chains p(chains);
-      for (int k = 0; k < chains; ++k)
-        for (int n = 0; n < steps; ++n) p[k].push_back((x[i][k][n] - g.mu[i]) * (x[j][k][n] - g.mu[j]));
-      const double c = pooled_mean(p), se = mcse(p);
-      INFO("cov(" << i << "," << j << "): " << c << ", truth " << cov(i, j) << ", MCSE " << se);
-      CHECK(std::abs(c - cov(i, j)) < 4 * se);
-      CHECK(std::abs(c - cov(i, j)) < 0.1 * g.sd[i] * g.sd[j]);
-    }
+  check_gauss3_draws(g, x, 0.45 * chains * steps);  // nearly independent draws with 8 tries (one try: about 0.2)
   const double stay = 1.0 - pooled_acceptance(s);
   const double theory = stationary_stay(g.mu, cov, opt, m0, 2.0 * cov, 100000, 32);
   INFO("stay " << stay << ", stationary value " << theory);
@@ -585,8 +575,7 @@ TEST_CASE("independence: i-SIR never picks a failed point, and evaluates each ch
   const int chains = 6, tries = 5;
   t.log_density_batch = [&](const std::vector<VectorXd>& xs, const std::vector<VectorXd>& nus,
                             std::vector<double>& out) {
-    for (std::size_t i = 0; i < xs.size(); ++i)
-      nuisances_ok = nuisances_ok && nus[i] == expected[i / (tries - 1)];
+    for (std::size_t i = 0; i < xs.size(); ++i) nuisances_ok = nuisances_ok && nus[i] == expected[i / (tries - 1)];
     out.resize(xs.size());
     for (std::size_t i = 0; i < xs.size(); ++i) out[i] = t.log_density(xs[i], nus[i]);
   };
@@ -726,9 +715,10 @@ double stationary_first_stage(const VectorXd& mu, const MatrixXd& cov, const Ind
 
 }  // namespace
 
-TEST_CASE("independence: delayed acceptance samples a correlated 3-D Gaussian exactly through a wrong surrogate, "
-          "and runs only the random-walk moves that pass it",
-          "[bayes][independence]") {
+TEST_CASE(
+    "independence: delayed acceptance samples a correlated 3-D Gaussian exactly through a wrong surrogate, "
+    "and runs only the random-walk moves that pass it",
+    "[bayes][independence]") {
   const Gauss3 g;
   const MatrixXd cov = g.cov();
   // The surrogate is the proposal's mean and covariance: 0.5 sd off and twice as wide, so a second
@@ -748,21 +738,7 @@ TEST_CASE("independence: delayed acceptance samples a correlated 3-D Gaussian ex
   const IndependenceOptions opt{.local_moves = true, .delayed_acceptance = true};
   IndependenceSampler s(t, opt, m0, 2.0 * cov, copies(chains, g.mu), copies(chains, VectorXd()), Rng(23));
   const std::vector<Chains> x = run_recording(s, steps);
-  for (int j = 0; j < 3; ++j) {
-    const double m = pooled_mean(x[j]), se = mcse(x[j]);
-    INFO("x" << j << ": mean " << m << ", truth " << g.mu[j] << ", MCSE " << se << ", ESS " << ess_basic(x[j]));
-    CHECK(std::abs(m - g.mu[j]) < 4 * se);
-    CHECK(rhat_rank(x[j]) < 1.01);
-  }
-  for (int i = 0; i < 3; ++i)
-    for (int j = i; j < 3; ++j) {
-      Chains p(chains);
-      for (int k = 0; k < chains; ++k)
-        for (int n = 0; n < steps; ++n) p[k].push_back((x[i][k][n] - g.mu[i]) * (x[j][k][n] - g.mu[j]));
-      const double c = pooled_mean(p), se = mcse(p);
-      INFO("cov(" << i << "," << j << "): " << c << ", truth " << cov(i, j) << ", MCSE " << se);
-      CHECK(std::abs(c - cov(i, j)) < 4 * se);
-    }
+  check_gauss3_draws(g, x, 3000);
   // Runs: every independence move, and exactly the random-walk moves that pass the first stage, at
   // the rate that stage has at stationarity; a sampler that ran every move (2 a step), or screened
   // with another surrogate, misses it.
@@ -805,8 +781,8 @@ TEST_CASE("independence: delayed acceptance samples logistic coordinates exactly
     const double p_tail = 2.0 / (1.0 + std::exp(3.0));
     const double m = pooled_mean(x[j]), v = pooled_mean(sq), pt = pooled_mean(tail);
     INFO("x" << j << ": mean " << m << " (MCSE " << mcse(x[j]) << "), E x^2 " << v << " (MCSE " << mcse(sq)
-              << ", truth " << var << "), P(|x| > 3) " << pt << " (MCSE " << mcse(tail) << ", truth " << p_tail
-              << "), ESS " << ess_basic(sq));
+             << ", truth " << var << "), P(|x| > 3) " << pt << " (MCSE " << mcse(tail) << ", truth " << p_tail
+             << "), ESS " << ess_basic(sq));
     CHECK(std::abs(m) < 4 * mcse(x[j]));
     CHECK(std::abs(v - var) < 4 * mcse(sq));
     CHECK(std::abs(pt - p_tail) < 4 * mcse(tail));
