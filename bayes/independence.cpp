@@ -168,20 +168,21 @@ std::vector<char> IndependenceSampler::metropolis_move() {
   return moved;
 }
 
-// Delayed acceptance's two stages for one proposal per chain, given each chain's first-stage log
-// ratio on the surrogate: the proposals that pass it are run as one batch, and the second stage
-// accepts on pi(y) pit(x) / (pi(x) pit(y)), which makes the two-stage kernel reversible with respect
-// to pi whatever the surrogate (Christen & Fox 2005).
-std::vector<char> IndependenceSampler::delayed_move(std::vector<Eigen::VectorXd>& ys,
-                                                    const std::vector<double>& first_stage) {
+// Delayed acceptance's two stages for one random-walk proposal per chain: the first accepts on the
+// surrogate, pit(y) / pit(x) (the move is symmetric), and the proposals that pass it are run as one
+// batch; the second accepts on pi(y) pit(x) / (pi(x) pit(y)), which makes the two-stage kernel
+// reversible with respect to pi whatever the surrogate (Christen & Fox 2005).
+std::vector<char> IndependenceSampler::delayed_move(std::vector<Eigen::VectorXd>& ys) {
   const std::size_t n = x_.size();
+  std::vector<double> surrogate(n);
   std::vector<std::size_t> passed;
   std::vector<Eigen::VectorXd> run;
-  for (std::size_t k = 0; k < n; ++k)
-    if (accept(first_stage[k], rng_)) {
-      passed.push_back(k);
-      run.push_back(ys[k]);
-    }
+  for (std::size_t k = 0; k < n; ++k) {
+    surrogate[k] = log_surrogate(ys[k]) - log_surrogate(x_[k]);
+    if (!accept(surrogate[k], rng_)) continue;
+    passed.push_back(k);
+    run.push_back(ys[k]);
+  }
   std::vector<char> moved(n, 0);
   if (passed.empty()) return moved;
   std::vector<double> lps;
@@ -189,8 +190,7 @@ std::vector<char> IndependenceSampler::delayed_move(std::vector<Eigen::VectorXd>
   for (std::size_t i = 0; i < passed.size(); ++i) {
     const std::size_t k = passed[i];
     const double lp = checked_log_density(lps[i], stats_[k]);
-    const double surrogate = log_surrogate(ys[k]) - log_surrogate(x_[k]);
-    if (!accept(log_density_ratio(lp, logp_[k]) - surrogate, rng_)) continue;
+    if (!accept(log_density_ratio(lp, logp_[k]) - surrogate[k], rng_)) continue;
     const double lq = log_q(ys[k]);  // before ys[k] is moved from
     move_to(k, std::move(ys[k]), lp, lq);
     moved[k] = 1;
@@ -247,11 +247,7 @@ std::vector<char> IndependenceSampler::local_move() {
     for (Eigen::Index j = 0; j < z.size(); ++j) z[j] = rng_.normal();
     ys[k] = x_[k] + step * (chol_ * z);
   }
-  if (opt_.delayed_acceptance) {
-    std::vector<double> first(n);
-    for (std::size_t k = 0; k < n; ++k) first[k] = log_surrogate(ys[k]) - log_surrogate(x_[k]);
-    return delayed_move(ys, first);
-  }
+  if (opt_.delayed_acceptance) return delayed_move(ys);
   std::vector<double> lps;
   evaluate(ys, 1, lps);
   std::vector<char> moved(n, 0);

@@ -90,7 +90,7 @@ class IndependenceSampler {
   void evaluate_raw(const std::vector<Eigen::VectorXd>& ys, std::size_t per, std::vector<double>& lps) const;
   void evaluate_raw(const std::vector<Eigen::VectorXd>& ys, const std::vector<std::size_t>& chain_of,
                     std::vector<double>& lps) const;
-  std::vector<char> delayed_move(std::vector<Eigen::VectorXd>& ys, const std::vector<double>& first_stage);
+  std::vector<char> delayed_move(std::vector<Eigen::VectorXd>& ys);
   void next_proposals(std::size_t per, std::vector<Eigen::VectorXd>& ys, std::vector<double>& lps);
   std::vector<char> metropolis_move();
   std::vector<char> local_move();
