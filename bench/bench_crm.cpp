@@ -7,7 +7,9 @@
 //   artificial_viscosity, hourglass_damping 0.4 and hourglass_stiffness 0.03, and a plate's markers
 //   pressing into the bed), and `bare`, the kernel alone (h/d0 1.2, artificial_viscosity, no body).
 //   `wheel`: a wheel crossing a 4 m x 1 m bin, full domain vs active_domain, at d0 = 0.02 m (150 000
-//   particles) or the spacing given; with the wheel's mean force over the timed steps.
+//   particles) or the spacing given; with the wheel's mean force over the timed steps. Particles 0
+//   leaves out the bed lines; BENCH_WHEEL=off or on times that wheel alone (for profiles).
+//   TERRACAL_CRM_SORT_ALL=1 sorts every marker at every pose (the order the long way), for comparisons.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -94,6 +96,7 @@ int main(int argc, char** argv) {
               "particle-steps/s", "ms/step", "device");
   for (double n : sizes)
     for (bool rigs : {true, false}) {
+      if (!(n > 0)) continue;  // particles 0: the wheel alone
       // Square bin of side L filled to L/4: n = (L/d0)^2 (L/4d0).
       const int side = std::max(8, int(std::lround(std::cbrt(4 * n))));
       const int depth = std::max(4, side / 4);
@@ -121,7 +124,10 @@ int main(int argc, char** argv) {
     }
   if (wheel) {
     // A wheel (radius 0.25 m, width 0.15 m) crossing a 4 m x 1 m bin 0.3 m deep.
+    // BENCH_WHEEL=off or on times that one alone (for profiles).
+    const char* only = std::getenv("BENCH_WHEEL");
     for (bool active : {false, true}) {
+      if (only && std::string(only) != (active ? "on" : "off")) continue;
       nlohmann::json j = {
           {"soil", soil()},
           {"bin", {{"size", {4.0, 1.0, 0.4}}, {"fill_height", 0.3}}},

@@ -75,6 +75,12 @@ struct SoilStats {
   long at_density_cap = 0;  // active particles whose density is held at density_cap (soil_model.hpp)
 };
 
+// How the engine's sorts of the markers by cell went: every marker sorted, or only the moving
+// bodies' (merged with the fixed ones: the same order, sph_sort.hpp).
+struct SortCounts {
+  long markers_full = 0, markers_merged = 0;
+};
+
 class SphEngine {
  public:
   virtual ~SphEngine() = default;
@@ -92,6 +98,7 @@ class SphEngine {
   // on each body, about the body's pose centre: 6 doubles per body (force, torque).
   virtual std::vector<double> stage(int which, double dt) = 0;
   virtual SoilStats stats() const = 0;
+  virtual SortCounts sort_counts() const = 0;
   virtual void download(HostSoil& soil) const = 0;
   virtual void upload(const HostSoil& soil) = 0;
 };

@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 #include <type_traits>
 
@@ -95,22 +96,40 @@ double* reduction_scratch(std::size_t count) {
   return static_cast<double*>(s.ensure(count * sizeof(double)));
 }
 
-struct CellBegin {  // begin[c] = first sorted index with key >= c (binary search)
-  const int* keys;
-  int n;
-  int* begin;
-  __device__ void operator()(long c) const {
-    int lo = 0, hi = n;
-    while (lo < hi) {
-      const int mid = (lo + hi) >> 1;
-      if (keys[mid] < int(c))
-        lo = mid + 1;
-      else
-        hi = mid;
+// Pinned host slots for upload_async, used in turn; a slot is reused once the copy queued from it has
+// run (its event), which in a step is long done: every stage waits for its wrench.
+struct PinnedStaging {
+  static constexpr int kSlots = 8;
+  static constexpr std::size_t kSlotBytes = 4096;
+  char* memory = nullptr;
+  cudaEvent_t done[kSlots] = {};
+  int next = 0;
+  ~PinnedStaging() {
+    for (cudaEvent_t e : done)
+      if (e) cudaEventDestroy(e);
+    if (memory) cudaFreeHost(memory);
+  }
+  // Copies bytes into the next slot and returns it; null when they do not fit a slot.
+  void* stage(const void* src, std::size_t bytes) {
+    if (bytes > kSlotBytes) return nullptr;
+    if (!memory) {
+      TERRACAL_CUDA_CHECK(cudaMallocHost(reinterpret_cast<void**>(&memory), kSlots * kSlotBytes));
+      for (cudaEvent_t& e : done) TERRACAL_CUDA_CHECK(cudaEventCreateWithFlags(&e, cudaEventDisableTiming));
     }
-    begin[c] = lo;
+    TERRACAL_CUDA_CHECK(cudaEventSynchronize(done[next]));
+    char* slot = memory + std::size_t(next) * kSlotBytes;
+    std::memcpy(slot, src, bytes);
+    return slot;
+  }
+  void queued(cudaStream_t s) {
+    TERRACAL_CUDA_CHECK(cudaEventRecord(done[next], s));
+    next = (next + 1) % kSlots;
   }
 };
+PinnedStaging& pinned_staging() {
+  thread_local PinnedStaging s;
+  return s;
+}
 
 struct FillInt {
   int* p;
@@ -219,6 +238,16 @@ struct CudaBackend {
     TERRACAL_CUDA_CHECK(cudaMemcpyAsync(dst, src, n * sizeof(U), cudaMemcpyHostToDevice, stream()));
     TERRACAL_CUDA_CHECK(cudaStreamSynchronize(stream()));
   }
+  // A small upload (poses, boxes) that does not wait: staged through pinned memory, so that the host
+  // goes on queueing the step's launches and the GPU does not drain at every pose.
+  template <typename U>
+  static void upload_async(U* dst, const U* src, std::size_t n) {
+    if (!n) return;
+    void* staged = pinned_staging().stage(src, n * sizeof(U));
+    if (!staged) return upload(dst, src, n);
+    TERRACAL_CUDA_CHECK(cudaMemcpyAsync(dst, staged, n * sizeof(U), cudaMemcpyHostToDevice, stream()));
+    pinned_staging().queued(stream());
+  }
   template <typename U>
   static void download(U* dst, const U* src, std::size_t n) {
     if (!n) return;
@@ -305,6 +334,12 @@ struct CudaBackend {
   // Sorts in the caller's double buffers (CUB's DoubleBuffer form), so that its scratch holds only
   // its histograms, not another copy of the keys and values; the result is in either buffer.
   static const int* sort_cells(int n, int bins, int* keys, int* vals, int* keys_alt, int* vals_alt, int* begin) {
+    const SortedPairs sorted = sort_pairs(n, bins, keys, vals, keys_alt, vals_alt);
+    cell_begin(sorted.keys, n, bins, begin);
+    return sorted.values;
+  }
+  // Stable sort of (key, value) pairs by key (keys in [0, bins]) in the caller's double buffers.
+  static SortedPairs sort_pairs(int n, int bins, int* keys, int* vals, int* keys_alt, int* vals_alt) {
     int end_bit = 1;
     while ((1 << end_bit) <= bins && end_bit < 31) ++end_bit;
     cub::DoubleBuffer<int> k(keys, keys_alt), v(vals, vals_alt);
@@ -312,8 +347,11 @@ struct CudaBackend {
     TERRACAL_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, bytes, k, v, n, 0, end_bit, stream()));
     void* tmp = cub_scratch().ensure(bytes);
     TERRACAL_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(tmp, bytes, k, v, n, 0, end_bit, stream()));
-    parallel_for_cuda(long(bins) + 1, CellBegin{k.Current(), n, begin}, stream());
-    return v.Current();
+    return {k.Current(), v.Current()};
+  }
+  // begin[c] for c in [0, bins], from n sorted keys.
+  static void cell_begin(const int* keys, int n, int bins, int* begin) {
+    parallel_for_cuda(long(bins) + 1, CellBegin{keys, n, begin}, stream());
   }
 
   template <typename T>

@@ -2,6 +2,7 @@
 // The step algorithm, written once over a backend B that supplies memory, parallel_for, a stable
 // sort by cell and reductions (sph_engine_cpu.cpp, sph_engine_cuda.cu). Included by both.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
@@ -78,6 +79,12 @@ struct SoilBuffers {
   }
 };
 
+// Where a backend's sort_pairs left its result (one of the caller's double buffers).
+struct SortedPairs {
+  const int* keys;
+  const int* values;
+};
+
 // The four int arrays of a sort by cell (keys, values and their alternates, n each), laid over an
 // array of n Vec4 records that is free while the sort and its gathers run: a record holds four ints.
 struct SortArrays {
@@ -144,7 +151,7 @@ class SphEngineImpl final : public SphEngine {
     B::release(poses_);
     B::release(boxes_);
     B::release(wrench_);
-    for (int* p : {soil_list_, marker_list_, list_counts_}) B::release(p);
+    for (int* p : {soil_list_, marker_list_, list_counts_, fixed_run_, moving_list_}) B::release(p);
   }
 
   std::string description() const override { return B::name() + (sizeof(T) == 8 ? " float64" : " float32"); }
@@ -154,7 +161,8 @@ class SphEngineImpl final : public SphEngine {
     const std::size_t per_soil = 2 * (4 + std::size_t(records_)) * sizeof(Vec4<T>) + sizeof(int);
     const std::size_t per_marker = (needs_wall_normals(k_.marker_velocity) ? 12 : 10) * sizeof(Vec4<T>);
     const std::size_t lists = list_counts_ ? (n_ + nm_ + 2) * sizeof(int) : 0;
-    return n_ * per_soil + nm_ * per_marker + 2 * (std::size_t(grid_.cells()) + 2) * sizeof(int) + lists +
+    const std::size_t runs = (n_moving_ > 0 ? std::size_t(n_fixed_ + n_moving_) : 0) * sizeof(int);
+    return n_ * per_soil + nm_ * per_marker + 2 * (std::size_t(grid_.cells()) + 2) * sizeof(int) + lists + runs +
            B::scratch_bytes();
   }
 
@@ -169,12 +177,19 @@ class SphEngineImpl final : public SphEngine {
       p[b].moving = poses[b].moving;
       any_moving = any_moving || poses[b].moving;
     }
-    B::upload(poses_, p.data(), p.size());
+    B::upload_async(poses_, p.data(), p.size());
     if (nm_ == 0) {
       sort_markers();
       return;
     }
-    if (any_moving) B::parallel_for(long(nm_), MarkerPoseUpdate<T>{poses_, canon_});
+    if (any_moving) {
+      prepare_marker_runs(poses);
+      // Only the moving markers, where they are listed (MarkerPoseUpdate leaves the others).
+      if (n_moving_ > 0)
+        B::parallel_for(long(n_moving_), ListedMarkerPoseUpdate<T>{{poses_, canon_}, moving_list_});
+      else
+        B::parallel_for(long(nm_), MarkerPoseUpdate<T>{poses_, canon_});
+    }
     if (any_moving || !markers_sorted_) sort_markers();
   }
 
@@ -182,13 +197,13 @@ class SphEngineImpl final : public SphEngine {
     if (boxes.size() > 16) throw RunError("active_domain: at most 16 moving bodies");
     std::vector<ActiveBox<T>> b(boxes.size());
     for (std::size_t q = 0; q < boxes.size(); ++q) b[q] = {to_t<T>(boxes[q].lo), to_t<T>(boxes[q].hi)};
-    if (!b.empty()) B::upload(boxes_, b.data(), b.size());
+    if (!b.empty()) B::upload_async(boxes_, b.data(), b.size());
     active_boxes_ = int(b.size());
     if (b.empty()) {
       // Everyone active: a single box that covers the whole grid.
       ActiveBox<T> all{grid_.origin,
                        grid_.origin + (T(1) / grid_.inv_cell) * Vec3<T>{T(grid_.nx), T(grid_.ny), T(grid_.nz)}};
-      B::upload(boxes_, &all, 1);
+      B::upload_async(boxes_, &all, 1);
     }
     B::parallel_for(long(n_), MarkActive<T>{boxes_, int(std::max<std::size_t>(b.size(), 1)), A_.a});
     if constexpr (B::kCompactsActive) {
@@ -235,6 +250,7 @@ class SphEngineImpl final : public SphEngine {
     return w;
   }
 
+  SortCounts sort_counts() const override { return sorts_; }
   SoilStats stats() const override { return B::soil_stats(A_.a, long(n_), double(k_.mass), k_.model); }
 
   void download(HostSoil& s) const override {
@@ -345,15 +361,78 @@ class SphEngineImpl final : public SphEngine {
     }
     // The markers' forces are rewritten by every stage before they are read, so the sort borrows them.
     const SortArrays sa = SortArrays::in(mk_.force, nm_);
-    B::parallel_for(long(nm_), MarkerCellKey<T>{grid_, canon_, sa.keys, sa.vals});
-    const int* perm =
-        B::sort_cells(int(nm_), grid_.cells() + 1, sa.keys, sa.vals, sa.keys_alt, sa.vals_alt, marker_begin_);
+    const int* perm = nullptr;
+    if (n_moving_ > 0) {
+      perm = merge_marker_runs(sa);
+      ++sorts_.markers_merged;
+    } else {
+      ++sorts_.markers_full;
+      B::parallel_for(long(nm_), MarkerCellKey<T>{grid_, canon_, sa.keys, sa.vals});
+      perm = B::sort_cells(int(nm_), grid_.cells() + 1, sa.keys, sa.vals, sa.keys_alt, sa.vals_alt, marker_begin_);
+    }
     B::parallel_for(long(nm_), GatherMarkers<T>{canon_, mk_, needs_wall_normals(k_.marker_velocity), perm});
     markers_sorted_ = true;
     marker_list_stale_ = true;
   }
 
+  // The markers split in two runs for sort_markers (MergeMarkerRuns): those of the bodies that do not
+  // move, sorted here once, and those of the moving bodies, sorted at every pose. Made again only when
+  // the set of moving bodies changes. Where the moving markers are more than half (the sort's arrays
+  // hold 4 of theirs next to 2 of everyone's), every marker is sorted at every pose as before.
+  void prepare_marker_runs(const std::vector<BodyPose<double>>& poses) {
+    if (!merge_markers_) return;
+    std::vector<char> moving(poses.size());
+    for (std::size_t b = 0; b < poses.size(); ++b) moving[b] = poses[b].moving ? 1 : 0;
+    if (moving == runs_moving_) return;
+    runs_moving_ = moving;
+    std::vector<int> fixed, moved;
+    for (std::size_t m = 0; m < marker_body_.size(); ++m) {
+      const int b = marker_body_[m];
+      (b >= 0 && std::size_t(b) < moving.size() && moving[std::size_t(b)] ? moved : fixed).push_back(int(m));
+    }
+    B::release(fixed_run_);
+    B::release(moving_list_);
+    fixed_run_ = moving_list_ = nullptr;
+    n_fixed_ = n_moving_ = 0;
+    if (moved.empty() || 2 * moved.size() > nm_) return;
+    fixed_run_ = B::template alloc<int>(fixed.size());
+    moving_list_ = B::template alloc<int>(moved.size());
+    B::upload(moving_list_, moved.data(), moved.size());
+    if (!fixed.empty()) {
+      // Sort the fixed markers by cell once, in the sort's borrowed arrays (the positions of the
+      // fixed markers are the canonical ones and never change).
+      const SortArrays sa = SortArrays::in(mk_.force, nm_);
+      B::upload(sa.vals, fixed.data(), fixed.size());
+      const long nf = long(fixed.size());
+      B::parallel_for(nf, MarkerSubsetCellKey<T>{grid_, canon_.pos, sa.vals, sa.keys, sa.vals});
+      const SortedPairs sorted = B::sort_pairs(int(nf), grid_.cells() + 1, sa.keys, sa.vals, sa.keys_alt, sa.vals_alt);
+      B::copy(fixed_run_, sorted.values, fixed.size());
+    }
+    n_fixed_ = int(fixed.size());
+    n_moving_ = int(moved.size());
+    markers_sorted_ = false;
+  }
+
+  // sort_markers with two runs: only the moving markers are sorted; the merge places everyone.
+  // Arrays (SortArrays over the markers' forces): keys and perm take everyone's first two quarters,
+  // the moving markers' keys and values and their alternates the rest.
+  const int* merge_marker_runs(const SortArrays& sa) {
+    const long nv = n_moving_;
+    int* mkeys = sa.keys_alt;
+    int* mvals = mkeys + nv;
+    int* mkeys_alt = mvals + nv;
+    int* mvals_alt = mkeys_alt + nv;
+    B::parallel_for(nv, MarkerSubsetCellKey<T>{grid_, canon_.pos, moving_list_, mkeys, mvals});
+    const SortedPairs moving = B::sort_pairs(int(nv), grid_.cells() + 1, mkeys, mvals, mkeys_alt, mvals_alt);
+    B::parallel_for(long(nm_), MergeMarkerRuns<T>{grid_, canon_.pos, fixed_run_, n_fixed_, moving.keys, moving.values,
+                                                  n_moving_, sa.keys, sa.vals});
+    B::cell_begin(sa.keys, int(nm_), grid_.cells() + 1, marker_begin_);
+    return sa.vals;
+  }
+
   void upload_markers(const HostMarkers& m) {
+    marker_body_.resize(m.local.size());
+    for (std::size_t q = 0; q < m.local.size(); ++q) marker_body_[q] = int(std::lround(m.local[q].w));
     upload_vec4(canon_.pos, m.pos);
     upload_vec4(canon_.local, m.local);
     upload_vec4(canon_.wall_vel, m.wall_vel);
@@ -397,6 +476,19 @@ class SphEngineImpl final : public SphEngine {
   // The active domain's lists on a backend that compacts it (run_listed_stage), made when stale.
   int *soil_list_ = nullptr, *marker_list_ = nullptr, *list_counts_ = nullptr;
   bool soil_list_stale_ = true, marker_list_stale_ = true;
+  // The markers' two runs (prepare_marker_runs): each canonical marker's body, the fixed run sorted
+  // by (cell, index), the moving markers' indices; the moving flags they were made for.
+  std::vector<int> marker_body_;
+  int *fixed_run_ = nullptr, *moving_list_ = nullptr;
+  int n_fixed_ = 0, n_moving_ = 0;
+  std::vector<char> runs_moving_;
+  SortCounts sorts_;
+  // TERRACAL_CRM_SORT_ALL=1 sorts every marker at every pose instead of merging two runs: the same
+  // order the long way, for timing runs and the tests that compare.
+  bool merge_markers_ = [] {
+    const char* e = std::getenv("TERRACAL_CRM_SORT_ALL");
+    return !(e && std::string(e) == "1");
+  }();
 };
 
 }  // namespace terracal

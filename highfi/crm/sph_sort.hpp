@@ -22,6 +22,47 @@ struct MarkerPoseUpdate {
     mk.wall_vel[m] = make_vec4(b.velocity + cross(b.omega, rl), T(1));
   }
 };
+// The same over a list of markers.
+template <typename T>
+struct ListedMarkerPoseUpdate {
+  MarkerPoseUpdate<T> update;
+  const int* list;
+  TERRACAL_HD void operator()(long j) const { update(list[j]); }
+};
+
+// Entries of a sorted run of n indices that are less than i.
+TERRACAL_HD inline int count_less(const int* run, int n, int i) {
+  int lo = 0, hi = n;
+  while (lo < hi) {
+    const int mid = (lo + hi) >> 1;
+    if (run[mid] < i)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  return lo;
+}
+
+// The keys of a sorted run, stored.
+struct StoredKeys {
+  const int* keys;
+  TERRACAL_HD int operator()(int q) const { return keys[q]; }
+};
+
+// Entries of a run of n sorted by (key, index) that come before (key, i); key_of(q) is entry q's key.
+template <typename KeyOf>
+TERRACAL_HD int count_pairs_before(const KeyOf& key_of, const int* index, int n, int key, int i) {
+  int lo = 0, hi = n;
+  while (lo < hi) {
+    const int mid = (lo + hi) >> 1;
+    const int k = key_of(mid);
+    if (k < key || (k == key && index[mid] < i))
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  return lo;
+}
 
 // Cell keys for sorting; a soil particle that has left the domain, or broken into the walls (left
 // the room [room_lo, room_hi]), is marked lost, stopped and parked in the last bin, where no
@@ -56,6 +97,80 @@ struct MarkerCellKey {
     keys[i] = grid.key(mk.pos[i].xyz());
     values[i] = int(i);
   }
+};
+
+// Cell keys of a subset of the markers, by canonical index: keys[j] and values[j] = list[j] for the
+// marker list[j]. With the list in ascending order, a stable sort by key orders them by (cell, index),
+// as the full sort orders every marker.
+template <typename T>
+struct MarkerSubsetCellKey {
+  GridGeometry<T> grid;
+  const Vec4<T>* pos;  // canonical positions
+  const int* list;
+  int* keys;
+  int* values;
+  TERRACAL_HD void operator()(long j) const {
+    const int m = list[j];
+    keys[j] = grid.key(pos[m].xyz());
+    values[j] = m;
+  }
+};
+
+// The markers' sorted order from two runs, each sorted by (cell, canonical index): the markers that
+// never move (walls and bodies at rest: sorted once, their keys worked out again from their fixed
+// positions instead of stored) and the moving bodies' markers (sorted at every pose). Each marker's
+// place is its place in its own run plus the number of the other run's markers that come before it,
+// so the result is the stable sort of all markers by cell, to the last index, at the cost of sorting
+// only the moving ones.
+template <typename T>
+struct MergeMarkerRuns {
+  GridGeometry<T> grid;
+  const Vec4<T>* pos;  // canonical positions
+  const int* fixed;    // the fixed run's canonical indices
+  int n_fixed;
+  const int* moving_keys;
+  const int* moving_index;
+  int n_moving;
+  int* keys;  // out: every marker's cell, in sorted order
+  int* perm;  // out: the canonical index at each sorted place
+
+  // The fixed run's keys, worked out from the fixed positions.
+  struct FixedKeys {
+    GridGeometry<T> grid;
+    const Vec4<T>* pos;
+    const int* fixed;
+    TERRACAL_HD int operator()(int q) const { return grid.key(pos[fixed[q]].xyz()); }
+  };
+  TERRACAL_HD void operator()(long i) const {
+    const FixedKeys fixed_keys{grid, pos, fixed};
+    int key, m, place;
+    if (i < n_fixed) {
+      key = fixed_keys(int(i));
+      m = fixed[i];
+      // Most fixed markers (the walls) lie in cells before or after every moving one.
+      if (n_moving == 0 || key < moving_keys[0])
+        place = int(i);
+      else if (key > moving_keys[n_moving - 1])
+        place = int(i) + n_moving;
+      else
+        place = int(i) + count_pairs_before(StoredKeys{moving_keys}, moving_index, n_moving, key, m);
+    } else {
+      const int j = int(i - n_fixed);
+      key = moving_keys[j];
+      m = moving_index[j];
+      place = j + count_pairs_before(fixed_keys, fixed, n_fixed, key, m);
+    }
+    keys[place] = key;
+    perm[place] = m;
+  }
+};
+
+// begin[c] = the first sorted index whose key is c or more (a binary search per cell).
+struct CellBegin {
+  const int* keys;
+  int n;
+  int* begin;
+  TERRACAL_HD void operator()(long c) const { begin[c] = count_less(keys, n, int(c)); }
 };
 
 // Gathers a record array into sorted order: dst[i] = src[perm[i]].

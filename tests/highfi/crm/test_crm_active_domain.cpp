@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -97,4 +99,40 @@ TEST_CASE("CRM: an active domain that covers the whole bed reproduces the full d
   CHECK(worst <= 1e-6);  // 1e-4 spacings: round-off, not a missed neighbour or a lost sum
   CHECK(focused_force.z == Approx(full_force.z).epsilon(1e-4));
   CHECK(std::abs(focused_force.x - full_force.x) <= 1e-4 * std::abs(full_force.z));
+}
+
+// The markers' sort from two runs (sph_sort.hpp: the fixed markers sorted once and merged with the
+// wheel's at every pose) must give the order that sorting every marker gives, and so the same bits,
+// with the active domain's lists (GPU) as without.
+TEST_CASE("CRM: sorting the markers from two runs gives the bits of sorting them all", "[highfi][crm]") {
+  const auto run = [](bool sort_all) {
+    if (sort_all)
+      setenv("TERRACAL_CRM_SORT_ALL", "1", 1);
+    else
+      unsetenv("TERRACAL_CRM_SORT_ALL");
+    CrmSolver s(test::scene_from(wheel_scene(true)), test::validation_device());
+    unsetenv("TERRACAL_CRM_SORT_ALL");
+    for (int k = 0; k < 40; ++k) s.step();
+    const SortCounts counts = s.engine().sort_counts();
+    std::printf("marker sorts (sort_all %d): %ld of every marker, %ld merged\n", int(sort_all), counts.markers_full,
+                counts.markers_merged);
+    return std::make_tuple(s.soil(), s.wrenches()[0], counts);
+  };
+  const auto [all, all_wrench, all_counts] = run(true);
+  const auto [runs, runs_wrench, runs_counts] = run(false);
+  CHECK(all_counts.markers_merged == 0);
+  CHECK(runs_counts.markers_merged >= 80);  // both stages of every step
+  REQUIRE(all.size() == runs.size());
+  long differ = 0;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const auto same = [](const Vec4<double>& a, const Vec4<double>& b) {
+      return a.x == b.x && a.y == b.y && a.z == b.z && a.w == b.w;
+    };
+    differ += all.ids[i] != runs.ids[i] || !same(all.pos[i], runs.pos[i]) || !same(all.vel[i], runs.vel[i]) ||
+              !same(all.s0[i], runs.s0[i]) || !same(all.s1[i], runs.s1[i]);
+  }
+  CHECK(differ == 0);
+  CHECK(all_wrench.force.x == runs_wrench.force.x);
+  CHECK(all_wrench.force.z == runs_wrench.force.z);
+  CHECK(all_wrench.torque.y == runs_wrench.torque.y);
 }
