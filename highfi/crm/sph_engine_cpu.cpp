@@ -60,26 +60,10 @@ struct CpuBackend {
 
   // Stable counting sort of values by key (keys in [0, bins)); begin[c] is the first sorted index of
   // cell c (size bins + 1). Stable, so it gives the same order as the GPU's radix sort.
-  // Stable sort of (key, value) pairs by key; a comparison sort, for the short runs it is given (the
-  // moving bodies' markers), where a counting sort would pass over every cell.
-  static SortedPairs sort_pairs(int n, int /*bins*/, int* keys, int* vals, int* keys_alt, int* vals_alt) {
-    std::vector<int> order(static_cast<std::size_t>(n));
-    for (int i = 0; i < n; ++i) order[std::size_t(i)] = i;
-    std::stable_sort(order.begin(), order.end(), [keys](int a, int b) { return keys[a] < keys[b]; });
-    for (int i = 0; i < n; ++i) {
-      keys_alt[i] = keys[order[std::size_t(i)]];
-      vals_alt[i] = vals[order[std::size_t(i)]];
-    }
-    return {keys_alt, vals_alt};
-  }
-  // begin[c] for c in [0, bins], from n sorted keys, in one pass.
-  static void cell_begin(const int* keys, int n, int bins, int* begin) {
-    int i = 0;
-    for (int c = 0; c <= bins; ++c) {
-      while (i < n && keys[i] < c) ++i;
-      begin[c] = i;
-    }
-  }
+  // The markers are sorted whole at every pose: the counting sort passes over every cell either way,
+  // and merging two runs cost more than it saved here (bench/RESULTS.md, "Markers sorted from two
+  // runs").
+  static constexpr bool kMergesMarkerRuns = false;
   static const int* sort_cells(int n, int bins, int* keys, int* vals, int* /*keys_alt*/, int* vals_alt, int* begin) {
     std::fill(begin, begin + bins + 1, 0);
     for (int i = 0; i < n; ++i) ++begin[keys[i] + 1];

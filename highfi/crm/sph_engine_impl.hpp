@@ -362,8 +362,8 @@ class SphEngineImpl final : public SphEngine {
     // The markers' forces are rewritten by every stage before they are read, so the sort borrows them.
     const SortArrays sa = SortArrays::in(mk_.force, nm_);
     const int* perm = nullptr;
-    if (n_moving_ > 0) {
-      perm = merge_marker_runs(sa);
+    if (B::kMergesMarkerRuns && n_moving_ > 0) {
+      if constexpr (B::kMergesMarkerRuns) perm = merge_marker_runs(sa);
       ++sorts_.markers_merged;
     } else {
       ++sorts_.markers_full;
@@ -375,12 +375,13 @@ class SphEngineImpl final : public SphEngine {
     marker_list_stale_ = true;
   }
 
-  // The markers split in two runs for sort_markers (MergeMarkerRuns): those of the bodies that do not
-  // move, sorted here once, and those of the moving bodies, sorted at every pose. Made again only when
+  // The markers split in two runs for sort_markers (MergeMarkerRuns), on a backend whose sorts pay for
+  // the length sorted (B::kMergesMarkerRuns: the GPU): those of the bodies that do not move, sorted
+  // here once, and those of the moving bodies, sorted at every pose. Made again only when
   // the set of moving bodies changes. Where the moving markers are more than half (the sort's arrays
   // hold 4 of theirs next to 2 of everyone's), every marker is sorted at every pose as before.
   void prepare_marker_runs(const std::vector<BodyPose<double>>& poses) {
-    if (!merge_markers_) return;
+    if (!B::kMergesMarkerRuns || !merge_markers_) return;
     std::vector<char> moving(poses.size());
     for (std::size_t b = 0; b < poses.size(); ++b) moving[b] = poses[b].moving ? 1 : 0;
     if (moving == runs_moving_) return;
@@ -405,8 +406,11 @@ class SphEngineImpl final : public SphEngine {
       B::upload(sa.vals, fixed.data(), fixed.size());
       const long nf = long(fixed.size());
       B::parallel_for(nf, MarkerSubsetCellKey<T>{grid_, canon_.pos, sa.vals, sa.keys, sa.vals});
-      const SortedPairs sorted = B::sort_pairs(int(nf), grid_.cells() + 1, sa.keys, sa.vals, sa.keys_alt, sa.vals_alt);
-      B::copy(fixed_run_, sorted.values, fixed.size());
+      if constexpr (B::kMergesMarkerRuns) {
+        const SortedPairs sorted =
+            B::sort_pairs(int(nf), grid_.cells() + 1, sa.keys, sa.vals, sa.keys_alt, sa.vals_alt);
+        B::copy(fixed_run_, sorted.values, fixed.size());
+      }
     }
     n_fixed_ = int(fixed.size());
     n_moving_ = int(moved.size());
@@ -417,6 +421,7 @@ class SphEngineImpl final : public SphEngine {
   // Arrays (SortArrays over the markers' forces): keys and perm take everyone's first two quarters,
   // the moving markers' keys and values and their alternates the rest.
   const int* merge_marker_runs(const SortArrays& sa) {
+    static_assert(B::kMergesMarkerRuns);
     const long nv = n_moving_;
     int* mkeys = sa.keys_alt;
     int* mvals = mkeys + nv;
