@@ -137,7 +137,11 @@ TEST_CASE("CRM: sorting the markers from two runs gives the bits of sorting them
               !same(all.s0[i], runs.s0[i]) || !same(all.s1[i], runs.s1[i]);
   }
   CHECK(differ == 0);
-  CHECK(all_wrench.force.x == runs_wrench.force.x);
-  CHECK(all_wrench.force.z == runs_wrench.force.z);
-  CHECK(all_wrench.torque.y == runs_wrench.torque.y);
+  // The GPU adds the wrench's block sums with atomics, in whatever order the blocks finish: its last
+  // bits vary from run to run (the soil does not feel it: the wheel's motion is prescribed).
+  const double tol = 1e-12 * (std::abs(all_wrench.force.z) + 1.0);
+  CHECK(std::abs(all_wrench.force.x - runs_wrench.force.x) <= tol);
+  CHECK(std::abs(all_wrench.force.z - runs_wrench.force.z) <= tol);
+  CHECK(std::abs(all_wrench.torque.y - runs_wrench.torque.y) <= tol);
+  CHECK(std::abs(all_wrench.force.z) > 1.0);  // the wheel bears on the soil
 }
