@@ -58,12 +58,12 @@ struct CpuBackend {
   }
   static void fill_begin(int* begin, int count, int value) { std::fill(begin, begin + count, value); }
 
-  // Stable counting sort of values by key (keys in [0, bins)); begin[c] is the first sorted index of
-  // cell c (size bins + 1). Stable, so it gives the same order as the GPU's radix sort.
   // The markers are sorted whole at every pose: the counting sort passes over every cell either way,
   // and merging two runs cost more than it saved here (bench/RESULTS.md, "Markers sorted from two
   // runs").
   static constexpr bool kMergesMarkerRuns = false;
+  // Stable counting sort of values by key (keys in [0, bins)); begin[c] is the first sorted index of
+  // cell c (size bins + 1). Stable, so it gives the same order as the GPU's radix sort.
   static const int* sort_cells(int n, int bins, int* keys, int* vals, int* /*keys_alt*/, int* vals_alt, int* begin) {
     std::fill(begin, begin + bins + 1, 0);
     for (int i = 0; i < n; ++i) ++begin[keys[i] + 1];

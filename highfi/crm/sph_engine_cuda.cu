@@ -331,11 +331,11 @@ struct CudaBackend {
     parallel_for_cuda(count, FillInt{begin, value}, stream());
   }
 
-  // Sorts in the caller's double buffers (CUB's DoubleBuffer form), so that its scratch holds only
-  // its histograms, not another copy of the keys and values; the result is in either buffer.
   // The markers are sorted from two runs (sph_sort.hpp, MergeMarkerRuns): a sort's passes cost about
   // the same for 5 000 keys as for 70 000, so sorting only the moving bodies' markers pays.
   static constexpr bool kMergesMarkerRuns = true;
+  // Sorts in the caller's double buffers (CUB's DoubleBuffer form), so that its scratch holds only
+  // its histograms, not another copy of the keys and values; the result is in either buffer.
   static const int* sort_cells(int n, int bins, int* keys, int* vals, int* keys_alt, int* vals_alt, int* begin) {
     const SortedPairs sorted = sort_pairs(n, bins, keys, vals, keys_alt, vals_alt);
     cell_begin(sorted.keys, n, bins, begin);
