@@ -66,6 +66,13 @@ Command add_calibrate(CLI::App& app) {
              "white (every row independent) or ar1 (each test type counts as N / tau rows, tau from its residuals' "
              "lag-one correlation)")
       ->default_str("white");
+  const std::map<std::string, bayes::AnnulusLaw> annulus_laws{{"shared", bayes::AnnulusLaw::kShared},
+                                                              {"scaled", bayes::AnnulusLaw::kScaled}};
+  add_choice(sub, "--annulus-law", s.annulus_law, annulus_laws,
+             "with --shear and --wheel: shared (the annulus follows the set's c, phi, k) or scaled (the annulus's "
+             "strength is the set's over a fitted ratio R, with its own Janosi k: it tells only how strength grows "
+             "with load)")
+      ->default_str("shared");
   sub->add_flag("!--no-plots", s.plots, "skip the PNG plots");
   return [a] {
     const OutDir out = prepare_out_dir("--out", a->settings.out_dir);

@@ -55,8 +55,9 @@ std::string data_text(const CalibrationData& d) {
 // by the very same calibration.
 std::string fingerprint(const CalibrationData& d, const CalibrationSettings& s) {
   const std::string text =
-      fmt::format("{}|{}|{}|{}|{}|{}|{}|{}{}", TERRACAL_VERSION, data_text(d), s.seed, s.chains, s.min_ess,
-                  s.max_draws, sampler_name(s.sampler), noise_name(s.noise), s.correlated_noise ? "|ar1" : "");
+      fmt::format("{}|{}|{}|{}|{}|{}|{}|{}{}{}", TERRACAL_VERSION, data_text(d), s.seed, s.chains, s.min_ess,
+                  s.max_draws, sampler_name(s.sampler), noise_name(s.noise), s.correlated_noise ? "|ar1" : "",
+                  s.annulus_law == bayes::AnnulusLaw::kScaled ? "|annulus scaled" : "");
   return fnv1a64_hex(text);
 }
 
@@ -219,7 +220,7 @@ CalibrationOutcome run_calibration(const CalibrationData& data, const Calibratio
   const auto t0 = std::chrono::steady_clock::now();
   validate(s);
   // Every input is checked before the output folder is touched.
-  CalibrationProblem problem(data.plate, data.shear, data.priors, s.noise, data.wheel);
+  CalibrationProblem problem(data.plate, data.shear, data.priors, s.noise, data.wheel, s.annulus_law);
   for (const auto& note : problem.notes()) spdlog::warn("{}", note);
   if (problem.dim() == 0) throw InputError("every parameter is fixed (by the priors and the data); nothing to infer");
   if (s.correlated_noise) set_correlation_times(problem, s.seed);

@@ -41,6 +41,9 @@ struct CalibrationSettings {
   // Count each test type as N / tau rows, tau from its residuals' lag-one correlation at a first
   // least-squares point (bayes/correlation_time.hpp); false: every row independent.
   bool correlated_noise = false;
+  // With bevameter and wheel curves: the annulus's law is the set's (shared) or the set's with its
+  // strength over a fitted ratio R and its own Janosi k (scaled; bayes/calibration_problem.hpp).
+  bayes::AnnulusLaw annulus_law = bayes::AnnulusLaw::kShared;
   bool plots = true;
 };
 

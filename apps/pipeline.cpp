@@ -44,6 +44,7 @@ CalibrationSettings calibration_settings(const PipelinePlan& plan, const std::st
   CalibrationSettings s;
   s.out_dir = plan.out + "/" + folder;
   s.seed = plan.seed;
+  s.annulus_law = plan.calibrate_on_wheel ? plan.annulus_law : bayes::AnnulusLaw::kShared;
   return s;
 }
 

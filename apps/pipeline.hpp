@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "apps/rig_runs.hpp"
+#include "bayes/calibration_problem.hpp"
 
 namespace terracal::app {
 
@@ -23,6 +24,10 @@ struct PipelinePlan {
   // The CRM wheel's slips the calibration sees (a subset of `slips`; empty: all of them). The others
   // are held out: the report gives the error on them apart.
   std::vector<double> calibration_slips;
+  // With the wheel in the calibration: the annulus's law scaled by a fitted strength ratio with its
+  // own Janosi k (the default: CRM's annulus and wheel mobilise different strengths; docs/decisions.md,
+  // "Annulus law"), or shared with the set.
+  bayes::AnnulusLaw annulus_law = bayes::AnnulusLaw::kScaled;
   rigs::WheelRun crm_wheel_run, scm_wheel_run;
   double scm_grid = 0.01;
   std::uint64_t seed = 1;

@@ -18,6 +18,7 @@ namespace {
 struct PipelineArgs {
   std::string out, wheel, slips = kDefaultSlips, calibration_slips;
   bool calibrate_on_wheel = true;
+  bayes::AnnulusLaw annulus_law = bayes::AnnulusLaw::kScaled;
   double wheel_duration = 3.0;
   std::uint64_t seed = 1;
   std::string checks;  // "" = none, "all", or a comma list of plate, annulus, wheel
@@ -50,6 +51,13 @@ Command add_pipeline(CLI::App& app) {
              "curves the SCM set is fitted to: bevameter, or bevameter+wheel (the CRM wheel too, fitting slip "
              "sinkage; default)")
       ->default_str("bevameter+wheel");
+  const std::map<std::string, bayes::AnnulusLaw> annulus_laws{{"shared", bayes::AnnulusLaw::kShared},
+                                                              {"scaled", bayes::AnnulusLaw::kScaled}};
+  auto* annulus_law =
+      add_choice(sub, "--annulus-law", a->annulus_law, annulus_laws,
+                 "with bevameter+wheel: scaled (the annulus's strength is the set's over a fitted ratio, with its own "
+                 "Janosi k; default) or shared (the annulus follows the set's c, phi, k)")
+          ->default_str("scaled");
   sub->add_option("--calibration-slips", a->calibration_slips,
                   "with bevameter+wheel: the CRM wheel's slips the calibration sees (default all of --slips); the "
                   "others are held out")
@@ -65,7 +73,7 @@ Command add_pipeline(CLI::App& app) {
       ->transform(whole_in(1, kMaxCheckRealisations))
       ->capture_default_str();
   add_bevameter_options(sub, a->plan, a->lists);
-  return [a] {
+  return [a, annulus_law] {
     const OutDir out = prepare_out_dir("--out", a->out);
     if (a->replot) {
       replot_pipeline(a->out);
@@ -88,6 +96,9 @@ Command add_pipeline(CLI::App& app) {
     p.scm_grid = a->terrain.grid;
     p.slips = parse_list(a->slips, "--slips");
     p.calibrate_on_wheel = a->calibrate_on_wheel;
+    p.annulus_law = a->annulus_law;
+    if (annulus_law->count() > 0 && !p.calibrate_on_wheel)
+      throw InputError("--annulus-law: only with --calibrate-on bevameter+wheel (the bevameter alone has one law)");
     if (!a->calibration_slips.empty()) p.calibration_slips = parse_list(a->calibration_slips, "--calibration-slips");
     apply_bevameter_lists(a->lists, p.bevameter);
     if (!a->wheel.empty()) p.wheel = rigs::read_wheel_json(a->wheel);

@@ -77,6 +77,14 @@ std::string calibration_section(const PipelineResults& r) {
                       params["Slip sinkage"]["S"].get<double>(), post["sd"].get<double>(), post["q05"].get<double>(),
                       post["q95"].get<double>());
   }
+  if (params.contains("Fit") && params["Fit"].contains("annulus_law")) {
+    const auto& a = params["Fit"]["annulus_law"];
+    md += fmt::format(
+        "\nThe annulus's law was scaled: its torque is the set's Mohr-Coulomb strength over R = {:.3g}, developed "
+        "over its own Janosi k = {:.3g} m (`--annulus-law`). The annulus gave how the strength grows with the load, "
+        "the wheel its level and k.\n",
+        a["strength_ratio_R"].get<double>(), a["annulus_janosi_k_m"].get<double>());
+  }
   md += fmt::format("\nCalibrated on {}. Calibration: {} (calibration/summary.txt).\n\n",
                     params.contains("Slip sinkage") ? "the bevameter curves and the CRM wheel (the steady SCM wheel, "
                                                       "with slip sinkage)"

@@ -16,9 +16,10 @@ namespace {
 
 using ordered_json = nlohmann::ordered_json;
 
-// S is a parameter of the outputs only where wheel curves identified it; otherwise the set has no
-// "Slip sinkage" block, as before wheel curves could be given.
-bool reported(const CalibrationProblem& pb, int i) { return i != kSlipSinkage || pb.has_wheel(); }
+// S is a parameter of the outputs only where wheel curves identified it (otherwise the set has no
+// "Slip sinkage" block, as before wheel curves could be given); R and k_annulus only where the
+// annulus had its own law.
+bool reported(const CalibrationProblem& pb, int i) { return pb.reported(i); }
 
 // The noise sd's key in scm_params.json: the type and its unit.
 std::string noise_key(const ObservationSet& s) {
@@ -98,8 +99,7 @@ nlohmann::ordered_json scm_params_json(const CalibrationProblem& pb, const Calib
   ordered_json j;
   j["Type"] = "SCM";
   ordered_json soil;
-  for (int i = 0; i < kNumParams; ++i)
-    if (i != kSlipSinkage) soil[std::string(kChronoNames[i])] = res.point.map[i];
+  for (int i = 0; i < kSlipSinkage; ++i) soil[std::string(kChronoNames[i])] = res.point.map[i];
   soil["Elastic stiffness"] = pb.elastic().ke;
   soil["Damping"] = kDefaultDamping;
   j["Soil parameters"] = soil;
@@ -145,6 +145,13 @@ nlohmann::ordered_json scm_params_json(const CalibrationProblem& pb, const Calib
                     {"angular_velocity_rad_s", pb.wheel().angular_velocity},
                     {"model", "steady SCM wheel (lowfi/scm_steady_wheel.hpp), effects damping and slip_sinkage"}};
   }
+  if (pb.annulus_scaled())
+    fit["annulus_law"] = {{"law", "scaled"},
+                          {"strength_ratio_R", res.point.map[kShearRatio]},
+                          {"annulus_janosi_k_m", res.point.map[kAnnulusJanosi]},
+                          {"meaning",
+                           "the annulus's torque is the set's Mohr-Coulomb strength over R with its own Janosi k; "
+                           "neither is part of the SCM set"}};
   if (pb.noise_model() == NoiseModel::kRelative) fit["noise_relative_sd"] = relative;
   fit["draws"] = res.draws;
   fit["chains"] = res.chains;
@@ -311,6 +318,10 @@ std::string summary_report(const CalibrationProblem& pb, const CalibrationResult
                 "not sampled;\n              quantiles from the normal approximation\n\n",
                 ke.rows, ke.branches.size(), ke.dof)
           : "  elastic     Ke not fitted (no usable unload rows): Chrono's default\n\n";
+  if (pb.annulus_scaled())
+    r.insert(r.size() - 1,
+             "  annulus     law scaled: the annulus's torque is the set's strength over R, with its own Janosi "
+             "k_annulus;\n              R and k_annulus are not part of the SCM set\n");
   r += fmt::format("  {:<10} {:>13} {:>13} {:>12} {:>13} {:>13} {:>13} {:>7} {:>8}\n", "parameter", "MAP", "mean", "sd",
                    "5 %", "50 %", "95 %", "R-hat", "ESS");
   for (std::size_t v = 0; v < res.names.size(); ++v) {

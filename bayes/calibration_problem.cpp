@@ -36,8 +36,13 @@ std::atomic<long> next_problem_id{0};
 }  // namespace
 
 CalibrationProblem::CalibrationProblem(const PlateData& plate, const std::optional<ShearData>& shear, Priors priors,
-                                       NoiseModel noise, const std::optional<WheelData>& wheel)
-    : priors_(priors), noise_(noise), id_(next_problem_id++) {
+                                       NoiseModel noise, const std::optional<WheelData>& wheel,
+                                       AnnulusLaw annulus)
+    : priors_(priors), noise_(noise), annulus_(annulus), id_(next_problem_id++) {
+  if (annulus_ == AnnulusLaw::kScaled && !(shear && wheel))
+    throw InputError(fmt::format("--annulus-law scaled: needs annulus-shear curves (--shear) and wheel curves "
+                                 "(--wheel); got {}",
+                                 shear ? "no wheel curves" : wheel ? "no shear curves" : "neither"));
   for (int i = 0; i < kNumParams; ++i)
     if (priors_[i].fixed()) fixed_[i] = priors_[i].value;
 
@@ -68,14 +73,16 @@ CalibrationProblem::CalibrationProblem(const PlateData& plate, const std::option
   }
   if (wheel) {
     add_wheel(*wheel);
-  } else if (!priors_[kSlipSinkage].fixed()) {
-    if (priors_[kSlipSinkage].user_given)
-      notes_.push_back(fmt::format("no wheel data: the prior of S is not used (S is fixed at {}; only single-wheel "
-                                   "curves identify it)",
-                                   kDefaultSlipSinkage));
-    priors_[kSlipSinkage] = fixed_prior(kDefaultSlipSinkage);
-    priors_[kSlipSinkage].user_given = false;
-    fixed_[kSlipSinkage] = kDefaultSlipSinkage;
+  } else {
+    leave_out(kSlipSinkage, kDefaultSlipSinkage,
+              fmt::format("no wheel data: the prior of S is not used (S is fixed at {}; only single-wheel curves "
+                          "identify it)",
+                          kDefaultSlipSinkage));
+  }
+  if (!annulus_scaled()) {
+    leave_out(kShearRatio, 1.0, "--annulus-law shared: the prior of R is not used (the annulus's law is the set's)");
+    leave_out(kAnnulusJanosi, 0.0,
+              "--annulus-law shared: the prior of k_annulus is not used (the annulus's law is the set's)");
   }
   for (int i = 0; i < kNumParams; ++i)
     if (!priors_[i].fixed()) free_.push_back(i);
@@ -89,6 +96,20 @@ void CalibrationProblem::fix(int i, double value, const std::string& why) {
   priors_[i].value = priors_[i].lower = priors_[i].upper = value;
   fixed_[i] = value;
   notes_.push_back(why);
+}
+
+void CalibrationProblem::leave_out(int i, double value, const std::string& why_unused) {
+  if (priors_[i].fixed()) return;
+  if (priors_[i].user_given) notes_.push_back(why_unused);
+  priors_[i] = fixed_prior(value);
+  priors_[i].user_given = false;
+  fixed_[i] = value;
+}
+
+bool CalibrationProblem::reported(int i) const {
+  if (i == kSlipSinkage) return has_wheel();
+  if (i == kShearRatio || i == kAnnulusJanosi) return annulus_scaled();
+  return true;
 }
 
 void CalibrationProblem::add_plate(const PlateData& plate) {

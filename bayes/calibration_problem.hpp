@@ -16,6 +16,14 @@
 // its own scale and absolute weights (a pull crosses zero near slip 0, where relative weights would
 // blow up). Their predictions come from the steady SCM wheel (lowfi/scm_steady_wheel.hpp), in double
 // only, once per parameter set for all three; they free Lyasko's slip-sinkage S, fixed otherwise.
+//
+// The annulus's law (AnnulusLaw). Shared (default): the annulus torque follows the set's own c, phi
+// and k. Scaled (bevameter and wheel curves together): the annulus follows the set's law with its
+// strength divided by a fitted ratio R and its own Janosi k, tau_annulus = (c + p tan phi) / R
+// (1 - e^{-j/k_annulus}). The annulus then tells the set only how its shear strength grows with the
+// normal load (c against tan phi); the wheel sets the strength's level and k. CRM's Drucker-Prager
+// soil mobilises a different Mohr-Coulomb strength under a thin ring than under a wheel
+// (docs/decisions.md, "Annulus law").
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -35,6 +43,7 @@
 namespace terracal::bayes {
 
 enum class NoiseModel { kRelative, kAbsolute };
+enum class AnnulusLaw { kShared, kScaled };
 
 // Chrono's default SCM damping: quasi-static bevameter curves do not identify it. (The default
 // elastic stiffness, used when the plate data have no unloading, is in elastic_stiffness.hpp.)
@@ -75,7 +84,8 @@ struct WheelPrediction {
 class CalibrationProblem {
  public:
   CalibrationProblem(const PlateData& plate, const std::optional<ShearData>& shear, Priors priors,
-                     NoiseModel noise = NoiseModel::kRelative, const std::optional<WheelData>& wheel = std::nullopt);
+                     NoiseModel noise = NoiseModel::kRelative, const std::optional<WheelData>& wheel = std::nullopt,
+                     AnnulusLaw annulus = AnnulusLaw::kShared);
 
   // Free (inferred) parameters, in ParamVector order; the others are fixed.
   const std::vector<int>& free_indices() const { return free_; }
@@ -98,6 +108,10 @@ class CalibrationProblem {
   // Wheel data: whether there are any, the wheel, and the SCM set a parameter vector stands for
   // (with the fitted Ke, Chrono's damping, and S as its slip sinkage).
   bool has_wheel() const { return wheel_.has_value(); }
+  // Whether the annulus has its own strength ratio R and Janosi k (AnnulusLaw::kScaled).
+  bool annulus_scaled() const { return annulus_ == AnnulusLaw::kScaled; }
+  // Whether parameter i belongs in the outputs: S with wheel curves, R and k_annulus when scaled.
+  bool reported(int i) const;
   const WheelGeometry& wheel() const { return wheel_->wheel; }
   lowfi::ScmSoil soil_of(const ParamVector& p) const;
   // The steady wheel at every wheel row; the last result is kept per thread, so that the three wheel
@@ -128,13 +142,16 @@ class CalibrationProblem {
       for (std::size_t i = 0; i < s.size(); ++i) out[i] = plate_stiffness(s.r[i], p[kKc], p[kKphi]) * kern[s.kernel[i]];
       return;
     }
-    for (std::size_t k = 0; k < kern.size(); ++k)
-      kern[k] = s.kernel_angle[k] < 0
-                    ? T(annulus_development_full(s.kernel_r_in[k], s.kernel_r_out[k]))
-                    : annulus_development(s.kernel_r_in[k], s.kernel_r_out[k], s.kernel_angle[k], p[kJanosi]);
+    const bool scaled = annulus_scaled();
+    const T& k = scaled ? p[kAnnulusJanosi] : p[kJanosi];
+    for (std::size_t j = 0; j < kern.size(); ++j)
+      kern[j] = s.kernel_angle[j] < 0 ? T(annulus_development_full(s.kernel_r_in[j], s.kernel_r_out[j]))
+                                      : annulus_development(s.kernel_r_in[j], s.kernel_r_out[j], s.kernel_angle[j], k);
     const T tan_phi = tan_degrees(p[kFriction]);
     for (std::size_t i = 0; i < s.size(); ++i)
       out[i] = annulus_shear_strength(s.r_in[i], s.r_out[i], s.load[i], p[kCohesion], tan_phi) * kern[s.kernel[i]];
+    if (scaled)
+      for (std::size_t i = 0; i < s.size(); ++i) out[i] /= p[kShearRatio];
   }
   std::vector<double> predict_all(int t, const ParamVector& p) const;
 
@@ -161,6 +178,8 @@ class CalibrationProblem {
   void add_shear(const ShearData& shear);
   void add_wheel(const WheelData& wheel);
   void fix(int i, double value, const std::string& why);
+  // Parameter i is not part of this problem: fixed at `value`, a user's prior for it noted as unused.
+  void leave_out(int i, double value, const std::string& why_unused);
   void set_weights(ObservationSet& s) const;
   static void index_kernels(ObservationSet& s);
 
@@ -173,6 +192,7 @@ class CalibrationProblem {
   std::vector<std::string> notes_;
   ElasticFit elastic_;
   std::optional<WheelData> wheel_;
+  AnnulusLaw annulus_ = AnnulusLaw::kShared;
   long id_ = 0;  // tells this problem's cached wheel predictions from another's
   std::vector<double> tau_;  // per type: residual correlation time (1: white noise)
 };

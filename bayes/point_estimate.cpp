@@ -18,10 +18,16 @@ namespace terracal::bayes {
 namespace {
 
 constexpr double kHuge = 1e300;
+// The random search over the wheel-only coordinates (with the annulus scaled): each evaluation is a
+// steady-wheel sweep of milliseconds.
+constexpr int kWheelSearchEvaluations = 600;
 
 // The global search works in coordinates where the data are informative and scales are even:
 // plate stiffness as log K(r) = log(Kc/r + Kphi) at the smallest and largest plate radius (what
-// each plate measures, and positive by construction), log k, and c, phi, n as they are.
+// each plate measures, and positive by construction), log k, and c, phi, n as they are. With the
+// annulus's law scaled (calibration_problem.hpp) the shear coordinates are the annulus's own
+// (c / R, its friction angle, log k_annulus), which the bevameter curves alone pin, and log R and
+// log k follow: the wheel's coordinates, with S.
 class SearchSpace {
  public:
   explicit SearchSpace(const CalibrationProblem& pb) : pb_(pb) {
@@ -31,6 +37,7 @@ class SearchSpace {
     r2_ = pb.plate_radii().back();
     kc_free_ = is_free(kKc);
     kphi_free_ = is_free(kKphi);
+    scaled_ = pb.annulus_scaled();
     if (kc_free_ || kphi_free_) add(std::log(1.0), std::log(1e12));  // log K(r1)
     if (kc_free_ && kphi_free_) {
       if (r2_ > r1_)
@@ -38,18 +45,22 @@ class SearchSpace {
       else
         add(pr[kKc].lower, pr[kKc].upper);  // one radius, Kc has a prior
     }
-    if (is_free(kN)) add(pr[kN].lower, pr[kN].upper);
-    if (is_free(kCohesion))
-      add(pr[kCohesion].lower,
-          std::min(pr[kCohesion].upper, std::max(pr[kCohesion].lower + 1.0, 3.0 * max_shear_stress())));
-    if (is_free(kFriction)) add(pr[kFriction].lower, pr[kFriction].upper);
-    if (is_free(kJanosi)) add(std::log(pr[kJanosi].lower), std::log(pr[kJanosi].upper));
-    if (is_free(kSlipSinkage)) add(pr[kSlipSinkage].lower, pr[kSlipSinkage].upper);
+    add_free(kN, pr[kN].lower, pr[kN].upper);
+    add_free(kCohesion, pr[kCohesion].lower,
+             std::min(pr[kCohesion].upper, std::max(pr[kCohesion].lower + 1.0, 3.0 * max_shear_stress())));
+    add_free(kFriction, pr[kFriction].lower, pr[kFriction].upper);
+    const int annulus_k = scaled_ ? kAnnulusJanosi : kJanosi;
+    add_free(annulus_k, std::log(pr[annulus_k].lower), std::log(pr[annulus_k].upper));
+    if (scaled_) {
+      add_free(kShearRatio, std::log(pr[kShearRatio].lower), std::log(pr[kShearRatio].upper), true);
+      add_free(kJanosi, std::log(pr[kJanosi].lower), std::log(pr[kJanosi].upper), true);
+    }
+    add_free(kSlipSinkage, pr[kSlipSinkage].lower, pr[kSlipSinkage].upper, true);
   }
 
   int dim() const { return static_cast<int>(lo_.size()); }
-  const std::vector<double>& lower() const { return lo_; }
-  const std::vector<double>& upper() const { return hi_; }
+  // The coordinates only the wheel curves see (S; with the annulus scaled also log R and log k).
+  const std::vector<int>& wheel_coordinates() const { return wheel_; }
 
   ParamVector decode(const std::vector<double>& u) const {
     ParamVector p = pb_.fixed_values();
@@ -70,19 +81,37 @@ class SearchSpace {
         p[kKphi] = k1 - p[kKc] / r1_;
       }
     }
-    const auto& pr = pb_.priors();
-    if (!pr[kN].fixed()) p[kN] = u[j++];
-    if (!pr[kCohesion].fixed()) p[kCohesion] = u[j++];
-    if (!pr[kFriction].fixed()) p[kFriction] = u[j++];
-    if (!pr[kJanosi].fixed()) p[kJanosi] = std::exp(u[j++]);
-    if (!pr[kSlipSinkage].fixed()) p[kSlipSinkage] = u[j++];
+    const auto at = [&](int i) { return u[std::size_t(slot_[i])]; };
+    if (slot_[kN] >= 0) p[kN] = at(kN);
+    if (slot_[kCohesion] >= 0) p[kCohesion] = at(kCohesion);
+    if (slot_[kFriction] >= 0) p[kFriction] = at(kFriction);
+    if (slot_[kJanosi] >= 0) p[kJanosi] = std::exp(at(kJanosi));
+    if (slot_[kSlipSinkage] >= 0) p[kSlipSinkage] = at(kSlipSinkage);
+    if (scaled_) {
+      if (slot_[kAnnulusJanosi] >= 0) p[kAnnulusJanosi] = std::exp(at(kAnnulusJanosi));
+      if (slot_[kShearRatio] >= 0) p[kShearRatio] = std::exp(at(kShearRatio));
+      // c and phi were searched as the annulus's: the set's strength is R times it.
+      const double R = p[kShearRatio];
+      if (slot_[kCohesion] >= 0) p[kCohesion] *= R;
+      if (slot_[kFriction] >= 0) p[kFriction] = std::atan(R * std::tan(p[kFriction] * kPi / 180.0)) * 180.0 / kPi;
+    }
     return p;
   }
+
+  const std::vector<double>& lower() const { return lo_; }
+  const std::vector<double>& upper() const { return hi_; }
 
  private:
   void add(double lo, double hi) {
     lo_.push_back(lo);
     hi_.push_back(hi);
+  }
+  // A coordinate for parameter i if it is free; `wheel`: one only the wheel curves see.
+  void add_free(int i, double lo, double hi, bool wheel = false) {
+    if (pb_.priors()[i].fixed()) return;
+    slot_[i] = dim();
+    if (wheel) wheel_.push_back(dim());
+    add(lo, hi);
   }
   // The largest mean shear stress any shear row implies (torque over the developed-torque lever).
   double max_shear_stress() const {
@@ -98,8 +127,15 @@ class SearchSpace {
 
   const CalibrationProblem& pb_;
   double r1_ = 0, r2_ = 0;
-  bool kc_free_ = false, kphi_free_ = false;
+  bool kc_free_ = false, kphi_free_ = false, scaled_ = false;
   std::vector<double> lo_, hi_;
+  std::array<int, kNumParams> slot_ = filled(-1);  // coordinate of parameter i, -1 if fixed
+  std::vector<int> wheel_;
+  static std::array<int, kNumParams> filled(int v) {
+    std::array<int, kNumParams> a;
+    a.fill(v);
+    return a;
+  }
 };
 
 // Negative log posterior with the noise variances profiled out: sum_t N_t/2 log SSE_t - log prior
@@ -118,26 +154,58 @@ double profile_objective(const CalibrationProblem& pb, const ParamVector& p, boo
 }
 
 // With wheel curves the search is staged: the steady wheel costs milliseconds where the bevameter
-// models cost microseconds, so the random search explores on the bevameter curves alone, a scan
-// of S (which only the wheel sees) follows, and BOBYQA then converges on every curve.
-void scan_slip_sinkage(const CalibrationProblem& pb, const SearchSpace& space,
-                       const std::function<double(const std::vector<double>&)>& f, std::vector<double>& u) {
-  if (pb.priors()[kSlipSinkage].fixed()) return;
-  const int j = space.dim() - 1;  // S is the search space's last coordinate
-  double best = kHuge, best_s = u[j];
-  constexpr int kScan = 21;
-  for (int k = 0; k < kScan; ++k) {
-    u[j] = space.lower()[j] + (space.upper()[j] - space.lower()[j]) * k / (kScan - 1);
-    const double v = f(u);
-    if (v < best) best = v, best_s = u[j];
+// models cost microseconds, so the random search explores on the bevameter curves alone, then the
+// coordinates only the wheel sees are searched with the others held (a scan of S; with the annulus
+// scaled, a random search over log R, log k and S), and BOBYQA converges on every curve.
+void search_wheel_coordinates(const SearchSpace& space, const std::function<double(const std::vector<double>&)>& f,
+                              std::vector<double>& u, int seed_evaluations) {
+  const std::vector<int>& w = space.wheel_coordinates();
+  if (w.empty()) return;
+  if (w.size() == 1) {
+    const int j = w.front();
+    double best = kHuge, best_s = u[j];
+    constexpr int kScan = 21;
+    for (int k = 0; k < kScan; ++k) {
+      u[j] = space.lower()[j] + (space.upper()[j] - space.lower()[j]) * k / (kScan - 1);
+      const double v = f(u);
+      if (v < best) best = v, best_s = u[j];
+    }
+    u[j] = best_s;
+    return;
   }
-  u[j] = best_s;
+  std::vector<double> v(w.size()), lo(w.size()), hi(w.size());
+  for (std::size_t m = 0; m < w.size(); ++m) {
+    lo[m] = space.lower()[w[m]], hi[m] = space.upper()[w[m]];
+    v[m] = 0.5 * (lo[m] + hi[m]);
+  }
+  std::function<double(const std::vector<double>&)> g = [&](const std::vector<double>& x) {
+    std::vector<double> full = u;
+    for (std::size_t m = 0; m < w.size(); ++m) full[w[m]] = x[m];
+    return f(full);
+  };
+  auto thunk = [](const std::vector<double>& x, std::vector<double>&, void* data) {
+    return (*static_cast<std::function<double(const std::vector<double>&)>*>(data))(x);
+  };
+  nlopt::opt crs(nlopt::GN_CRS2_LM, static_cast<unsigned>(w.size()));
+  crs.set_lower_bounds(lo);
+  crs.set_upper_bounds(hi);
+  crs.set_min_objective(thunk, &g);
+  crs.set_maxeval(seed_evaluations);
+  crs.set_population(static_cast<unsigned>(10 * (w.size() + 1)));
+  crs.set_xtol_rel(1e-6);
+  double best = kHuge;
+  try {
+    crs.optimize(v, best);
+  } catch (const std::exception&) { /* keep the best point found */
+  }
+  if (best < kHuge)
+    for (std::size_t m = 0; m < w.size(); ++m) u[w[m]] = v[m];
 }
 
 ParamVector global_search(const CalibrationProblem& pb, const PointEstimateOptions& opt, int& evaluations) {
   SearchSpace space(pb);
   if (space.dim() == 0) return pb.fixed_values();
-  bool wheel = !pb.has_wheel();  // the random search's objective (see scan_slip_sinkage)
+  bool wheel = !pb.has_wheel();  // the random search's objective (see search_wheel_coordinates)
   std::function<double(const std::vector<double>&)> f = [&](const std::vector<double>& u) {
     ++evaluations;
     return profile_objective(pb, space.decode(u), wheel);
@@ -163,7 +231,7 @@ ParamVector global_search(const CalibrationProblem& pb, const PointEstimateOptio
   }
   if (!wheel) {
     wheel = true;
-    scan_slip_sinkage(pb, space, f, u);
+    search_wheel_coordinates(space, f, u, kWheelSearchEvaluations);
     best = f(u);
   }
   nlopt::opt local(nlopt::LN_BOBYQA, space.dim());

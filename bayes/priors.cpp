@@ -27,6 +27,8 @@ constexpr std::array<Range, kNumParams> kPhysical = {{
     {0.0, 60.0},               // phi [deg]
     {0.0, 10.0, true, false},  // k > 0
     {0.0, 20.0},               // S, as the block "Slip sinkage" allows
+    {0.0, 100.0, true, false}, // R > 0
+    {0.0, 10.0, true, false},  // k_annulus > 0
 }};
 
 double get_number(const nlohmann::json& j, const std::string& path, const std::string& key, const char* field) {
@@ -93,6 +95,8 @@ Priors default_priors() {
       {0.0, 60.0},  // phi [deg]
       {1e-5, 1.0},  // k [m]
       {0.0, 10.0},  // S: Lyasko's 1.5; CRM's wheels sink as with S near 3
+      {0.1, 10.0},  // R: the set's shear strength over the annulus's
+      {1e-5, 1.0},  // k_annulus [m]
   }};
   for (int i = 0; i < kNumParams; ++i) {
     p[i].lower = bounds[i].first;
@@ -156,7 +160,7 @@ Priors load_priors(const std::string& path) {
   for (const auto& [key, spec] : j.items()) {
     const int i = param_index(key);
     if (i < 0)
-      throw InputError(fmt::format("{}: unknown key {}; expected one of Kc, Kphi, n, c, phi, k, S (or their Chrono names)",
+      throw InputError(fmt::format("{}: unknown key {}; expected one of Kc, Kphi, n, c, phi, k, S, R, k_annulus (or their Chrono names)",
                                    path, excerpt(key)));
     if (!named_by[i].empty())
       throw InputError(fmt::format("{}: keys '{}' and '{}' both give the prior of {}; expected one of them", path,

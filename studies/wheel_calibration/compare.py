@@ -26,6 +26,7 @@ crm = {108: rows(f"{out}/data/crm_108kg.csv"), 162: rows(f"{out}/crm_162kg/wheel
 print("| set | load | slips | DBP [N] (% of range) | torque [N m] | sinkage [m] |")
 print("|---|---|---|---|---|---|")
 for name, label in [("bevameter", "bevameter only"), ("joint", "bevameter + wheel"),
+                    ("joint_scaled", "bevameter + wheel, annulus scaled"),
                     ("plate_wheel", "plates + wheel, no annulus (MAP)")]:
     for mass in (108, 162):
         model = rows(f"{out}/scm_{name}_{mass}kg/wheel.csv")
@@ -39,15 +40,17 @@ for name, label in [("bevameter", "bevameter only"), ("joint", "bevameter + whee
                 cells.append(f"{e:.3g} ({p:.0f} %)")
             print(f"| {label} | {mass} kg | {gname} | " + " | ".join(cells) + " |")
 print()
-print("Per slip (CRM / SCM bevameter only / SCM bevameter + wheel / SCM plates + wheel):")
+print("Per slip (CRM / SCM bevameter only / SCM bevameter + wheel / SCM annulus scaled / SCM plates + wheel):")
 print()
 print("| load | slip | DBP [N] | torque [N m] | sinkage [m] |")
 print("|---|---|---|---|---|")
 for mass in (108, 162):
     b = rows(f"{out}/scm_bevameter_{mass}kg/wheel.csv")
     j = rows(f"{out}/scm_joint_{mass}kg/wheel.csv")
+    js = rows(f"{out}/scm_joint_scaled_{mass}kg/wheel.csv")
     pw = rows(f"{out}/scm_plate_wheel_{mass}kg/wheel.csv")
     for s in sorted(crm[mass]):
-        cells = [f"{float(crm[mass][s][c]):.4g} / {float(b[s][c]):.4g} / {float(j[s][c]):.4g} / {float(pw[s][c]):.4g}"
+        cells = [f"{float(crm[mass][s][c]):.4g} / {float(b[s][c]):.4g} / {float(j[s][c]):.4g} / "
+                 f"{float(js[s][c]):.4g} / {float(pw[s][c]):.4g}"
                  for c, _ in CHANNELS]
         print(f"| {mass} kg | {s:g}{' (c)' if mass == 108 and s in CAL else ''} | " + " | ".join(cells) + " |")

@@ -7,10 +7,11 @@
 #    loads, and the bevameter-only set of the pipeline (damping) likewise;
 #    and, to see what limits it, a set calibrated on the plates and the wheel without the annulus
 #    (its chains do not converge in 1,500 draws: c and phi trade off on 12 wheel rows; its MAP point is
-#    what the SCM wheel uses);
+#    what the SCM wheel uses); and the joint calibration with the annulus's law scaled
+#    (--annulus-law scaled: the annulus's strength is the set's over a fitted R, with its own k);
 # 3. compare.py: RMSE against CRM in % of CRM's range over the sweep, on the held-out slips of the
 #    calibration load and on the second load.
-# Usage: studies/wheel_calibration/run.sh TERRACAL OUT   (CPU, about 10 minutes on 2 cores)
+# Usage: studies/wheel_calibration/run.sh TERRACAL OUT   (CPU, about 20 minutes on 2 cores)
 set -euo pipefail
 exe=${1:?terracal binary}; out=${2:?output folder}
 here=$(cd "$(dirname "$0")" && pwd)
@@ -21,8 +22,14 @@ mkdir -p "$out/data"
 cp "$src/wheel_crm/wheel.csv" "$out/data/crm_108kg.csv"
 awk -F, 'NR == 1 || $1 == "0.1" || $1 == "0.3" || $1 == "0.5" || $1 == "0.7"' "$src/wheel_crm/wheel.csv" \
   > "$out/data/wheel_calibration.csv"
-for set in joint plate_wheel bevameter; do
-  if [ $set = joint ]; then
+for set in joint joint_scaled plate_wheel bevameter; do
+  if [ $set = joint_scaled ]; then
+    [ -f "$out/joint_scaled/scm_params.json" ] || "$exe" calibrate --plate "$src/bevameter/plate.csv" \
+      --shear "$src/bevameter/shear.csv" --wheel "$out/data/wheel_calibration.csv" \
+      --wheel-spec "$here/../campaign/wheel.json" --annulus-law scaled --out "$out/joint_scaled" \
+      > "$out/joint_scaled.log" 2>&1
+    params="$out/joint_scaled/scm_params.json"; effects="--scm-effects damping --scm-effects slip_sinkage"
+  elif [ $set = joint ]; then
     [ -f "$out/joint/scm_params.json" ] || "$exe" calibrate --plate "$src/bevameter/plate.csv" \
       --shear "$src/bevameter/shear.csv" --wheel "$out/data/wheel_calibration.csv" \
       --wheel-spec "$here/../campaign/wheel.json" --out "$out/joint" > "$out/joint.log" 2>&1

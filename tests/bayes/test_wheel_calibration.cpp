@@ -161,3 +161,79 @@ TEST_CASE("a slip-sinkage S fitted to wheel data is what the wheel needs: S = 0 
   INFO("sinkage at slip 0.7: " << f.sinkage.back() << " m against " << wheel.points.back().sinkage << " m");
   CHECK(f.sinkage.back() < 0.7 * wheel.points.back().sinkage);
 }
+
+namespace {
+// The annulus's data as a soil whose Mohr-Coulomb strength is the set's over R, with its own Janosi
+// k: c / R and tan(phi) / R.
+ParamVector annulus_view(const ParamVector& set, double R, double k_annulus) {
+  ParamVector a = set;
+  a[kCohesion] = set[kCohesion] / R;
+  a[kFriction] = std::atan(std::tan(set[kFriction] * kPi / 180.0) / R) * 180.0 / kPi;
+  a[kJanosi] = k_annulus;
+  return a;
+}
+}  // namespace
+
+TEST_CASE("with the annulus's law scaled, one wheel load and the annulus recover c, phi, k, R and k_annulus",
+          "[bayes][wheel][annulus]") {
+  // The annulus reads 1/1.6 of the wheel's strength and develops it over 6 mm instead of 25: the
+  // annulus then gives c against tan(phi), the wheel (one load) the strength's level and k.
+  Rng rng(35);
+  const ParamVector t = truth();
+  const double R = 1.6, k_annulus = 0.006;
+  SyntheticDesign design;
+  const PlateData plate = synthesize_plate(t, design, rng);
+  const ShearData shear = synthesize_shear(annulus_view(t, R, k_annulus), design, rng);
+  const WheelData wheel = synthesize_wheel(t, {0.1, 0.3, 0.5, 0.7}, {1059.48}, 0.02, rng);
+  const CalibrationProblem scaled(plate, shear, default_priors(), NoiseModel::kRelative, wheel, AnnulusLaw::kScaled);
+  REQUIRE(scaled.dim() == 9);
+  CHECK(scaled.reported(kShearRatio));
+  CHECK(scaled.reported(kAnnulusJanosi));
+
+  const PointEstimate est = estimate_point(scaled, PointEstimateOptions{.seed = 5});
+  const ParamVector& p = est.map;
+  INFO("R " << p[kShearRatio] << ", k_annulus " << p[kAnnulusJanosi] << ", c " << p[kCohesion] << ", phi "
+            << p[kFriction] << ", k " << p[kJanosi] << ", S " << p[kSlipSinkage] << "\n"
+            << est.ceres_report);
+  CHECK(rel(p[kShearRatio], R) < 0.05);
+  CHECK(rel(p[kAnnulusJanosi], k_annulus) < 0.05);
+  CHECK(rel(p[kCohesion], t[kCohesion]) < 0.1);
+  CHECK(rel(p[kFriction], t[kFriction]) < 0.05);
+  CHECK(rel(p[kJanosi], t[kJanosi]) < 0.1);
+  CHECK(rel(p[kSlipSinkage], t[kSlipSinkage]) < 0.05);
+
+  // The shared law must take one strength and one k from both: it misses the wheel's pull by far
+  // more than the noise at some calibration slip.
+  const CalibrationProblem shared(plate, shear, default_priors(), NoiseModel::kRelative, wheel);
+  CHECK_FALSE(shared.reported(kShearRatio));
+  REQUIRE(shared.dim() == 7);
+  const PointEstimate one = estimate_point(shared, PointEstimateOptions{.seed = 5});
+  const WheelPrediction& f = shared.predict_wheel(one.map);
+  double worst = 0;
+  for (std::size_t i = 0; i < wheel.points.size(); ++i)
+    worst = std::max(worst, rel(f.dbp[i], wheel.points[i].dbp));
+  INFO("shared law: worst pull error " << worst);
+  CHECK(worst > 0.15);
+}
+
+TEST_CASE("the annulus's law scaled needs both shear and wheel curves", "[bayes][wheel][annulus]") {
+  Rng rng(36);
+  const ParamVector t = truth();
+  const SyntheticDesign design;
+  const PlateData plate = synthesize_plate(t, design, rng);
+  const ShearData shear = synthesize_shear(t, design, rng);
+  const WheelData wheel = synthesize_wheel(t, {0.1, 0.5}, {1059.48}, 0.02, rng);
+  CHECK_THROWS_WITH(CalibrationProblem(plate, shear, default_priors(), NoiseModel::kRelative, std::nullopt,
+                                       AnnulusLaw::kScaled),
+                    Catch::Contains("--annulus-law scaled") && Catch::Contains("no wheel curves"));
+  CHECK_THROWS_WITH(CalibrationProblem(plate, std::nullopt, default_priors(), NoiseModel::kRelative, wheel,
+                                       AnnulusLaw::kScaled),
+                    Catch::Contains("no shear curves"));
+  // A prior for R in the shared law is not used, and says so.
+  Priors priors = default_priors();
+  priors[kShearRatio].user_given = true;
+  const CalibrationProblem shared(plate, shear, priors, NoiseModel::kRelative, wheel);
+  CHECK(shared.fixed_values()[kShearRatio] == 1.0);
+  CHECK(std::any_of(shared.notes().begin(), shared.notes().end(),
+                    [](const std::string& n) { return n.find("prior of R is not used") != std::string::npos; }));
+}
