@@ -22,6 +22,10 @@ void add_plate_options(CLI::App* sub, BevameterPlan& plan, BevameterLists& lists
   sub->add_option("--plate-speed", plan.plate_speed, "plate speed [m/s]")
       ->check(in_range(R::kPlateSpeed))
       ->capture_default_str();
+  sub->add_option("--plate-unload-speed", plan.plate_unload_speed,
+                  "plate speed of the unload-reload cycle [m/s] (0: as --plate-speed)")
+      ->check(off_or_in_range(R::kPlateSpeed))
+      ->capture_default_str();
   sub->add_option("--plate-spacing", plan.plate_spacing, "CRM particle spacing of the plate runs [m] (0: as --spacing)")
       ->check(off_or_in_range(RigRanges::kSpacing))
       ->capture_default_str();

@@ -70,6 +70,7 @@ void check_plate(const PipelinePlan& plan, const SoilChoice& crm, const Bevamete
                  rigs::curve_change(loading_leg(base.plate), loading_leg(big.plate))});
   BevameterPlan slower = p;
   slower.plate_speed /= 1.5;
+  slower.plate_unload_speed /= 1.5;
   const auto longer = run_bevameter(crm, plan.terrain, slower, true, false);
   rigs::write_plate_csv(checks_dir(plan) + "/plate_slower.csv", longer.plate);
   out.push_back(

@@ -177,6 +177,7 @@ void check_plate_plan(const BevameterPlan& plan) {
                  "each plate radius is run once (plate.csv keys a plate's curve by its radius)");
   check_range(R::kMaxSinkage, plan.max_sinkage, "--max-sinkage");
   check_range(R::kPlateSpeed, plan.plate_speed, "--plate-speed");
+  if (plan.plate_unload_speed != 0) check_range(R::kPlateSpeed, plan.plate_unload_speed, "--plate-unload-speed");
   check_range(R::kPlateWallRadii, plan.plate_wall_radii, "--plate-wall-radii");
   check_range(R::kPlateDepthScale, plan.plate_depth_scale, "--plate-depth-scale");
   if (plan.plate_spacing != 0) check_range(RigRanges::kSpacing, plan.plate_spacing, "--plate-spacing");
@@ -261,6 +262,7 @@ rigs::PlateTest plate_test(const BevameterPlan& plan, const TerrainOptions& po, 
   t.radius = r;
   t.max_sinkage = plan.max_sinkage;
   t.speed = plan.plate_speed;
+  t.unload_speed = plan.plate_unload_speed;
   t.thickness = std::max(0.02, 2 * po.spacing);
   return t;
 }

@@ -51,6 +51,7 @@ struct BevameterRanges {
 struct BevameterPlan {
   std::vector<double> plates{0.2, 0.3};
   double max_sinkage = 0.2, plate_speed = 0.1;
+  double plate_unload_speed = 0;  // [m/s] the unload-reload cycle's (0: plate_speed)
   double inner_radius = 0.15, outer_radius = 0.20;
   std::vector<double> shear_loads;  // [N]
   double shear_rate = 1.0, shear_angle = 1.0, shear_settle = 1.0;

@@ -14,6 +14,7 @@ void validate(const PlateTest& t) {
   check_range("plate radius", t.radius, 1e-3, 10, "m");
   check_range("plate max_sinkage", t.max_sinkage, 1e-4, t.radius * 5, "m (at most 5 plate radii)");
   check_range("plate speed", t.speed, 1e-4, 10, "m/s");
+  if (t.unload_speed != 0) check_range("plate unload_speed", t.unload_speed, 1e-4, 10, "m/s (0: as the plate speed)");
   check_range("plate unload_at", t.unload_at, 0, 0.95, "(fraction of max_sinkage; 0 = no unload cycle)");
   check_range("plate unload_depth", t.unload_depth, 0, 1, "(fraction of the sinkage reached)");
   check_range("plate thickness", t.thickness, 1e-4, 1, "m");
@@ -22,16 +23,24 @@ void validate(const PlateTest& t) {
 
 std::vector<PlateRow> run_plate(const TerrainSite& site, const PlateTest& test, const RigProgress& progress) {
   validate(test);
-  // The stroke: down to the unload point, up by the unload depth, down again to the maximum.
+  // The stroke: down to the unload point, up by the unload depth, down again to the maximum (the
+  // lift and its way back at the unload speed).
   struct Leg {
     double duration, velocity;
   };
   std::vector<Leg> legs;
   if (test.unload_at > 0 && test.unload_depth > 0) {
     const double z_u = test.unload_at * test.max_sinkage, lift = test.unload_depth * z_u;
-    legs = {{z_u / test.speed, -test.speed},
-            {lift / test.speed, test.speed},
-            {(test.max_sinkage - z_u + lift) / test.speed, -test.speed}};
+    const double v_u = test.unload_speed > 0 ? test.unload_speed : test.speed;
+    if (v_u == test.speed)
+      legs = {{z_u / test.speed, -test.speed},
+              {lift / test.speed, test.speed},
+              {(test.max_sinkage - z_u + lift) / test.speed, -test.speed}};
+    else
+      legs = {{z_u / test.speed, -test.speed},
+              {lift / v_u, v_u},
+              {lift / v_u, -v_u},
+              {(test.max_sinkage - z_u) / test.speed, -test.speed}};
   } else {
     legs = {{test.max_sinkage / test.speed, -test.speed}};
   }

@@ -15,6 +15,9 @@ struct PlateTest {
   double radius = 0.2;        // [m]; the Bekker width b of a circular plate
   double max_sinkage = 0.1;   // [m]
   double speed = 0.05;        // [m/s] down and up
+  // [m/s] of the unload and of the reload back to where the unload began (0: `speed`). Slower than
+  // the bed's elastic waves cross it, the unload slope is the bed's static stiffness.
+  double unload_speed = 0;
   double unload_at = 0.6;     // the unload starts at this fraction of max_sinkage (0: no cycle)
   double unload_depth = 0.1;  // and lifts the plate by this fraction of the sinkage reached
   double thickness = 0.02;    // plate thickness [m] (for the CRM markers)

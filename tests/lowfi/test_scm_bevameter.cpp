@@ -90,6 +90,41 @@ TEST_CASE("SCM plate rig: loading follows Bekker within 2 %, unloading has slope
   }
 }
 
+TEST_CASE("SCM plate rig: a slower unload samples the same elastic line more densely and ends the same stroke",
+          "[lowfi][scm]") {
+  // SCM's plate is rate-independent: at a tenth of the speed the cycle's slope is still Ke A, the
+  // branch holds several times the rows (the rows are spread over a longer stroke), and the stroke
+  // still ends at the maximum sinkage.
+  const lowfi::ScmSoil soil = test::scm_dry_sand();
+  const double r = 0.1;
+  const auto site = test::scm_site(soil, r / 40, 1e-3);
+  rigs::PlateTest t;
+  t.radius = r;
+  t.max_sinkage = 0.1;
+  t.speed = 0.1;
+  t.samples = 1000;
+  auto unload_of = [](const std::vector<rigs::PlateRow>& rows) {
+    std::vector<std::pair<double, double>> b;
+    for (const auto& row : rows)
+      if (row.phase == "unload" && row.force > 0) b.push_back({row.sinkage, row.force});
+    return b;
+  };
+  const auto fast = rigs::run_plate(site, t);
+  t.unload_speed = 0.01;
+  const auto slow = rigs::run_plate(site, t);
+  const auto bf = unload_of(fast), bs = unload_of(slow);
+  REQUIRE(bf.size() >= 3);
+  INFO("unload rows: " << bf.size() << " at 0.1 m/s, " << bs.size() << " at 0.01 m/s");
+  CHECK(bs.size() > 3 * bf.size());
+  const double slope = (bs.back().second - bs.front().second) / (bs.back().first - bs.front().first);
+  INFO("slow unload slope " << slope << " N/m against Ke pi r^2 = " << soil.elastic_stiffness * M_PI * r * r);
+  CHECK(rel(slope, soil.elastic_stiffness * M_PI * r * r) < 0.02);
+  CHECK(slow.back().sinkage == Approx(t.max_sinkage).margin(1e-3));
+  CHECK(rel(slow.back().force, fast.back().force) < 0.01);
+  // The unload starts where the fast one did: only the cycle's speed changed.
+  CHECK(bs.front().first == Approx(bf.front().first).margin(2e-3));
+}
+
 TEST_CASE("SCM annulus rig: torque against angle follows the analytic annulus within 2 %", "[lowfi][scm]") {
   const lowfi::ScmSoil soil = test::scm_dry_sand();
   // Damping lets the annulus come to rest on its elastic bed before it turns; the damping is weak
