@@ -78,6 +78,8 @@ TEST_CASE("bad input, bevameter: options", "[cli][bad_input]") {
       scm("--test plate --step -0.01", {"--step: value -0.01 is outside [0, 0.1] s"}),
       scm("--test shear --shear-loads 100 --shear-step -0.01", {"--shear-step: value -0.01 is outside [0, 0.1] s"}),
       scm("--test plate --plate-speed 0", {"--plate-speed: value 0 is outside [0.0001, 10] m/s"}),
+      scm("--test plate --plate-unload-speed -0.01", {"--plate-unload-speed: value -0.01 is outside", "0 (off)"}),
+      scm("--test plate --plate-unload-speed 20", {"--plate-unload-speed: value 20 is outside"}),
       scm("--test shear --shear-loads 100 --shear-angle -1", {"--shear-angle: value -1 is outside"}),
       scm("--test shear --shear-loads 100 --shear-rate 1e9", {"--shear-rate: value 1e9"}),
       scm("--test shear --shear-loads 500 --shear-load-ramp 1.5", {"--shear-load-ramp", "1.5"}),
