@@ -24,10 +24,10 @@ struct PipelinePlan {
   // The CRM wheel's slips the calibration sees (a subset of `slips`; empty: all of them). The others
   // are held out: the report gives the error on them apart.
   std::vector<double> calibration_slips;
-  // With the wheel in the calibration: the annulus's law scaled by a fitted strength ratio with its
-  // own Janosi k (the default: CRM's annulus and wheel mobilise different strengths; docs/decisions.md,
-  // "Annulus law"), or shared with the set.
-  bayes::AnnulusLaw annulus_law = bayes::AnnulusLaw::kScaled;
+  // With the wheel in the calibration: the annulus's law shared with the set, or scaled by a fitted
+  // strength ratio with its own Janosi k (CRM's annulus and wheel mobilise different strengths;
+  // docs/decisions.md, "Annulus law").
+  bayes::AnnulusLaw annulus_law = bayes::AnnulusLaw::kShared;
   rigs::WheelRun crm_wheel_run, scm_wheel_run;
   double scm_grid = 0.01;
   std::uint64_t seed = 1;
