@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <thread>
@@ -263,4 +264,44 @@ TEST_CASE("calibrate --wheel fits the slip sinkage with the soil, and the set dr
   if (terracal::gnuplot_available())
     for (const char* png : {"wheel_dbp_fit.png", "wheel_torque_fit.png", "wheel_sinkage_fit.png"})
       CHECK(fs::exists(dir + "/fit/" + png));
+}
+
+TEST_CASE("calibrate --annulus-law scaled: the wheel's soil is the annulus's 1.5x stronger, and the outputs say so",
+          "[cli][calibrate][wheel]") {
+  const ScratchDir scratch("annulus_scaled");
+  const std::string dir = scratch.str();
+  // The demo's annulus curves come from truth.json; the wheel's soil is 1.5x as strong (c and tan phi)
+  // and develops its shear over 4x the Janosi k. The MAP must find R near 1.5; the set keeps the
+  // wheel's strength, and R and k_annulus appear only in the posterior and the fit's block.
+  terracal::lowfi::ScmSoil wheel_soil = terracal::lowfi::read_scm_json(demo_data("truth.json"));
+  const double R = 1.5;
+  const double annulus_c = wheel_soil.cohesion, annulus_k = wheel_soil.janosi_k;
+  wheel_soil.cohesion *= R;
+  wheel_soil.friction_deg = std::atan(R * std::tan(wheel_soil.friction_deg * M_PI / 180)) * 180 / M_PI;
+  wheel_soil.janosi_k *= 4;
+  wheel_soil.slip_sinkage.S = 2.0;
+  terracal::lowfi::ScmSteadyWheelOptions opt;
+  opt.slip_sinkage = true;
+  std::string csv = "slip,load_N,dbp_N,torque_Nm,sinkage_m\n";
+  for (double s : {0.1, 0.3, 0.5, 0.7}) {
+    const auto r = terracal::lowfi::scm_steady_wheel(wheel_soil, {0.47, 0.25}, 1059.48, s, opt);
+    csv += fmt::format("{},{},{},{},{}\n", s, 1059.48, r.dbp, r.torque, r.sinkage);
+  }
+  std::ofstream(dir + "/wheel.csv") << csv;
+  std::ofstream(dir + "/wheel.json") << R"({"radius": 0.47, "width": 0.25, "mass": 108, "angular_velocity": 1.0})";
+  const CliResult r = run_cli(calibrate_args(dir + "/fit", "--max-draws 50 --annulus-law scaled --wheel " + dir +
+                                                              "/wheel.csv --wheel-spec " + dir + "/wheel.json"),
+                              dir);
+  INFO(r.err);
+  REQUIRE((r.exit_code == 0 || r.exit_code == 1));  // 50 draws: converged or not, the outputs are written
+  const auto j = nlohmann::json::parse(read_file(dir + "/fit/scm_params.json"));
+  const auto& fit = j["Fit"]["annulus_law"];
+  CHECK(fit["law"] == "scaled");
+  CHECK(fit["strength_ratio_R"].get<double>() == Approx(R).epsilon(0.1));
+  CHECK(fit["annulus_janosi_k_m"].get<double>() == Approx(annulus_k).epsilon(0.1));
+  CHECK(j["Soil parameters"]["Mohr cohesive limit"].get<double>() == Approx(annulus_c * R).epsilon(0.15));
+  CHECK(j["Posterior"].contains("Shear strength over annulus"));
+  CHECK(j["Posterior"].contains("Annulus Janosi shear coefficient"));
+  CHECK_FALSE(j["Soil parameters"].contains("Shear strength over annulus"));
+  CHECK(read_file(dir + "/fit/summary.txt").find("law scaled") != std::string::npos);
 }
