@@ -57,7 +57,7 @@ Command add_pipeline(CLI::App& app) {
       add_choice(sub, "--annulus-law", a->annulus_law, annulus_laws,
                  "with bevameter+wheel: shared (the annulus follows the set's c, phi, k) or scaled (the annulus's "
                  "strength is the set's over a fitted ratio, with its own Janosi k: the CRM wheel fits 2-3x better, "
-                 "the chains need about 6x the draws)")
+                 "the chains need about 3x the draws)")
           ->default_str("shared");
   sub->add_option("--calibration-slips", a->calibration_slips,
                   "with bevameter+wheel: the CRM wheel's slips the calibration sees (default all of --slips); the "

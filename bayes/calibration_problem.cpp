@@ -362,6 +362,12 @@ Target CalibrationProblem::target() const {
   Target t;
   t.dim = dim();
   t.nuisance_dim = num_types();
+  t.lower.resize(dim());
+  t.upper.resize(dim());
+  for (int j = 0; j < dim(); ++j) {
+    t.lower[j] = priors_[free_[j]].lower;
+    t.upper[j] = priors_[free_[j]].upper;
+  }
   t.log_density = [this](const Eigen::VectorXd& x, const Eigen::VectorXd& nv) { return log_posterior(expand(x), nv); };
   t.gibbs = [this](const Eigen::VectorXd& x, Eigen::VectorXd& nv, Rng& rng) { draw_noise(expand(x), nv, rng); };
   return t;

@@ -38,6 +38,10 @@ struct CalibrationOptions {
   std::uint64_t seed = 1;
   int chains = 4;  // DRAM chains; the ensemble uses max(chains, 2 dim + 2) walkers (even)
   SamplerKind sampler = SamplerKind::kDram;
+  // DRAM: run the chains in the box's unbounded coordinates (box_transform.hpp) where the target has
+  // a box, as the independence sampler does; draws are recorded in the target's own coordinates.
+  // For posteriors with long tails towards a bound (a Janosi k that only a few wheel rows pin).
+  bool dram_in_box = false;
   double min_ess = 1000;        // bulk ESS per parameter
   double max_rhat = 1.01;       // rank-normalised split R-hat per parameter
   int warmup = 1000;            // iterations per chain with adaptation, discarded

@@ -537,6 +537,53 @@ TEST_CASE("model problem: independence sampling converges from a least-squares p
   }
 }
 
+TEST_CASE("DRAM in the box's coordinates samples a long-tailed log-normal exactly and records the target's own",
+          "[bayes][samplers][dram]") {
+  // A Janosi k that a few wheel rows pin: median 0.04 m, log sd 0.4, in the prior box [1e-5, 1] m; and
+  // a second, Gaussian coordinate. The chains run in logit coordinates; the draws come back in metres.
+  const double median = 0.04, s_log = 0.4;
+  Target t;
+  t.dim = 2;
+  t.lower = VectorXd::Constant(2, 1e-5);
+  t.upper = VectorXd::Constant(2, 1.0);
+  t.log_density = [=](const VectorXd& x, const VectorXd&) {
+    if ((x.array() < 1e-5).any() || (x.array() > 1).any()) return -std::numeric_limits<double>::infinity();
+    const double z = (std::log(x[0]) - std::log(median)) / s_log;
+    return -0.5 * z * z - std::log(x[0]) - 0.5 * std::pow((x[1] - 0.5) / 0.05, 2);
+  };
+  CalibrationResult res;
+  res.point.x = VectorXd::Constant(2, 0.5);
+  res.point.x[0] = median;
+  res.point.covariance = Eigen::MatrixXd::Zero(2, 2);
+  res.point.covariance(0, 0) = 0.016 * 0.016;  // the Laplace width at the median
+  res.point.covariance(1, 1) = 0.05 * 0.05;
+  res.point.covariance_ok = true;
+  res.num_params = 2;
+  res.names = {"k", "y"};
+  CalibrationOptions opt;
+  opt.seed = 3;
+  opt.chains = 4;
+  opt.sampler = SamplerKind::kDram;
+  opt.dram_in_box = true;
+  opt.min_ess = 1000;
+  opt.warmup = 1000;
+  opt.max_draws = 40000;
+  sample_posterior(t, opt, res);
+  INFO(res.termination);
+  REQUIRE(res.converged);
+  const double mean = median * std::exp(0.5 * s_log * s_log);
+  const double sd = mean * std::sqrt(std::exp(s_log * s_log) - 1);
+  const VariableSummary& k = res.summary[0];
+  INFO("k: mean " << k.mean << " (exact " << mean << "), sd " << k.sd << " (exact " << sd << "), 95 % " << k.q95
+                  << " (exact " << median * std::exp(1.6449 * s_log) << "), ESS " << k.ess_bulk);
+  CHECK(std::abs(k.mean - mean) < 5 * k.sd / std::sqrt(k.ess_bulk));
+  CHECK(std::abs(k.sd / sd - 1) < 0.1);
+  CHECK(std::abs(k.q95 / (median * std::exp(1.6449 * s_log)) - 1) < 0.05);
+  CHECK(std::abs(res.summary[1].mean - 0.5) < 0.01);
+  for (const auto& chain : res.values)
+    for (std::size_t d = 0; d < chain.size(); d += res.names.size()) REQUIRE((chain[d] > 1e-5 && chain[d] < 1));
+}
+
 TEST_CASE("model problem: invalid problems are refused", "[bayes][model_problem]") {
   const LineData d;
   const BatchForward forward = [](const std::vector<VectorXd>& ps, std::vector<std::vector<double>>& out) {
