@@ -138,6 +138,11 @@ class SearchSpace {
   }
 };
 
+// NLopt's derivative-free objective: `data` points at a std::function of the coordinates.
+double nlopt_objective(const std::vector<double>& u, std::vector<double>&, void* data) {
+  return (*static_cast<std::function<double(const std::vector<double>&)>*>(data))(u);
+}
+
 // Negative log posterior with the noise variances profiled out: sum_t N_t/2 log SSE_t - log prior
 // (without the wheel types when `wheel` is false).
 double profile_objective(const CalibrationProblem& pb, const ParamVector& p, bool wheel = true) {
@@ -183,13 +188,10 @@ void search_wheel_coordinates(const SearchSpace& space, const std::function<doub
     for (std::size_t m = 0; m < w.size(); ++m) full[w[m]] = x[m];
     return f(full);
   };
-  auto thunk = [](const std::vector<double>& x, std::vector<double>&, void* data) {
-    return (*static_cast<std::function<double(const std::vector<double>&)>*>(data))(x);
-  };
   nlopt::opt crs(nlopt::GN_CRS2_LM, static_cast<unsigned>(w.size()));
   crs.set_lower_bounds(lo);
   crs.set_upper_bounds(hi);
-  crs.set_min_objective(thunk, &g);
+  crs.set_min_objective(nlopt_objective, &g);
   crs.set_maxeval(seed_evaluations);
   crs.set_population(static_cast<unsigned>(10 * (w.size() + 1)));
   crs.set_xtol_rel(1e-6);
@@ -210,9 +212,6 @@ ParamVector global_search(const CalibrationProblem& pb, const PointEstimateOptio
     ++evaluations;
     return profile_objective(pb, space.decode(u), wheel);
   };
-  auto thunk = [](const std::vector<double>& u, std::vector<double>&, void* data) {
-    return (*static_cast<std::function<double(const std::vector<double>&)>*>(data))(u);
-  };
   nlopt::srand(opt.seed);
   std::vector<double> u(space.dim());
   for (int j = 0; j < space.dim(); ++j) u[j] = 0.5 * (space.lower()[j] + space.upper()[j]);
@@ -221,7 +220,7 @@ ParamVector global_search(const CalibrationProblem& pb, const PointEstimateOptio
   nlopt::opt crs(nlopt::GN_CRS2_LM, space.dim());
   crs.set_lower_bounds(space.lower());
   crs.set_upper_bounds(space.upper());
-  crs.set_min_objective(thunk, &f);
+  crs.set_min_objective(nlopt_objective, &f);
   crs.set_maxeval(opt.global_evaluations);
   crs.set_population(static_cast<unsigned>(30 * (space.dim() + 1)));
   crs.set_xtol_rel(1e-8);
@@ -237,7 +236,7 @@ ParamVector global_search(const CalibrationProblem& pb, const PointEstimateOptio
   nlopt::opt local(nlopt::LN_BOBYQA, space.dim());
   local.set_lower_bounds(space.lower());
   local.set_upper_bounds(space.upper());
-  local.set_min_objective(thunk, &f);
+  local.set_min_objective(nlopt_objective, &f);
   local.set_maxeval(5000);
   local.set_xtol_rel(1e-10);
   try {
