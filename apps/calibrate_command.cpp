@@ -73,6 +73,11 @@ Command add_calibrate(CLI::App& app) {
              "strength is the set's over a fitted ratio R, with its own Janosi k: it tells only how strength grows "
              "with load)")
       ->default_str("shared");
+  sub->add_option("--elastic-stiffness", s.elastic_stiffness,
+                  "the set's SCM elastic stiffness Ke [Pa/m]; 0: fitted to the plates' unload rows (Chrono's 4e7 "
+                  "without them). Given, the plates' fit is still reported, and wheel curves see the given Ke")
+      ->check(off_or_in_range(CalibrationRanges::kElasticStiffness))
+      ->capture_default_str();
   sub->add_flag("!--no-plots", s.plots, "skip the PNG plots");
   return [a] {
     const OutDir out = prepare_out_dir("--out", a->settings.out_dir);

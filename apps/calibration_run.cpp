@@ -55,9 +55,10 @@ std::string data_text(const CalibrationData& d) {
 // by the very same calibration.
 std::string fingerprint(const CalibrationData& d, const CalibrationSettings& s) {
   const std::string text =
-      fmt::format("{}|{}|{}|{}|{}|{}|{}|{}{}{}", TERRACAL_VERSION, data_text(d), s.seed, s.chains, s.min_ess,
+      fmt::format("{}|{}|{}|{}|{}|{}|{}|{}{}{}{}", TERRACAL_VERSION, data_text(d), s.seed, s.chains, s.min_ess,
                   s.max_draws, sampler_name(s.sampler), noise_name(s.noise), s.correlated_noise ? "|ar1" : "",
-                  s.annulus_law == bayes::AnnulusLaw::kScaled ? "|annulus scaled" : "");
+                  s.annulus_law == bayes::AnnulusLaw::kScaled ? "|annulus scaled" : "",
+                  s.elastic_stiffness > 0 ? fmt::format("|Ke {:a}", s.elastic_stiffness) : "");
   return fnv1a64_hex(text);
 }
 
@@ -69,6 +70,7 @@ void validate(const CalibrationSettings& s) {
     throw InputError(
         fmt::format("--max-draws {}: expected {} to {} draws per chain", s.max_draws, R::kMinDraws, R::kMaxDraws));
   check_range(R::kMinEss, s.min_ess, "--min-ess");
+  if (s.elastic_stiffness != 0) check_range(R::kElasticStiffness, s.elastic_stiffness, "--elastic-stiffness");
   // A run that does not converge keeps every draw up to the cap: 6 parameters and the log density in
   // doubles, held about four times over (the chains, the result, the diagnostics' copy, the checkpoint).
   const double values = double(s.chains) * double(s.max_draws) * (kNumParams + 1);
@@ -220,7 +222,8 @@ CalibrationOutcome run_calibration(const CalibrationData& data, const Calibratio
   const auto t0 = std::chrono::steady_clock::now();
   validate(s);
   // Every input is checked before the output folder is touched.
-  CalibrationProblem problem(data.plate, data.shear, data.priors, s.noise, data.wheel, s.annulus_law);
+  CalibrationProblem problem(data.plate, data.shear, data.priors, s.noise, data.wheel, s.annulus_law,
+                             s.elastic_stiffness);
   for (const auto& note : problem.notes()) spdlog::warn("{}", note);
   if (problem.dim() == 0) throw InputError("every parameter is fixed (by the priors and the data); nothing to infer");
   if (s.correlated_noise) set_correlation_times(problem, s.seed);

@@ -27,6 +27,7 @@ struct CalibrationRanges {
   static constexpr long long kMinChains = 4, kMaxChains = 256;
   static constexpr long long kMinDraws = 10, kMaxDraws = 100000000;
   static constexpr Range kMinEss{0, 1e9, true, false};
+  static constexpr Range kElasticStiffness{1, 1e13, false, false, "Pa/m"};  // as the SCM soil reader's
 };
 
 // The options of one calibration (docs/architecture.md, "Calibration").
@@ -44,6 +45,9 @@ struct CalibrationSettings {
   // With bevameter and wheel curves: the annulus's law is the set's (shared) or the set's with its
   // strength over a fitted ratio R and its own Janosi k (scaled; bayes/calibration_problem.hpp).
   bayes::AnnulusLaw annulus_law = bayes::AnnulusLaw::kShared;
+  // The set's SCM elastic stiffness [Pa/m]; 0: fitted to the plates' unload rows (Chrono's default
+  // without them).
+  double elastic_stiffness = 0;
   bool plots = true;
 };
 

@@ -72,8 +72,21 @@ ordered_json elastic_posterior(const ElasticFit& e) {
           {"method", std::string(kElasticMethod) + " (normal approximation)"}};
 }
 
-ordered_json elastic_fit_block(const ElasticFit& e) {
+// Ke given by the caller: fixed at that value in the posterior, like a fixed parameter.
+ordered_json given_elastic_posterior(double ke) {
+  return {{"mean", ke},       {"sd", 0.0},        {"q05", ke},   {"q50", ke},
+          {"q95", ke},        {"rhat", 1.0},      {"ess_bulk", 0.0}, {"fixed", true},
+          {"method", "given (--elastic-stiffness); the plates' own fit is in Fit.elastic_stiffness"}};
+}
+
+ordered_json elastic_fit_block(const CalibrationProblem& pb) {
+  const ElasticFit& e = pb.elastic();
   ordered_json b;
+  if (pb.elastic_given()) {
+    b["given_Pa_m"] = pb.set_elastic_stiffness();
+    b["plates_fit_Pa_m"] = e.ke;
+    b["used_by_set"] = "given";
+  }
   b["fitted"] = e.fitted;
   b["method"] = e.fitted ? kElasticMethod : "not fitted: Chrono default";
   if (!e.fitted) return b;
@@ -100,7 +113,7 @@ nlohmann::ordered_json scm_params_json(const CalibrationProblem& pb, const Calib
   j["Type"] = "SCM";
   ordered_json soil;
   for (int i = 0; i < kSlipSinkage; ++i) soil[std::string(kChronoNames[i])] = res.point.map[i];
-  soil["Elastic stiffness"] = pb.elastic().ke;
+  soil["Elastic stiffness"] = pb.set_elastic_stiffness();
   soil["Damping"] = kDefaultDamping;
   j["Soil parameters"] = soil;
   if (pb.has_wheel()) j["Slip sinkage"] = lowfi::slip_sinkage_json({res.point.map[kSlipSinkage]});
@@ -118,7 +131,8 @@ nlohmann::ordered_json scm_params_json(const CalibrationProblem& pb, const Calib
     post[std::string(kChronoNames[i])] = {{"mean", s.mean}, {"sd", s.sd},     {"q05", s.q05},          {"q50", s.q50},
                                           {"q95", s.q95},   {"rhat", s.rhat}, {"ess_bulk", s.ess_bulk}};
   }
-  post["Elastic stiffness"] = elastic_posterior(pb.elastic());
+  post["Elastic stiffness"] =
+      pb.elastic_given() ? given_elastic_posterior(pb.set_elastic_stiffness()) : elastic_posterior(pb.elastic());
   j["Posterior"] = post;
   ordered_json noise, relative;
   for (int t = 0; t < pb.num_types(); ++t) {
@@ -160,7 +174,7 @@ nlohmann::ordered_json scm_params_json(const CalibrationProblem& pb, const Calib
   fit["warmup"] = ctx.warmup;
   fit["converged"] = res.converged;
   fit["failed_evaluations"] = res.failed_evaluations;
-  fit["elastic_stiffness"] = elastic_fit_block(pb.elastic());
+  fit["elastic_stiffness"] = elastic_fit_block(pb);
   fit["damping"] = "Chrono default: not identified by quasi-static bevameter curves";
   std::vector<std::string> notes = pb.notes();
   notes.insert(notes.end(), res.notes.begin(), res.notes.end());
@@ -318,6 +332,10 @@ std::string summary_report(const CalibrationProblem& pb, const CalibrationResult
                 "not sampled;\n              quantiles from the normal approximation\n\n",
                 ke.rows, ke.branches.size(), ke.dof)
           : "  elastic     Ke not fitted (no usable unload rows): Chrono's default\n\n";
+  if (pb.elastic_given())
+    r.insert(r.size() - 1, fmt::format("  elastic     the set's Ke is given (--elastic-stiffness {:g} Pa/m); the plates' "
+                                       "fit ({:g} Pa/m) is reported only\n",
+                                       pb.set_elastic_stiffness(), ke.ke));
   if (pb.annulus_scaled())
     r.insert(r.size() - 1,
              "  annulus     law scaled: the annulus's torque is the set's strength over R, with its own Janosi "
@@ -327,7 +345,8 @@ std::string summary_report(const CalibrationProblem& pb, const CalibrationResult
   for (std::size_t v = 0; v < res.names.size(); ++v) {
     if (v == static_cast<std::size_t>(res.num_params) &&
         ke.fitted)  // after the SCM parameters; no R-hat/ESS: not sampled
-      r += fmt::format("  {:<10} {:13.6g} {:13.6g} {:12.4g} {:13.6g} {:13.6g} {:13.6g} {:>7} {:>8}\n", "Ke", ke.ke,
+      r += fmt::format("  {:<10} {:13.6g} {:13.6g} {:12.4g} {:13.6g} {:13.6g} {:13.6g} {:>7} {:>8}\n",
+                       pb.elastic_given() ? "Ke plates" : "Ke", ke.ke,
                        ke.ke, ke.sd, ke.quantile(0.05), ke.quantile(0.5), ke.quantile(0.95), "-", "-");
     const auto& s = res.summary[v];
     const bool param = v < static_cast<std::size_t>(res.num_params);
@@ -338,7 +357,10 @@ std::string summary_report(const CalibrationProblem& pb, const CalibrationResult
   }
   for (int i = 0; i < kNumParams; ++i)
     if (free_slot(pb, i) < 0 && reported(pb, i)) r += fmt::format("  {:<10} fixed at {:g}\n", kShortNames[i], pb.fixed_values()[i]);
-  if (!ke.fitted) r += fmt::format("  {:<10} fixed at {:g} (Chrono default, not fitted)\n", "Ke", ke.ke);
+  if (pb.elastic_given())
+    r += fmt::format("  {:<10} fixed at {:g} (given by --elastic-stiffness: the set's)\n", "Ke", pb.set_elastic_stiffness());
+  else if (!ke.fitted)
+    r += fmt::format("  {:<10} fixed at {:g} (Chrono default, not fitted)\n", "Ke", ke.ke);
   for (const auto& n : pb.notes()) r += "  note: " + n + "\n";
   for (const auto& n : res.notes) r += "  note: " + n + "\n";
   return r;

@@ -37,8 +37,11 @@ std::atomic<long> next_problem_id{0};
 
 CalibrationProblem::CalibrationProblem(const PlateData& plate, const std::optional<ShearData>& shear, Priors priors,
                                        NoiseModel noise, const std::optional<WheelData>& wheel,
-                                       AnnulusLaw annulus)
-    : priors_(priors), noise_(noise), annulus_(annulus), id_(next_problem_id++) {
+                                       AnnulusLaw annulus, double elastic_stiffness)
+    : priors_(priors), noise_(noise), elastic_given_(elastic_stiffness), annulus_(annulus), id_(next_problem_id++) {
+  if (!(std::isfinite(elastic_stiffness) && elastic_stiffness >= 0))
+    throw InputError(fmt::format("--elastic-stiffness: value {} must be > 0 Pa/m (0: fitted to the plates' unload rows)",
+                                 elastic_stiffness));
   if (annulus_ == AnnulusLaw::kScaled && !(shear && wheel))
     throw InputError(fmt::format("--annulus-law scaled: needs annulus-shear curves (--shear) and wheel curves "
                                  "(--wheel); got {}",
@@ -199,7 +202,7 @@ lowfi::ScmSoil CalibrationProblem::soil_of(const ParamVector& p) const {
   soil.cohesion = p[kCohesion];
   soil.friction_deg = p[kFriction];
   soil.janosi_k = p[kJanosi];
-  soil.elastic_stiffness = elastic_.ke;
+  soil.elastic_stiffness = set_elastic_stiffness();
   soil.damping = kDefaultDamping;
   soil.slip_sinkage.S = p[kSlipSinkage];
   return soil;

@@ -24,6 +24,10 @@
 // normal load (c against tan phi); the wheel sets the strength's level and k. CRM's Drucker-Prager
 // soil mobilises a different Mohr-Coulomb strength under a thin ring than under a wheel
 // (docs/decisions.md, "Annulus law").
+//
+// SCM's elastic stiffness Ke is fitted to the plates' unload rows (elastic_stiffness.hpp) unless the
+// caller gives the set's own (`elastic_stiffness` > 0): the plates' fit is then still made and
+// reported, but the set, and the steady wheel through which wheel curves see it, use the given one.
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -85,7 +89,7 @@ class CalibrationProblem {
  public:
   CalibrationProblem(const PlateData& plate, const std::optional<ShearData>& shear, Priors priors,
                      NoiseModel noise = NoiseModel::kRelative, const std::optional<WheelData>& wheel = std::nullopt,
-                     AnnulusLaw annulus = AnnulusLaw::kShared);
+                     AnnulusLaw annulus = AnnulusLaw::kShared, double elastic_stiffness = 0);
 
   // Free (inferred) parameters, in ParamVector order; the others are fixed.
   const std::vector<int>& free_indices() const { return free_; }
@@ -104,6 +108,9 @@ class CalibrationProblem {
   // SCM's elastic stiffness from the unload/reload rows: a separate linear least-squares problem
   // (elastic_stiffness.hpp), solved once here; its notes are among notes().
   const ElasticFit& elastic() const { return elastic_; }
+  // The set's Ke: the caller's if given, else the plates' fit (or Chrono's default).
+  bool elastic_given() const { return elastic_given_ > 0; }
+  double set_elastic_stiffness() const { return elastic_given() ? elastic_given_ : elastic_.ke; }
 
   // Wheel data: whether there are any, the wheel, and the SCM set a parameter vector stands for
   // (with the fitted Ke, Chrono's damping, and S as its slip sinkage).
@@ -191,6 +198,7 @@ class CalibrationProblem {
   ParamVector fixed_{};
   std::vector<std::string> notes_;
   ElasticFit elastic_;
+  double elastic_given_ = 0;  // Pa/m; 0: the set takes the plates' fit
   std::optional<WheelData> wheel_;
   AnnulusLaw annulus_ = AnnulusLaw::kShared;
   long id_ = 0;  // tells this problem's cached wheel predictions from another's

@@ -305,3 +305,41 @@ TEST_CASE("calibrate --annulus-law scaled: the wheel's soil is the annulus's 1.5
   CHECK_FALSE(j["Soil parameters"].contains("Shear strength over annulus"));
   CHECK(read_file(dir + "/fit/summary.txt").find("law scaled") != std::string::npos);
 }
+
+TEST_CASE("calibrate --elastic-stiffness: the set and the wheel's model take the given Ke, the plates' fit is reported",
+          "[cli][calibrate][wheel][elastic]") {
+  const ScratchDir scratch("elastic_given");
+  const std::string dir = scratch.str();
+  // Wheel curves of the demo's soil with S = 2.0 and a rut that rebounds 10x softer than the demo's
+  // Ke (its plates have no unloading, so their Ke is Chrono's default). Given that Ke, the MAP finds
+  // S; the outputs carry the given Ke as the set's and the plates' value beside it.
+  terracal::lowfi::ScmSoil soil = terracal::lowfi::read_scm_json(demo_data("truth.json"));
+  soil.elastic_stiffness = 4e6;
+  soil.slip_sinkage.S = 2.0;
+  terracal::lowfi::ScmSteadyWheelOptions opt;
+  opt.slip_sinkage = true;
+  std::string csv = "slip,load_N,dbp_N,torque_Nm,sinkage_m\n";
+  for (double s : {0.1, 0.3, 0.5, 0.7}) {
+    const auto r = terracal::lowfi::scm_steady_wheel(soil, {0.47, 0.25}, 1059.48, s, opt);
+    csv += fmt::format("{},{},{},{},{}\n", s, 1059.48, r.dbp, r.torque, r.sinkage);
+  }
+  std::ofstream(dir + "/wheel.csv") << csv;
+  std::ofstream(dir + "/wheel.json") << R"({"radius": 0.47, "width": 0.25, "mass": 108, "angular_velocity": 1.0})";
+  const CliResult r = run_cli(calibrate_args(dir + "/fit", "--max-draws 50 --elastic-stiffness 4e6 --wheel " + dir +
+                                                              "/wheel.csv --wheel-spec " + dir + "/wheel.json"),
+                              dir);
+  INFO(r.err);
+  REQUIRE((r.exit_code == 0 || r.exit_code == 1));  // 50 draws: converged or not, the outputs are written
+  const auto j = nlohmann::json::parse(read_file(dir + "/fit/scm_params.json"));
+  CHECK(j["Soil parameters"]["Elastic stiffness"].get<double>() == 4e6);
+  CHECK(j["Slip sinkage"]["S"].get<double>() == Approx(2.0).epsilon(0.05));
+  const auto& post = j["Posterior"]["Elastic stiffness"];
+  CHECK(post["fixed"] == true);
+  CHECK(post["method"].get<std::string>().find("--elastic-stiffness") != std::string::npos);
+  const auto& ke = j["Fit"]["elastic_stiffness"];
+  CHECK(ke["given_Pa_m"].get<double>() == 4e6);
+  CHECK(ke["plates_fit_Pa_m"].get<double>() == 4e7);
+  CHECK(ke["fitted"] == false);
+  CHECK(terracal::lowfi::read_scm_json(dir + "/fit/scm_params.json").elastic_stiffness == 4e6);
+  CHECK(read_file(dir + "/fit/summary.txt").find("given by --elastic-stiffness") != std::string::npos);
+}

@@ -21,12 +21,13 @@ namespace {
 ParamVector truth() { return {990, 1528430, 1.1, 1040, 28, 0.025, 3.0}; }
 
 // The steady SCM wheel of `soil` at the given slips and loads, with multiplicative noise of sd `noise`.
+// `ke`: the soil's elastic stiffness (by default the one that plate data without unloading leave in place).
 WheelData synthesize_wheel(const ParamVector& p, const std::vector<double>& slips, const std::vector<double>& loads,
-                           double noise, Rng& rng) {
+                           double noise, Rng& rng, double ke = kDefaultElasticStiffness) {
   lowfi::ScmSoil soil;
   soil.Kc = p[kKc], soil.Kphi = p[kKphi], soil.n = p[kN];
   soil.cohesion = p[kCohesion], soil.friction_deg = p[kFriction], soil.janosi_k = p[kJanosi];
-  soil.elastic_stiffness = 4e7;  // the default the plate data (no unloading) leave in place
+  soil.elastic_stiffness = ke;
   soil.damping = kDefaultDamping;
   soil.slip_sinkage.S = p[kSlipSinkage];
   lowfi::ScmSteadyWheelOptions opt;
@@ -236,4 +237,46 @@ TEST_CASE("the annulus's law scaled needs both shear and wheel curves", "[bayes]
   CHECK(shared.fixed_values()[kShearRatio] == 1.0);
   CHECK(std::any_of(shared.notes().begin(), shared.notes().end(),
                     [](const std::string& n) { return n.find("prior of R is not used") != std::string::npos; }));
+}
+
+TEST_CASE("a given elastic stiffness is the set's and the wheel's; the plates' own fit is kept beside it",
+          "[bayes][wheel][elastic]") {
+  // The wheel's soil rebounds 10x softer than the default Ke that plates without unloading leave:
+  // given that Ke, the steady wheel at the truth reproduces the curves and the MAP recovers the soil;
+  // left to the plates' default, the same parameters miss the wheel's sinkage.
+  Rng rng(35);
+  const ParamVector t = truth();
+  SyntheticDesign design;
+  const PlateData plate = synthesize_plate(t, design, rng);
+  const ShearData shear = synthesize_shear(t, design, rng);
+  const double ke = 4e6;
+  const WheelData wheel = synthesize_wheel(t, {0.1, 0.3, 0.5, 0.7}, {1059.48, 1600}, 0.0, rng, ke);
+  const CalibrationProblem given(plate, shear, default_priors(), NoiseModel::kRelative, wheel, AnnulusLaw::kShared, ke);
+  const CalibrationProblem plates(plate, shear, default_priors(), NoiseModel::kRelative, wheel);
+  REQUIRE(given.elastic_given());
+  CHECK_FALSE(plates.elastic_given());
+  CHECK(given.soil_of(t).elastic_stiffness == ke);
+  CHECK(plates.soil_of(t).elastic_stiffness == kDefaultElasticStiffness);
+  CHECK(given.elastic().ke == plates.elastic().ke);  // the plates' fit (here their default) is unchanged
+  const WheelPrediction at_given = given.predict_wheel(t);
+  const WheelPrediction at_plates = plates.predict_wheel(t);
+  double worst_plates = 0;
+  for (std::size_t i = 0; i < wheel.points.size(); ++i) {
+    INFO("row " << i);
+    CHECK(rel(at_given.sinkage[i], wheel.points[i].sinkage) < 1e-6);  // the problem's quadrature tolerance
+    CHECK(rel(at_given.dbp[i], wheel.points[i].dbp) < 1e-6);
+    worst_plates = std::max(worst_plates, rel(at_plates.sinkage[i], wheel.points[i].sinkage));
+  }
+  CHECK(worst_plates > 0.05);
+
+  const PointEstimate est = estimate_point(given, PointEstimateOptions{.seed = 5});
+  const ParamVector& p = est.map;
+  INFO("S " << p[kSlipSinkage] << ", n " << p[kN] << ", phi " << p[kFriction] << ", k " << p[kJanosi]);
+  CHECK(rel(p[kSlipSinkage], t[kSlipSinkage]) < 0.05);
+  CHECK(rel(p[kFriction], t[kFriction]) < 0.05);
+  CHECK(rel(p[kJanosi], t[kJanosi]) < 0.05);
+
+  CHECK_THROWS_WITH(CalibrationProblem(plate, shear, default_priors(), NoiseModel::kRelative, wheel,
+                                       AnnulusLaw::kShared, -1.0),
+                    Catch::Contains("--elastic-stiffness") && Catch::Contains("-1"));
 }
