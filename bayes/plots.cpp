@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <filesystem>
@@ -25,6 +26,10 @@ namespace fs = std::filesystem;
 // print. (Their yellow is left out: unreadable on white.)
 constexpr const char* kColours[] = {"#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000"};
 constexpr std::size_t kNumColours = sizeof(kColours) / sizeof(kColours[0]);
+// Past the seventh series the colours repeat: each round of them gets its own dash and point type,
+// so that series 1 and 8 still read apart.
+constexpr std::array<int, 4> kPointTypes = {7, 5, 9, 11};
+std::size_t colour_cycle(std::size_t series) { return series / kNumColours; }
 
 constexpr std::size_t kMaxScatterPoints = 2000;  // more only hides structure and slows gnuplot
 constexpr int kPairsSize = 1000;                 // pixels; square, so that every panel is square
@@ -256,11 +261,11 @@ void plot_fit(const std::string& png_path, const std::string& title, const std::
                       "noborder notitle",
                       i, kColours[i % kNumColours]));
   for (std::size_t i = 0; i < series.size(); ++i)
-    items.push_back(fmt::format("'series{}.dat' using 1:3 with lines lw 2.5 lc rgb \"{}\" title {}", i,
-                                kColours[i % kNumColours], quoted(series[i].label)));
+    items.push_back(fmt::format("'series{}.dat' using 1:3 with lines lw 2.5 dt {} lc rgb \"{}\" title {}", i,
+                                1 + colour_cycle(i), kColours[i % kNumColours], quoted(series[i].label)));
   for (std::size_t i = 0; i < series.size(); ++i)
-    items.push_back(fmt::format("'series{}.dat' using 1:2 with points pt 7 ps 1.1 lc rgb \"{}\" notitle", i,
-                                kColours[i % kNumColours]));
+    items.push_back(fmt::format("'series{}.dat' using 1:2 with points pt {} ps 1.1 lc rgb \"{}\" notitle", i,
+                                kPointTypes[colour_cycle(i) % kPointTypes.size()], kColours[i % kNumColours]));
   items.push_back("keyentry with points pt 7 ps 1.1 lc rgb \"#666666\" title \"observed\"");
   items.push_back("keyentry with lines lw 2.5 lc rgb \"#666666\" title \"posterior fit\"");
   if (any_band)
