@@ -14,7 +14,7 @@ src="$here/../../results/pipeline_bevameter_2022"
 sweep="$out/elastic_sweep"
 mkdir -p "$sweep"
 slips=0,0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8
-for ke in 4e6 8e6 1.6e7 4e7; do
+for ke in 3e6 4e6 8e6 1.6e7 4e7; do
   fit="$sweep/ke_$ke"
   [ -f "$fit/scm_params.json" ] || "$exe" calibrate --plate "$src/bevameter/plate.csv" \
     --shear "$src/bevameter/shear.csv" --wheel "$out/data/wheel_calibration.csv" \
