@@ -45,6 +45,7 @@ CalibrationSettings calibration_settings(const PipelinePlan& plan, const std::st
   s.out_dir = plan.out + "/" + folder;
   s.seed = plan.seed;
   s.annulus_law = plan.calibrate_on_wheel ? plan.annulus_law : bayes::AnnulusLaw::kShared;
+  s.elastic_stiffness = plan.elastic_stiffness;
   return s;
 }
 

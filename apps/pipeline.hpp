@@ -28,6 +28,7 @@ struct PipelinePlan {
   // strength ratio with its own Janosi k (CRM's annulus and wheel mobilise different strengths;
   // docs/decisions.md, "Annulus law").
   bayes::AnnulusLaw annulus_law = bayes::AnnulusLaw::kShared;
+  double elastic_stiffness = 0;  // the set's Ke [Pa/m], as `calibrate --elastic-stiffness`; 0: the plates' fit
   rigs::WheelRun crm_wheel_run, scm_wheel_run;
   double scm_grid = 0.01;
   std::uint64_t seed = 1;

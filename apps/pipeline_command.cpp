@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "apps/bevameter_options.hpp"
+#include "apps/calibration_run.hpp"
 #include "apps/cli_checks.hpp"
 #include "apps/commands.hpp"
 #include "apps/out_dir.hpp"
@@ -19,6 +20,7 @@ struct PipelineArgs {
   std::string out, wheel, slips = kDefaultSlips, calibration_slips;
   bool calibrate_on_wheel = true;
   bayes::AnnulusLaw annulus_law = bayes::AnnulusLaw::kShared;
+  double elastic_stiffness = 0;
   double wheel_duration = 3.0;
   std::uint64_t seed = 1;
   std::string checks;  // "" = none, "all", or a comma list of plate, annulus, wheel
@@ -59,6 +61,11 @@ Command add_pipeline(CLI::App& app) {
                  "strength is the set's over a fitted ratio, with its own Janosi k: the CRM wheel fits 2-3x better, "
                  "the chains need about 3x the draws)")
           ->default_str("shared");
+  sub->add_option("--elastic-stiffness", a->elastic_stiffness,
+                  "the set's SCM elastic stiffness [Pa/m], as calibrate --elastic-stiffness; 0: fitted to the plates' "
+                  "unload rows")
+      ->check(off_or_in_range(CalibrationRanges::kElasticStiffness))
+      ->capture_default_str();
   sub->add_option("--calibration-slips", a->calibration_slips,
                   "with bevameter+wheel: the CRM wheel's slips the calibration sees (default all of --slips); the "
                   "others are held out")
@@ -98,6 +105,7 @@ Command add_pipeline(CLI::App& app) {
     p.slips = parse_list(a->slips, "--slips");
     p.calibrate_on_wheel = a->calibrate_on_wheel;
     p.annulus_law = a->annulus_law;
+    p.elastic_stiffness = a->elastic_stiffness;
     if (annulus_law->count() > 0 && !p.calibrate_on_wheel)
       throw InputError("--annulus-law: only with --calibrate-on bevameter+wheel (the bevameter alone has one law)");
     if (!a->calibration_slips.empty()) p.calibration_slips = parse_list(a->calibration_slips, "--calibration-slips");

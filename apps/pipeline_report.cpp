@@ -85,6 +85,14 @@ std::string calibration_section(const PipelineResults& r) {
         "the wheel its level and k.\n",
         a["strength_ratio_R"].get<double>(), a["annulus_janosi_k_m"].get<double>());
   }
+  if (params.contains("Fit") && params["Fit"].contains("elastic_stiffness") &&
+      params["Fit"]["elastic_stiffness"].contains("given_Pa_m")) {
+    const auto& e = params["Fit"]["elastic_stiffness"];
+    md += fmt::format(
+        "\nThe set's elastic stiffness was given: {:.3g} Pa/m (`--elastic-stiffness`); the plates' unload rows give "
+        "{:.3g} Pa/m.\n",
+        e["given_Pa_m"].get<double>(), e["plates_fit_Pa_m"].get<double>());
+  }
   md += fmt::format("\nCalibrated on {}. Calibration: {} (calibration/summary.txt).\n\n",
                     params.contains("Slip sinkage") ? "the bevameter curves and the CRM wheel (the steady SCM wheel, "
                                                       "with slip sinkage)"

@@ -35,6 +35,7 @@ TEST_CASE("bad input, pipeline", "[cli][bad_input]") {
       option("--calibrate-on bevameter --annulus-law shared",
              {"--annulus-law: only with --calibrate-on bevameter+wheel"}),
       option("--annulus-law tight", {"--annulus-law: 'tight' is not one of scaled|shared"}),
+      option("--elastic-stiffness -2e6", {"--elastic-stiffness: value -2e6 is outside 0 (off) or [1, 10000000000000] Pa/m"}),
       option("--calibrate-on bevameter --calibration-slips 0.1",
              {"--calibration-slips: only with --calibrate-on bevameter+wheel"}),
       option("--spacing 0.001", {"--spacing 0.001 m: a CRM bin", "needs about"}),
