@@ -47,6 +47,21 @@ void require_identical_outputs(const std::string& a, const std::string& b) {
   }
 }
 
+// wheel.csv rows of the steady SCM wheel (0.47 x 0.25 m, 108 kg) on `soil` with slip sinkage, at
+// slips 0.1, 0.3, 0.5, 0.7; `wiggle`: a fixed multiplicative noise pattern per slip (none if empty).
+std::string steady_wheel_csv(const terracal::lowfi::ScmSoil& soil, const std::vector<double>& wiggle = {}) {
+  terracal::lowfi::ScmSteadyWheelOptions opt;
+  opt.slip_sinkage = true;
+  std::string csv = "slip,load_N,dbp_N,torque_Nm,sinkage_m\n";
+  std::size_t k = 0;
+  for (double s : {0.1, 0.3, 0.5, 0.7}) {
+    const auto r = terracal::lowfi::scm_steady_wheel(soil, {0.47, 0.25}, 1059.48, s, opt);
+    const double e = wiggle.empty() ? 0.0 : wiggle[k++];
+    csv += fmt::format("{},{},{},{},{}\n", s, 1059.48, r.dbp * (1 + e), r.torque * (1 - e), r.sinkage * (1 + e));
+  }
+  return csv;
+}
+
 }  // namespace
 
 TEST_CASE("calibrate writes the contract outputs, the same seed gives byte-identical files", "[cli][calibrate]") {
@@ -229,16 +244,7 @@ TEST_CASE("calibrate --wheel fits the slip sinkage with the soil, and the set dr
   // in a fixed pattern; the wheel's geometry in the run.json beside them, as `terracal wheel` writes it.
   terracal::lowfi::ScmSoil truth = terracal::lowfi::read_scm_json(demo_data("truth.json"));
   truth.slip_sinkage.S = 2.5;
-  terracal::lowfi::ScmSteadyWheelOptions opt;
-  opt.slip_sinkage = true;
-  std::string csv = "slip,load_N,dbp_N,torque_Nm,sinkage_m\n";
-  const double wiggle[] = {0.01, -0.008, 0.004, -0.012};
-  int k = 0;
-  for (double s : {0.1, 0.3, 0.5, 0.7}) {
-    const auto r = terracal::lowfi::scm_steady_wheel(truth, {0.47, 0.25}, 1059.48, s, opt);
-    const double e = wiggle[k++];
-    csv += fmt::format("{},{},{},{},{}\n", s, 1059.48, r.dbp * (1 + e), r.torque * (1 - e), r.sinkage * (1 + e));
-  }
+  const std::string csv = steady_wheel_csv(truth, {0.01, -0.008, 0.004, -0.012});
   fs::create_directories(dir + "/crm_wheel");
   std::ofstream(dir + "/crm_wheel/wheel.csv") << csv;
   std::ofstream(dir + "/crm_wheel/run.json")
@@ -280,14 +286,7 @@ TEST_CASE("calibrate --annulus-law scaled: the wheel's soil is the annulus's 1.5
   wheel_soil.friction_deg = std::atan(R * std::tan(wheel_soil.friction_deg * M_PI / 180)) * 180 / M_PI;
   wheel_soil.janosi_k *= 4;
   wheel_soil.slip_sinkage.S = 2.0;
-  terracal::lowfi::ScmSteadyWheelOptions opt;
-  opt.slip_sinkage = true;
-  std::string csv = "slip,load_N,dbp_N,torque_Nm,sinkage_m\n";
-  for (double s : {0.1, 0.3, 0.5, 0.7}) {
-    const auto r = terracal::lowfi::scm_steady_wheel(wheel_soil, {0.47, 0.25}, 1059.48, s, opt);
-    csv += fmt::format("{},{},{},{},{}\n", s, 1059.48, r.dbp, r.torque, r.sinkage);
-  }
-  std::ofstream(dir + "/wheel.csv") << csv;
+  std::ofstream(dir + "/wheel.csv") << steady_wheel_csv(wheel_soil);
   std::ofstream(dir + "/wheel.json") << R"({"radius": 0.47, "width": 0.25, "mass": 108, "angular_velocity": 1.0})";
   const CliResult r = run_cli(calibrate_args(dir + "/fit", "--max-draws 50 --annulus-law scaled --wheel " + dir +
                                                               "/wheel.csv --wheel-spec " + dir + "/wheel.json"),
@@ -316,14 +315,7 @@ TEST_CASE("calibrate --elastic-stiffness: the set and the wheel's model take the
   terracal::lowfi::ScmSoil soil = terracal::lowfi::read_scm_json(demo_data("truth.json"));
   soil.elastic_stiffness = 4e6;
   soil.slip_sinkage.S = 2.0;
-  terracal::lowfi::ScmSteadyWheelOptions opt;
-  opt.slip_sinkage = true;
-  std::string csv = "slip,load_N,dbp_N,torque_Nm,sinkage_m\n";
-  for (double s : {0.1, 0.3, 0.5, 0.7}) {
-    const auto r = terracal::lowfi::scm_steady_wheel(soil, {0.47, 0.25}, 1059.48, s, opt);
-    csv += fmt::format("{},{},{},{},{}\n", s, 1059.48, r.dbp, r.torque, r.sinkage);
-  }
-  std::ofstream(dir + "/wheel.csv") << csv;
+  std::ofstream(dir + "/wheel.csv") << steady_wheel_csv(soil);
   std::ofstream(dir + "/wheel.json") << R"({"radius": 0.47, "width": 0.25, "mass": 108, "angular_velocity": 1.0})";
   const CliResult r = run_cli(calibrate_args(dir + "/fit", "--max-draws 50 --elastic-stiffness 4e6 --wheel " + dir +
                                                               "/wheel.csv --wheel-spec " + dir + "/wheel.json"),
