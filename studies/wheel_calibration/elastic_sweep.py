@@ -1,28 +1,15 @@
 #!/usr/bin/env python3
 """elastic_sweep.sh's table: for each given Ke (and the plates' own, run.sh's joint_scaled), the SCM
 wheel's RMSE against CRM in % of CRM's range, and the motion resistance T / r - DBP at slip 0."""
-import csv
 import json
-import math
 import sys
+
+from wheel_rmse import rmse, rows
 
 out = sys.argv[1]
 RADIUS = 0.47
-CHANNELS = ["dbp_N", "torque_Nm", "sinkage_m"]
 
 
-def rows(path):
-    with open(path) as f:
-        return {round(float(r["slip"]), 3): r for r in csv.DictReader(f)}
-
-
-def rmse(model, crm, slips):
-    cells = []
-    for col in CHANNELS:
-        vals = [float(r[col]) for r in crm.values()]
-        err = math.sqrt(sum((float(model[s][col]) - float(crm[s][col])) ** 2 for s in slips) / len(slips))
-        cells.append(f"{100 * err / (max(vals) - min(vals)):.1f}")
-    return " / ".join(cells)
 
 
 def resistance(r):

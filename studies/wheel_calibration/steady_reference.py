@@ -6,16 +6,12 @@ rows with the 9 s rows in their place) and prints each SCM set's RMSE in % of CR
 torque / sinkage, against them. Usage: steady_reference.py OUT (results/wheel_calibration_2022)."""
 import csv
 import glob
-import math
 import sys
 
+from wheel_rmse import CHANNELS, rmse, rows
+
 out = sys.argv[1]
-COLS = ["dbp_N", "torque_Nm", "sinkage_m"]
 
-
-def rows(path):
-    with open(path) as f:
-        return {round(float(r["slip"]), 3): r for r in csv.DictReader(f)}
 
 
 def steady(base, mass):
@@ -31,14 +27,6 @@ def steady(base, mass):
     return table
 
 
-def rmse(model, crm, slips):
-    cells = []
-    for col in COLS:
-        vals = [float(r[col]) for r in crm.values()]
-        err = math.sqrt(sum((float(model[s][col]) - float(crm[s][col])) ** 2 for s in slips) / len(slips))
-        cells.append(f"{100 * err / (max(vals) - min(vals)):.1f}")
-    return " / ".join(cells)
-
 
 crm3 = {108: rows(f"{out}/data/crm_108kg.csv"), 162: rows(f"{out}/crm_162kg/wheel.csv")}
 crm = {108: steady(f"{out}/data/crm_108kg.csv", 108), 162: steady(f"{out}/crm_162kg/wheel.csv", 162)}
@@ -48,7 +36,7 @@ for mass in (108, 162):
     for s in sorted(crm[mass]):
         if crm[mass][s] is not crm3[mass][s] and crm[mass][s] != crm3[mass][s]:
             a, b = crm3[mass][s], crm[mass][s]
-            print(f"- {mass} kg, slip {s:g}: " + ", ".join(f"{float(a[c]):.4g} -> {float(b[c]):.4g}" for c in COLS))
+            print(f"- {mass} kg, slip {s:g}: " + ", ".join(f"{float(a[c]):.4g} -> {float(b[c]):.4g}" for c in CHANNELS))
 print()
 print("| set | 108 kg, slips 0.2-0.8: 3 s rows | steady rows | 162 kg, every slip: 3 s rows | steady rows |")
 print("|---|---|---|---|---|")
