@@ -8,7 +8,6 @@
 #include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_select.cuh>
 
-#include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -219,21 +218,7 @@ struct CudaBackend {
     return std::string("CUDA (") + prop.name + ")";
   }
   static std::size_t scratch_bytes() { return cub_scratch().bytes; }
-  static void bind(std::size_t particles) {
-    thread_stream().choose(particles < kHighPriorityBelow);
-    apply_hit_flush_override();
-  }
-  // TERRACAL_CUDA_HIT_FLUSH (1 to kHitListCap + 1) sets when the soil loop's hit lists are flushed
-  // (HitList, sph_neighbours.hpp) for tuning runs; kHitListCap + 1 flushes a list only when it is full.
-  // Read at each engine's start. Every setting sums the same hits in the same order, so engines
-  // running at once with different settings still get their own bits.
-  static void apply_hit_flush_override() {
-    static std::atomic<int> current{kHitListFlushAt};
-    const char* e = std::getenv("TERRACAL_CUDA_HIT_FLUSH");
-    int v = e ? std::atoi(e) : kHitListFlushAt;
-    if (v < 1 || v > kHitListCap + 1) v = kHitListFlushAt;
-    if (current.exchange(v) != v) TERRACAL_CUDA_CHECK(cudaMemcpyToSymbol(g_hit_list_flush_at, &v, sizeof v));
-  }
+  static void bind(std::size_t particles) { thread_stream().choose(particles < kHighPriorityBelow); }
   // Stream-ordered allocations (the device's memory pool, not managed memory): cudaFree waits for the
   // whole device, and an engine that ended while others ran waited minutes for their kernels.
   template <typename U>

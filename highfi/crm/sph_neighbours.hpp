@@ -94,48 +94,7 @@ inline void add_neighbours_simd(SoilSums<T>& sum, const SphConstants<T>& k, cons
 }
 #endif
 
-#if defined(__CUDACC__)
-// The GPU soil loop's hits are summed from a short list per thread (HitList) rather than as each row
-// is tested: a warp then runs the pair arithmetic over the lanes' lists together, about as many hits
-// per lane, instead of once per hit of the lane with most hits in every row. A list is flushed when
-// any lane of the warp holds kHitListFlushAt or more (TERRACAL_CUDA_HIT_FLUSH overrides it for
-// tuning runs; docs/decisions.md, "The GPU's hit list"), and by its own lane when it is full.
-constexpr int kHitListCap = 32;       // entries per thread: 32 KB of shared memory per block of 256
-constexpr int kHitListThreads = 256;  // the stage launches' block size (parallel_for_cuda_bounded, _listed)
-constexpr int kHitListFlushAt = 20;
-__device__ int g_hit_list_flush_at = kHitListFlushAt;
-#endif
-
 #if defined(__CUDA_ARCH__)
-// A thread's list of neighbour indices in shared memory. Entry q of thread t sits at
-// q * kHitListThreads + t, so the lanes of a warp never meet in a bank, whatever their counts. The
-// hits are summed in the order they were found, as the loop without a list sums them, so the sums
-// are the same.
-struct HitList {
-  int* slot;
-  int n = 0;
-  __device__ HitList() {
-    __shared__ int entries[kHitListCap * kHitListThreads];
-    if (blockDim.x > kHitListThreads) __trap();  // every stage launch uses blocks of kHitListThreads
-    slot = entries + threadIdx.x;
-  }
-  template <typename F>
-  __device__ void push(int j, F&& f) {
-    slot[n * kHitListThreads] = j;
-    if (++n == kHitListCap) flush(f);
-  }
-  template <typename F>
-  __device__ void flush(F&& f) {
-    for (int q = 0; q < n; ++q) f(slot[q * kHitListThreads]);
-    n = 0;
-  }
-  // Flushes every list of the warp once one of them is due, so that the lanes sum side by side.
-  template <typename F>
-  __device__ void flush_if_due(F&& f) {
-    if (__any_sync(__activemask(), n >= g_hit_list_flush_at)) flush(f);
-  }
-};
-
 // The GPU's neighbour loop over one row of cells: the candidates are tested first and the hits
 // kept as a bit mask, then f(j) runs for each hit. The lanes of a warp thus run the heavy pair
 // arithmetic once per hit of the lane with most hits, not once per candidate of the longest row
