@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 #include <fmt/format.h>
 
@@ -57,16 +55,6 @@ GridGeometry<double> crm_grid(const CrmScene& sc) {
   g.ny = int(std::ceil((sc.bin.size.y + 2 * pad) / cell));
   g.nz = int(std::ceil((top + pad) / cell));
   if (double(g.nx) * g.ny * g.nz > 2e9)
-    throw InputError("the neighbour grid would exceed 2e9 cells: the bin is too large for this spacing");
-  // TERRACAL_CRM_TILES=sx,sy,sz orders the cells by tiles of 2^sx x 2^sy x 2^sz (GridGeometry), for
-  // tuning runs.
-  if (const char* e = std::getenv("TERRACAL_CRM_TILES")) {
-    int t[3] = {0, 0, 0};
-    if (std::sscanf(e, "%d,%d,%d", &t[0], &t[1], &t[2]) == 3 && t[0] >= 3 && t[0] <= 6 && t[1] >= 0 && t[1] <= 6 &&
-        t[2] >= 0 && t[2] <= 6)
-      g.set_tiles(t[0], t[1], t[2]);
-  }
-  if (double(g.cells()) > 2e9)
     throw InputError("the neighbour grid would exceed 2e9 cells: the bin is too large for this spacing");
   return g;
 }

@@ -47,7 +47,7 @@ SphConstants<T> constants_in(const SphConstants<double>& c) {
 }
 template <typename T>
 GridGeometry<T> grid_in(const GridGeometry<double>& g) {
-  return {to_t<T>(g.origin), T(g.inv_cell), g.nx, g.ny, g.nz, g.reach, g.sx, g.sy, g.sz, g.tnx, g.tny, g.tnz};
+  return {to_t<T>(g.origin), T(g.inv_cell), g.nx, g.ny, g.nz, g.reach};
 }
 
 // Calls f(slot) for the record slot of every named effect that keeps a record per particle.

@@ -46,41 +46,18 @@ TERRACAL_HD inline Sym3<T> stress_of(const Vec4<T>& s0, const Vec4<T>& s1) {
   return {s0.x, s0.y, s0.z, s0.w, s1.x, s1.y};
 }
 
-// Uniform grid of cell size >= 2h / reach over the domain. Key `cells()` is the bin for particles
+// Uniform grid of cell size >= 2h / reach over the domain; cells ordered x fastest, so the cells of
+// a row of neighbours are contiguous in the sorted arrays. Key `cells()` is the bin for particles
 // outside the domain (lost), which no neighbour loop visits. reach = 1 is the plain 2h grid
 // (27 cells, ~13.8 particles each at h = 1.2 d0); reach = 2 uses cells of h (125 cells of ~1.7),
 // which checks ~40 % fewer candidates for the same neighbours.
-// Cells are ordered x fastest, so the cells of a row of neighbours are contiguous in the sorted arrays.
-// With tiles (sx, sy, sz > 0), the cells are ordered by tiles of 2^sx x 2^sy x 2^sz cells, x fastest
-// within a tile and from tile to tile: consecutive particles then fill a compact brick rather than a
-// long row, and a row of neighbours is cut where it crosses a tile (at most two ranges for
-// 2^sx > 2 reach + 1).
 template <typename T>
 struct GridGeometry {
   Vec3<T> origin{};
   T inv_cell = 1;
   int nx = 1, ny = 1, nz = 1;
   int reach = 1;
-  int sx = 0, sy = 0, sz = 0;     // tile shifts; all 0: no tiles
-  int tnx = 0, tny = 0, tnz = 0;  // tiles per axis (set_tiles)
-
-  // Tiles of 2^sx x 2^sy x 2^sz cells (all 0: none); the domain is padded to whole tiles.
-  void set_tiles(int shift_x, int shift_y, int shift_z) {
-    sx = shift_x;
-    sy = shift_y;
-    sz = shift_z;
-    tnx = (nx + (1 << sx) - 1) >> sx;
-    tny = (ny + (1 << sy) - 1) >> sy;
-    tnz = (nz + (1 << sz) - 1) >> sz;
-  }
-  TERRACAL_HD bool tiled() const { return (sx | sy | sz) != 0; }
-  TERRACAL_HD int cells() const { return tiled() ? (tnx * tny * tnz) << (sx + sy + sz) : nx * ny * nz; }
-  TERRACAL_HD int cell_key(int ix, int iy, int iz) const {
-    if (!tiled()) return ix + nx * (iy + ny * iz);
-    const int tile = (ix >> sx) + tnx * ((iy >> sy) + tny * (iz >> sz));
-    const int in = (ix & ((1 << sx) - 1)) | ((iy & ((1 << sy) - 1)) << sx) | ((iz & ((1 << sz) - 1)) << (sx + sy));
-    return (tile << (sx + sy + sz)) | in;
-  }
+  TERRACAL_HD int cells() const { return nx * ny * nz; }
   TERRACAL_HD bool cell_coords(const Vec3<T>& p, int& ix, int& iy, int& iz) const {
     const T fx = (p.x - origin.x) * inv_cell, fy = (p.y - origin.y) * inv_cell, fz = (p.z - origin.z) * inv_cell;
     // The comparisons are written so that NaN also counts as outside.
@@ -96,25 +73,10 @@ struct GridGeometry {
   TERRACAL_HD int key(const Vec3<T>& p) const {
     int ix, iy, iz;
     if (!cell_coords(p, ix, iy, iz)) return cells();
-    return cell_key(ix, iy, iz);
+    return ix + nx * (iy + ny * iz);
   }
-  // Calls f(first, last) for the contiguous index ranges of cells x0..x1 of row (y, z).
-  template <typename F>
-  TERRACAL_HD void row_ranges(int x0, int x1, int y, int z, const int* begin, F&& f) const {
-    if (!tiled()) {
-      const int row = nx * (y + ny * z);
-      f(begin[row + x0], begin[row + x1 + 1]);
-      return;
-    }
-    for (int xa = x0; xa <= x1;) {
-      const int end_of_tile = xa | ((1 << sx) - 1), xb = end_of_tile < x1 ? end_of_tile : x1;
-      const int ka = cell_key(xa, y, z);
-      f(begin[ka], begin[ka + (xb - xa) + 1]);
-      xa = xb + 1;
-    }
-  }
-  // Calls f(first, last) for the contiguous index ranges (one or two per row) that cover the cells
-  // within `reach` of the cell of p.
+  // Calls f(first, last) for the contiguous index ranges (one per row) that cover the cells within
+  // `reach` of the cell of p.
   template <typename F>
   TERRACAL_HD void for_each_neighbour_range(const Vec3<T>& p, const int* begin, const SingleLane&, F&& f) const {
     for_each_neighbour_range(p, begin, f);
@@ -128,7 +90,8 @@ struct GridGeometry {
       if (z < 0 || z >= nz) continue;
       for (int y = iy - reach; y <= iy + reach; ++y) {
         if (y < 0 || y >= ny) continue;
-        row_ranges(x0, x1, y, z, begin, f);
+        const int row = nx * (y + ny * z);
+        f(begin[row + x0], begin[row + x1 + 1]);
       }
     }
   }
@@ -144,7 +107,8 @@ struct GridGeometry {
     for (int r = g.lane; r < side * side; r += g.lanes) {
       const int z = iz - reach + r / side, y = iy - reach + r % side;
       if (z < 0 || z >= nz || y < 0 || y >= ny) continue;
-      row_ranges(x0, x1, y, z, begin, f);
+      const int row = nx * (y + ny * z);
+      f(begin[row + x0], begin[row + x1 + 1]);
     }
   }
 };
