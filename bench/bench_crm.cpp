@@ -9,7 +9,9 @@
 //   `wheel`: a wheel crossing a 4 m x 1 m bin, full domain vs active_domain, at d0 = 0.02 m (150 000
 //   particles) or the spacing given; with the wheel's mean force over the timed steps. Particles 0
 //   leaves out the bed lines; BENCH_WHEEL=off or on times that wheel alone (for profiles).
-//   TERRACAL_CRM_SORT_ALL=1 sorts every marker at every pose (the order the long way), for comparisons.
+//   TERRACAL_CRM_SORT_ALL=1 sorts every marker at every pose (the order the long way), for comparisons;
+//   BENCH_SORT_SKIN=s sets resolution.sort_skin (0: the soil sorted at every step). `sorted %`: the
+//   timed steps that sorted the soil.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -46,12 +48,20 @@ struct Timing {
   std::size_t particles, markers, bytes;
   std::string device;
   Vec3<double> force;  // the first body's mean force over the timed steps
+  double sorted;       // the fraction of the timed steps that sorted the soil (resolution.sort_skin)
 };
 
-static Timing time_scene(const nlohmann::json& j, CrmDevice device, int steps, int repeats) {
+// BENCH_SORT_SKIN=s times resolution.sort_skin s instead of the default (0: sort at every step).
+static void apply_bench_settings(nlohmann::json& j) {
+  if (const char* skin = std::getenv("BENCH_SORT_SKIN")) j["resolution"]["sort_skin"] = std::atof(skin);
+}
+
+static Timing time_scene(nlohmann::json j, CrmDevice device, int steps, int repeats) {
+  apply_bench_settings(j);
   CrmScene sc = parse_crm_scene(j, "bench scene");
   CrmSolver s(sc, device);
   for (int i = 0; i < 3; ++i) s.step();
+  const long sorts_before = s.engine().sort_counts().soil;
   std::vector<double> rates;
   Vec3<double> force{};
   for (int r = 0; r < repeats; ++r) {
@@ -66,8 +76,9 @@ static Timing time_scene(const nlohmann::json& j, CrmDevice device, int steps, i
   }
   const SoilStats st = s.stats();
   if (st.nonfinite > 0) std::fprintf(stderr, "warning: %ld non-finite particles\n", st.nonfinite);
+  const double sorted = double(s.engine().sort_counts().soil - sorts_before) / double(steps * repeats);
   return {median(rates), s.engine().soil_count(), s.engine().marker_count(), s.engine().device_bytes(),
-          s.engine().description(), force};
+          s.engine().description(), force, sorted};
 }
 
 int main(int argc, char** argv) {
@@ -92,8 +103,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   const double d0 = 0.01;
-  std::printf("%-6s %-12s %-12s %-10s %-16s %-14s %s\n", "config", "particles", "markers", "bytes/p",
-              "particle-steps/s", "ms/step", "device");
+  std::printf("%-6s %-12s %-12s %-10s %-16s %-14s %-8s %s\n", "config", "particles", "markers", "bytes/p",
+              "particle-steps/s", "ms/step", "sorted%", "device");
   for (double n : sizes)
     for (bool rigs : {true, false}) {
       if (!(n > 0)) continue;  // particles 0: the wheel alone
@@ -118,8 +129,9 @@ int main(int argc, char** argv) {
       // BENCH_GRID_REACH=1 times the plain 2h grid instead of the default cells of h.
       if (const char* reach = std::getenv("BENCH_GRID_REACH")) j["resolution"]["grid_reach"] = std::atoi(reach);
       const Timing t = time_scene(j, device, steps, repeats);
-      std::printf("%-6s %-12zu %-12zu %-10.1f %-16.4g %-14.3f %s\n", rigs ? "rigs" : "bare", t.particles, t.markers,
-                  double(t.bytes) / t.particles, t.rate, 1e3 * t.particles / t.rate, t.device.c_str());
+      std::printf("%-6s %-12zu %-12zu %-10.1f %-16.4g %-14.3f %-8.0f %s\n", rigs ? "rigs" : "bare", t.particles,
+                  t.markers, double(t.bytes) / t.particles, t.rate, 1e3 * t.particles / t.rate, 100 * t.sorted,
+                  t.device.c_str());
       std::fflush(stdout);
     }
   if (wheel) {
@@ -144,8 +156,9 @@ int main(int argc, char** argv) {
       const Timing t = time_scene(j, device, steps, repeats);
       std::printf(
           "wheel bin 4 m, d0 %.3f, active_domain %-3s: %zu particles, %.4g particle-steps/s (%.3f ms/step); wheel "
-          "force (%.2f, %.2f) N\n",
-          dw, active ? "on" : "off", t.particles, t.rate, 1e3 * t.particles / t.rate, t.force.x, t.force.z);
+          "force (%.2f, %.2f) N; soil sorted at %.0f %% of the steps\n",
+          dw, active ? "on" : "off", t.particles, t.rate, 1e3 * t.particles / t.rate, t.force.x, t.force.z,
+          100 * t.sorted);
     }
   }
   return 0;

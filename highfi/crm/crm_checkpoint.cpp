@@ -200,10 +200,10 @@ std::string crm_fingerprint(const CrmScene& sc, CrmDevice device, bool include_b
                   soil.poisson_ratio, soil.mu_s, soil.mu_2, soil.I0, soil.grain_diameter, soil.cohesion, soil.gravity.x,
                   soil.gravity.y, soil.gravity.z, bin.size.x, bin.size.y, bin.size.z, bin.fill_height, bin.fill_length,
                   bin.boundary_layers);
-  d += fmt::format(" | resolution {} {} {} {} {} {} {} {} wall_contact {} | device {} | settle {} {}", n.spacing,
+  d += fmt::format(" | resolution {} {} {} {} {} {} {} {} wall_contact {} skin {} | device {} | settle {} {}", n.spacing,
                    n.h_over_d0, int(n.kernel), n.time_step, n.free_surface_support, int(n.cpu_precision),
-                   marker_velocity_name(n.marker_velocity), n.grid_reach, n.wall_contact, int(device), sc.settle_time,
-                   sc.settle_jitter);
+                   marker_velocity_name(n.marker_velocity), n.grid_reach, n.wall_contact, n.sort_skin, int(device),
+                   sc.settle_time, sc.settle_jitter);
   if (sc.settle_jitter > 0) d += fmt::format(" seed {}", sc.settle_seed);
   d += " | effects " + effects_text(sc.effects);
   if (include_bodies)

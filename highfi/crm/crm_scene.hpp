@@ -47,6 +47,9 @@ struct CrmNumerics {
   // resolution.wall_contact; 0: off): highfi/crm/wall_contact.hpp, docs/decisions.md.
   double wall_contact = 0;
   int grid_reach = 2;  // neighbour cells of size 2h / reach (1: the plain 2h grid)
+  // Cells wider by this fraction, so that the soil and the markers are sorted by cell only once one
+  // has moved 2 h sort_skin out of its cell (0: at every step). Why 0.05: docs/decisions.md.
+  double sort_skin = 0.05;
   CrmPrecision cpu_precision = CrmPrecision::kDouble;
   double smoothing_length() const { return h_over_d0 * spacing; }
   double cfl_limit(const CrmSoil& soil, double speed) const {

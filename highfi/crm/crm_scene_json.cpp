@@ -78,6 +78,7 @@ CrmNumerics read_resolution(JsonObject r) {
       r.string_or("marker_velocity", "mirror", {std::begin(kMarkerVelocityNames), std::end(kMarkerVelocityNames)}));
   n.wall_contact = r.number_or("wall_contact", n.wall_contact, 0, 100);
   n.grid_reach = int(r.integer_or("grid_reach", n.grid_reach, 1, 2));
+  n.sort_skin = r.number_or("sort_skin", n.sort_skin, 0, 0.5);
   r.finish();
   return n;
 }

@@ -43,7 +43,9 @@ GridGeometry<double> crm_grid(const CrmScene& sc) {
   // walls and the bodies. Particles that leave it are lost (reported, never a crash).
   const double d0 = sc.numerics.spacing, h = sc.numerics.smoothing_length();
   const int reach = sc.numerics.grid_reach;
-  const double cell = 2 * h / reach;
+  // With a sort skin the cells are wider by the skin, so that the particles may move 2 h skin out of
+  // their cells before the next sort (EngineSetup::sort_drift).
+  const double cell = 2 * h * (1 + sc.numerics.sort_skin) / reach;
   const double pad = sc.bin.boundary_layers * d0 + 2 * h;
   double top = std::max(sc.bin.size.z, sc.bin.fill_height) + 0.25 * sc.bin.size.z;
   for (const auto& b : sc.bodies) top = std::max(top, b.position.z + b.bounding_radius() + 2 * h);
@@ -109,6 +111,8 @@ CrmSolver::CrmSolver(const CrmScene& scene, CrmDevice device, const HostSoil* be
   EngineSetup setup;
   setup.constants = crm_constants(scene_);
   setup.grid = crm_grid(scene_);
+  // A little under the cells' 2 h skin of slack, for the round-off of the float32 cell arithmetic.
+  setup.sort_drift = 0.999 * 2 * scene_.numerics.smoothing_length() * scene_.numerics.sort_skin;
   {
     const double half = 0.5 * scene_.numerics.spacing;
     setup.room_lo = {-half, -half, -half};

@@ -60,6 +60,10 @@ struct EngineSetup {
   HostSoil soil;
   HostMarkers markers;
   int bodies = 1;
+  // How far (per axis) a particle or marker may move out of the cell it was sorted into before the
+  // next sort, for cells of 2h (1 + skin) / reach: 2 h skin, a little less for round-off. 0: sort at
+  // every step (and every pose of a moving body), with cells of exactly 2h / reach.
+  double sort_drift = 0;
   // The soil's room: a particle whose centre gets further than half a spacing into the bin's walls
   // has broken through the boundary (a violent impact can squeeze one in) and is marked lost.
   Vec3<double> room_lo{-1e30, -1e30, -1e30}, room_hi{1e30, 1e30, 1e30};
@@ -79,6 +83,8 @@ struct SoilStats {
 // bodies' (merged with the fixed ones: the same order, sph_sort.hpp).
 struct SortCounts {
   long markers_full = 0, markers_merged = 0;
+  long soil = 0;            // sorts of the soil by cell
+  long markers_moved = 0;   // poses at which the markers kept their cells (sort_drift > 0)
 };
 
 class SphEngine {

@@ -45,6 +45,10 @@ struct CpuBackend {
   static void copy(U* dst, const U* src, std::size_t n) {
     if (n) std::memcpy(static_cast<void*>(dst), src, n * sizeof(U));
   }
+  template <typename U>
+  static void zero(U* p, std::size_t n) {
+    std::fill(p, p + n, U{});
+  }
   template <typename F>
   static void parallel_for(long n, const F& f) {
     parallel_for_cpu(n, f);
@@ -73,10 +77,12 @@ struct CpuBackend {
     return vals_alt;
   }
 
+  // out = the bodies' wrenches, then `extra` values that follow them in scratch (a flag).
   template <typename T>
-  static void wrench_sum(const MarkerArrays<T>& mk, long nm, const BodyPose<T>* poses, int bodies, double* /*scratch*/,
-                         double* out) {
+  static void wrench_sum(const MarkerArrays<T>& mk, long nm, const BodyPose<T>* poses, int bodies, double* scratch,
+                         double* out, int extra) {
     std::fill(out, out + 6 * bodies, 0.0);
+    std::copy(scratch + 6 * bodies, scratch + 6 * bodies + extra, out + 6 * bodies);
     for (long m = 0; m < nm; ++m) {
       const int b = int(mk.local[m].w);
       const Vec3<double> c{double(poses[b].center.x), double(poses[b].center.y), double(poses[b].center.z)};

@@ -358,14 +358,15 @@ struct CudaBackend {
   }
 
   template <typename T>
+  // out = the bodies' wrenches, then `extra` values that follow them in scratch (a flag), in one copy.
   static void wrench_sum(const MarkerArrays<T>& mk, long nm, const BodyPose<T>* poses, int bodies, double* scratch,
-                         double* out) {
+                         double* out, int extra) {
     TERRACAL_CUDA_CHECK(cudaMemsetAsync(scratch, 0, 6 * sizeof(double) * bodies, stream()));
     const int threads = 256;
     const int blocks = int(std::min<long>((nm + threads - 1) / threads, 1024));
     wrench_kernel<<<blocks, threads, 0, stream()>>>(mk, nm, poses, bodies, scratch);
     TERRACAL_CUDA_CHECK(cudaGetLastError());
-    download(out, scratch, 6 * std::size_t(bodies));
+    download(out, scratch, 6 * std::size_t(bodies) + std::size_t(extra));
   }
 
   template <typename T>

@@ -109,7 +109,8 @@ class SphEngineImpl final : public SphEngine {
         nm_(s.markers.size()),
         bodies_(s.bodies),
         room_lo_(to_t<T>(s.room_lo)),
-        room_hi_(to_t<T>(s.room_hi)) {
+        room_hi_(to_t<T>(s.room_hi)),
+        drift_(s.sort_drift) {
     B::bind(n_);  // before any allocation: where this engine's work goes (the CUDA stream)
     for_each_named_record(effects_, [&](int) { ++records_; });
     const std::size_t nn = n_ > 0 ? n_ : 1, mm = nm_ > 0 ? nm_ : 1;
@@ -135,7 +136,7 @@ class SphEngineImpl final : public SphEngine {
     canon_.normal = B::template alloc<Vec4<T>>(mn);
     poses_ = B::template alloc<BodyPose<T>>(std::size_t(bodies_));
     boxes_ = B::template alloc<ActiveBox<T>>(16);
-    wrench_ = B::template alloc<double>(6 * std::size_t(bodies_));
+    wrench_ = B::template alloc<double>(6 * std::size_t(bodies_) + 1);  // + the drift check's flag
     upload(s.soil);
     upload_markers(s.markers);
     std::vector<BodyPose<double>> rest(static_cast<std::size_t>(bodies_));
@@ -182,6 +183,12 @@ class SphEngineImpl final : public SphEngine {
       sort_markers();
       return;
     }
+    if (any_moving && markers_within_drift(poses)) {
+      // Moved, but not beyond the reach of their cells: new positions in place, no sort.
+      B::parallel_for(long(nm_), MarkerPoseUpdate<T>{poses_, mk_});
+      ++sorts_.markers_moved;
+      return;
+    }
     if (any_moving) {
       prepare_marker_runs(poses);
       // Only the moving markers, where they are listed (MarkerPoseUpdate leaves the others).
@@ -190,11 +197,18 @@ class SphEngineImpl final : public SphEngine {
       else
         B::parallel_for(long(nm_), MarkerPoseUpdate<T>{poses_, canon_});
     }
-    if (any_moving || !markers_sorted_) sort_markers();
+    if (any_moving || !markers_sorted_) {
+      sort_markers();
+      sorted_poses_ = poses;
+    }
   }
 
   void set_active(const std::vector<ActiveBox<double>>& boxes) override {
     if (boxes.size() > 16) throw RunError("active_domain: at most 16 moving bodies");
+    if (boxes_within_drift(boxes)) return;
+    applied_boxes_ = boxes;
+    boxes_applied_ = true;
+    carry_stale_ = true;
     std::vector<ActiveBox<T>> b(boxes.size());
     for (std::size_t q = 0; q < boxes.size(); ++q) b[q] = {to_t<T>(boxes[q].lo), to_t<T>(boxes[q].hi)};
     if (!b.empty()) B::upload_async(boxes_, b.data(), b.size());
@@ -219,6 +233,11 @@ class SphEngineImpl final : public SphEngine {
   // The sort's four key and value arrays live in memory that is free while it runs (SortArrays), so
   // that sorting costs no memory of its own: the soil's in B's s1, the markers' in their forces.
   void begin_step() override {
+    if (drift_ > 0 && !soil_resort_) return;  // every particle within reach of its cell: no sort
+    soil_resort_ = false;
+    carry_stale_ = true;
+    ++sorts_.soil;
+    if (drift_ > 0) B::zero(wrench_ + 6 * bodies_, 1);  // the drift check's flag
     if (n_ == 0) {
       B::fill_begin(soil_begin_, grid_.cells() + 2, 0);
       return;
@@ -245,15 +264,28 @@ class SphEngineImpl final : public SphEngine {
     const SoilArrays<T> out = which == 0 ? B_.a : A_.a;
     const T h = T(which == 0 ? 0.5 * dt : dt);
     run_stage(eval, out, h);
-    std::vector<double> w(6 * std::size_t(bodies_), 0.0);
-    if (nm_ > 0) B::wrench_sum(mk_, long(nm_), poses_, bodies_, wrench_, w.data());
+    // After the step's last stage, whether the next step must sort: its flag comes back with the wrench.
+    const bool check = drift_ > 0 && which == 1;
+    if (check) check_drift();
+    const std::size_t nw = 6 * std::size_t(bodies_);
+    std::vector<double> w(nw + 1, 0.0);
+    if (nm_ > 0)
+      B::wrench_sum(mk_, long(nm_), poses_, bodies_, wrench_, w.data(), check ? 1 : 0);
+    else if (check)
+      B::download(w.data() + nw, wrench_ + nw, 1);
+    if (check && w[nw] != 0) soil_resort_ = true;
+    w.resize(nw);
     return w;
   }
 
   SortCounts sort_counts() const override { return sorts_; }
   SoilStats stats() const override { return B::soil_stats(A_.a, long(n_), double(k_.mass), k_.model); }
 
+  // A copy of the soil that leaves the engine (a checkpoint) is followed by a sort of soil and
+  // markers, as the restart from it begins with one: the two go on in the same order.
   void download(HostSoil& s) const override {
+    soil_resort_ = true;
+    markers_sorted_ = false;
     s.pos.resize(n_);
     s.vel.resize(n_);
     s.s0.resize(n_);
@@ -285,6 +317,8 @@ class SphEngineImpl final : public SphEngine {
     });
     B::upload(ids_, s.ids.data(), n_);
     soil_list_stale_ = true;
+    soil_resort_ = true;
+    markers_sorted_ = false;
   }
 
  private:
@@ -315,7 +349,7 @@ class SphEngineImpl final : public SphEngine {
       const int lanes = stage_lanes();
       if (nm_ > 0) {
         if (marker_list_stale_)
-          B::select(long(nm_), IsMarkerNearActive<T>{mk_.pos, boxes_, active_boxes_, std::sqrt(k_.kernel.support2())},
+          B::select(long(nm_), IsMarkerNearActive<T>{mk_.pos, boxes_, active_boxes_, marker_list_reach()},
                     marker_list_, list_counts_ + 1);
         marker_list_stale_ = false;
         B::zero(mk_.force, nm_);  // the markers off the list exert no force
@@ -332,10 +366,62 @@ class SphEngineImpl final : public SphEngine {
       with_named<InSoilLoop>(effects_, [&](auto fx) {
         using Stage = SoilStage<T, decltype(fx)>;
         const Stage stage{k_, ec_, grid_, soil_begin_, marker_begin_, eval, A_.a, out, mk_, dt};
-        if (out.pos != A_.a.pos) B::parallel_for(long(n_), typename Stage::CarryFrozen{stage});
+        // B keeps the frozen particles' state from the last copy until a sort or new boxes move them.
+        if (out.pos != A_.a.pos && carry_stale_) {
+          B::parallel_for(long(n_), typename Stage::CarryFrozen{stage});
+          carry_stale_ = false;
+        }
         B::parallel_for_listed(soil_list_, list_counts_, long(n_), stage, lanes);
       });
     }
+  }
+
+  // The markers listed for an active domain: those within the support of a box, and with a skin also
+  // within the distance an active particle can move from its box before the next sort (a cell and
+  // the drift), so that every marker an active particle reaches is listed.
+  T marker_list_reach() const {
+    const T support = std::sqrt(k_.kernel.support2());
+    return drift_ > 0 ? support + T(2) / grid_.inv_cell : support;
+  }
+
+  // Whether every moving body's markers are still within the drift of the cells of their last sort:
+  // a marker at l in its body moves by at most |dc| + |dR|_F |l|.
+  bool markers_within_drift(const std::vector<BodyPose<double>>& poses) const {
+    if (!(drift_ > 0) || !markers_sorted_ || sorted_poses_.size() != poses.size()) return false;
+    for (std::size_t b = 0; b < poses.size(); ++b) {
+      const BodyPose<double>&a = poses[b], &o = sorted_poses_[b];
+      if (a.moving != o.moving) return false;
+      if (!a.moving) continue;
+      double dr = 0;
+      for (int q = 0; q < 9; ++q) dr += (a.R[q] - o.R[q]) * (a.R[q] - o.R[q]);
+      const double radius = b < body_radius_.size() ? body_radius_[b] : 0;
+      if (norm(a.center - o.center) + std::sqrt(dr) * radius > drift_) return false;
+    }
+    return true;
+  }
+
+  // Whether the active boxes may stay as they were applied: with a skin, until the soil's next sort
+  // or until one has moved by more than the drift (the frozen soil then changes only at sorts, and
+  // the boxes lag their bodies by at most the drift).
+  bool boxes_within_drift(const std::vector<ActiveBox<double>>& boxes) const {
+    if (!(drift_ > 0) || soil_resort_ || !boxes_applied_ || boxes.size() != applied_boxes_.size()) return false;
+    for (std::size_t q = 0; q < boxes.size(); ++q) {
+      const Vec3<double> dlo = boxes[q].lo - applied_boxes_[q].lo, dhi = boxes[q].hi - applied_boxes_[q].hi;
+      for (double d : {dlo.x, dlo.y, dlo.z, dhi.x, dhi.y, dhi.z})
+        if (std::abs(d) > drift_) return false;
+    }
+    return true;
+  }
+
+  // Sets the flag (after the wrench) when a particle has left the reach of its cell (SoilDriftCheck).
+  void check_drift() {
+    if (n_ == 0) return;
+    const SoilDriftCheck<T> c{grid_, A_.a.pos, A_.a.vel, soil_begin_, room_lo_, room_hi_, T(drift_),
+                              wrench_ + 6 * bodies_};
+    if constexpr (B::kCompactsActive) {
+      if (active_boxes_ > 0) return B::parallel_for_listed(soil_list_, list_counts_, long(n_), c, 1);
+    }
+    B::parallel_for(long(n_), c);
   }
 
   // Threads per item in the listed stages (run_listed_stage; docs/decisions.md, "Active domain on
@@ -437,7 +523,13 @@ class SphEngineImpl final : public SphEngine {
 
   void upload_markers(const HostMarkers& m) {
     marker_body_.resize(m.local.size());
-    for (std::size_t q = 0; q < m.local.size(); ++q) marker_body_[q] = int(std::lround(m.local[q].w));
+    for (std::size_t q = 0; q < m.local.size(); ++q) {
+      const Vec4<double>& l = m.local[q];
+      marker_body_[q] = int(std::lround(l.w));
+      const std::size_t b = std::size_t(std::max(marker_body_[q], 0));
+      if (body_radius_.size() <= b) body_radius_.resize(b + 1, 0.0);
+      body_radius_[b] = std::max(body_radius_[b], std::sqrt(l.x * l.x + l.y * l.y + l.z * l.z));
+    }
     upload_vec4(canon_.pos, m.pos);
     upload_vec4(canon_.local, m.local);
     upload_vec4(canon_.wall_vel, m.wall_vel);
@@ -468,7 +560,16 @@ class SphEngineImpl final : public SphEngine {
   std::size_t n_, nm_;
   int bodies_;
   Vec3<T> room_lo_, room_hi_;
-  bool markers_sorted_ = false;
+  // Sorting with a skin (EngineSetup::sort_drift; 0: at every step): whether the soil is sorted at
+  // the next step, the poses of the markers' last sort, each body's marker radius, the boxes applied.
+  double drift_ = 0;
+  mutable bool soil_resort_ = true;
+  std::vector<BodyPose<double>> sorted_poses_;
+  std::vector<double> body_radius_;
+  std::vector<ActiveBox<double>> applied_boxes_;
+  bool boxes_applied_ = false;
+  bool carry_stale_ = true;  // B's frozen particles differ from A's (a sort or new boxes since the copy)
+  mutable bool markers_sorted_ = false;
   int active_boxes_ = 0;  // the active domain's boxes (0: every particle is active)
   SoilBuffers<T, B> A_, B_;
   MarkerArrays<T> mk_;

@@ -2,6 +2,7 @@
 // The per-step bookkeeping around the two stages, written once for both backends: the markers'
 // rigid motion, the cell keys the particles are sorted by, the gathers into sorted order, and the
 // active domain's marks.
+#include "core/lane_group.hpp"
 #include "highfi/crm/soil_arrays.hpp"
 
 namespace terracal {
@@ -235,6 +236,56 @@ struct MarkActive {
 
 // The active domain's work lists (backends that compact it, B::kCompactsActive): the soil particles
 // a stage integrates, and the markers it evaluates (those within the kernel's support of a box).
+// Sorting with a skin (resolution.sort_skin): cells are 2h (1 + skin) / reach wide, so the stencil
+// of `reach` cells around a particle's cell covers its support even where a neighbour has moved up to
+// drift = 2 h skin out of the cell it was sorted into (per axis); the soil is sorted again only once
+// some particle has moved further. This check sets *flag for a particle that has: outside the room
+// (the sort marks it lost), or no longer within `drift` of a cell whose sorted range holds it. begin:
+// the cell ranges of the last sort; the lost particles are in the last one (SoilCellKey).
+template <typename T>
+struct SoilDriftCheck {
+  GridGeometry<T> grid;
+  const Vec4<T>* pos;
+  const Vec4<T>* vel;
+  const int* begin;
+  Vec3<T> room_lo, room_hi;
+  T drift;
+  double* flag;
+  TERRACAL_HD void operator()(long i) const {
+    const int cells = grid.cells();
+    if (vel[i].w == T(kParticleLost)) {
+      if (i < begin[cells]) *flag = 1;
+      return;
+    }
+    const Vec3<T> x = pos[i].xyz();
+    const bool in_room = x.x >= room_lo.x && x.y >= room_lo.y && x.z >= room_lo.z && x.x <= room_hi.x &&
+                         x.y <= room_hi.y && x.z <= room_hi.z;
+    int ix, iy, iz;
+    if (!in_room || !grid.cell_coords(x, ix, iy, iz)) {
+      *flag = 1;
+      return;
+    }
+    // Per axis, the offsets of the cells within `drift` of x: 0, and -1 / +1 near a face.
+    const T cell = T(1) / grid.inv_cell;
+    const T f[3] = {(x.x - grid.origin.x) - T(ix) * cell, (x.y - grid.origin.y) - T(iy) * cell,
+                    (x.z - grid.origin.z) - T(iz) * cell};
+    const int at[3] = {ix, iy, iz}, size[3] = {grid.nx, grid.ny, grid.nz};
+    int lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = f[a] <= drift && at[a] > 0 ? -1 : 0;
+      hi[a] = cell - f[a] <= drift && at[a] + 1 < size[a] ? 1 : 0;
+    }
+    for (int dz = lo[2]; dz <= hi[2]; ++dz)
+      for (int dy = lo[1]; dy <= hi[1]; ++dy)
+        for (int dx = lo[0]; dx <= hi[0]; ++dx) {
+          const int c = (ix + dx) + grid.nx * ((iy + dy) + grid.ny * (iz + dz));
+          if (begin[c] <= i && i < begin[c + 1]) return;
+        }
+    *flag = 1;
+  }
+  TERRACAL_HD void operator()(long i, const LaneGroup&) const { (*this)(i); }
+};
+
 template <typename T>
 struct IsActiveSoil {
   const Vec4<T>* vel;

@@ -56,6 +56,8 @@ TEST_CASE("bad input, crm: the scene", "[cli][bad_input]") {
             {"marker_velocity", "slip", "mirror"}),
       scene("negative wall contact", [](auto& j) { j["resolution"]["wall_contact"] = -1; },
             {"resolution.wall_contact", "-1", "[0, 100]"}),
+      scene("sort skin too wide", [](auto& j) { j["resolution"]["sort_skin"] = 0.8; },
+            {"resolution.sort_skin", "0.8", "[0, 0.5]"}),
       scene("step above CFL", [](auto& j) { j["resolution"]["time_step"] = 1e-3; }, {"time_step", "0.001", "CFL"}),
       scene("nu >= 0.5", [](auto& j) { j["soil"]["poisson_ratio"] = 0.5; }, {"poisson_ratio", "0.5", "[0, 0.5)"}),
       scene("non-positive density", [](auto& j) { j["soil"]["density"] = 0; }, {"density", "0", "(0,"}),
