@@ -198,13 +198,16 @@ void CrmSolver::step() {
     return BodyWrench{{p[0], p[1], p[2]}, {p[3], p[4], p[5]}};
   };
   engine_->set_poses(poses(bodies_));
-  const std::vector<double> w0 = engine_->stage(0, dt);
+  // The half step's wrench moves only free bodies: with none, the device need not be waited for.
+  const bool any_free = std::any_of(scene_.bodies.begin(), scene_.bodies.end(),
+                                    [](const CrmBody& b) { return b.motion.any_free(); });
+  const std::vector<double> w0 = engine_->stage(0, dt, any_free);
   std::vector<BodyState> half(nb);
   for (std::size_t b = 0; b < nb; ++b)
     half[b] = advance_body(scene_.bodies[b], bodies_[b], bodies_[b], unpack(w0, b + 1), scene_.soil.gravity, 0.5 * dt,
                            time_ + 0.5 * dt);
   engine_->set_poses(poses(half));
-  const std::vector<double> w1 = engine_->stage(1, dt);
+  const std::vector<double> w1 = engine_->stage(1, dt, true);
   for (std::size_t b = 0; b < nb; ++b) {
     wrenches_[b] = unpack(w1, b + 1);
     work_on_soil_ -= dt * (dot(wrenches_[b].force, half[b].velocity) + dot(wrenches_[b].torque, half[b].omega));

@@ -30,10 +30,12 @@ struct MarkerStage {
   SoilArrays<T> soil;  // the state the stage is evaluated at
   MarkerArrays<T> mk;
   const BodyPose<T>* poses;  // to turn the wall normals of MarkerVelocity::kMirrorImage into the world frame
-  // The active domain's boxes (count 0: none). A marker farther than the kernel's support from all
-  // of them has only frozen neighbours, which read nothing: it is skipped, and exerts no force.
+  // The active domain's boxes (count 0: none). A marker farther than box_reach from all of them (the
+  // kernel's support, plus the drift an active particle may stray from its box with a sort skin) has
+  // only frozen neighbours, which read nothing: it is skipped, and exerts no force.
   const ActiveBox<T>* boxes;
   int box_count;
+  T box_reach;
 
   TERRACAL_HD void operator()(long m) const { run(m, SingleLane{}); }
   // Marker m with a group of GPU lanes (core/lane_group.hpp): each lane walks a share of the rows,
@@ -44,7 +46,7 @@ struct MarkerStage {
   TERRACAL_HD void run(long m, const G& g) const {
     const Vec3<T> xm = mk.pos[m].xyz();
     const T support2 = k.kernel.support2();
-    if (!near_active(boxes, box_count, xm, std::sqrt(support2))) {
+    if (!near_active(boxes, box_count, xm, box_reach)) {
       if (g.leader()) mk.force[m] = Vec4<T>{T(0), T(0), T(0), T(0)};
       return;
     }

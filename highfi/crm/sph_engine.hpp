@@ -101,8 +101,10 @@ class SphEngine {
   // Sorts the soil by cell; called once per step before the stages.
   virtual void begin_step() = 0;
   // Stage 0: A -> B over dt/2; stage 1: B -> A over dt (midpoint rule). Returns the wrench of the soil
-  // on each body, about the body's pose centre: 6 doubles per body (force, torque).
-  virtual std::vector<double> stage(int which, double dt) = 0;
+  // on each body, about the body's pose centre: 6 doubles per body (force, torque). Stage 0 with
+  // want_wrench false (no body has a free degree of freedom: nothing reads it) returns zeros and does
+  // not wait for the device; stage 1 always sums it.
+  virtual std::vector<double> stage(int which, double dt, bool want_wrench) = 0;
   virtual SoilStats stats() const = 0;
   virtual SortCounts sort_counts() const = 0;
   virtual void download(HostSoil& soil) const = 0;

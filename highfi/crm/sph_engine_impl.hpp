@@ -259,7 +259,7 @@ class SphEngineImpl final : public SphEngine {
     soil_list_stale_ = true;
   }
 
-  std::vector<double> stage(int which, double dt) override {
+  std::vector<double> stage(int which, double dt, bool want_wrench) override {
     const SoilArrays<T> eval = which == 0 ? A_.a : B_.a;
     const SoilArrays<T> out = which == 0 ? B_.a : A_.a;
     const T h = T(which == 0 ? 0.5 * dt : dt);
@@ -269,7 +269,7 @@ class SphEngineImpl final : public SphEngine {
     if (check) check_drift();
     const std::size_t nw = 6 * std::size_t(bodies_);
     std::vector<double> w(nw + 1, 0.0);
-    if (nm_ > 0)
+    if (nm_ > 0 && (want_wrench || which == 1))
       B::wrench_sum(mk_, long(nm_), poses_, bodies_, wrench_, w.data(), check ? 1 : 0);
     else if (check)
       B::download(w.data() + nw, wrench_ + nw, 1);
@@ -331,7 +331,7 @@ class SphEngineImpl final : public SphEngine {
     if (nm_ > 0)
       with_named<InMarkerLoop>(effects_, [&](auto mx) {
         B::parallel_for_heavy(long(nm_), MarkerStage<T, decltype(mx)>{k_, ec_, grid_, soil_begin_, eval, mk_, poses_,
-                                                                      boxes_, active_boxes_});
+                                                                      boxes_, active_boxes_, box_reach()});
       });
     if (n_ == 0) return;
     with_named<InSoilLoop>(effects_, [&](auto fx) {
@@ -348,15 +348,19 @@ class SphEngineImpl final : public SphEngine {
     if constexpr (B::kCompactsActive) {
       const int lanes = stage_lanes();
       if (nm_ > 0) {
-        if (marker_list_stale_)
-          B::select(long(nm_), IsMarkerNearActive<T>{mk_.pos, boxes_, active_boxes_, marker_list_reach()},
+        // The markers off the list exert no force; the listed ones' forces are written by every stage,
+        // so the forces are cleared only with a new list (a sort of the markers borrows their memory).
+        if (marker_list_stale_) {
+          B::select(long(nm_), IsMarkerNearActive<T>{mk_.pos, boxes_, active_boxes_, box_reach()},
                     marker_list_, list_counts_ + 1);
+          B::zero(mk_.force, nm_);
+        }
         marker_list_stale_ = false;
-        B::zero(mk_.force, nm_);  // the markers off the list exert no force
         with_named<InMarkerLoop>(effects_, [&](auto mx) {
           B::parallel_for_listed(
               marker_list_, list_counts_ + 1, long(nm_),
-              MarkerStage<T, decltype(mx)>{k_, ec_, grid_, soil_begin_, eval, mk_, poses_, boxes_, active_boxes_},
+              MarkerStage<T, decltype(mx)>{k_, ec_, grid_, soil_begin_, eval, mk_, poses_, boxes_, active_boxes_,
+                                           box_reach()},
               lanes);
         });
       }
@@ -376,13 +380,11 @@ class SphEngineImpl final : public SphEngine {
     }
   }
 
-  // The markers listed for an active domain: those within the support of a box, and with a skin also
-  // within the distance an active particle can move from its box before the next sort (a cell and
-  // the drift), so that every marker an active particle reaches is listed.
-  T marker_list_reach() const {
-    const T support = std::sqrt(k_.kernel.support2());
-    return drift_ > 0 ? support + T(2) / grid_.inv_cell : support;
-  }
+  // How far from an active domain's boxes the markers take part in a stage (are listed, on the GPU):
+  // the kernel's support, and with a skin also the drift, as far as an active particle may stray from
+  // its box before the next sort (SoilDriftCheck), so that every marker an active particle reaches is
+  // updated.
+  T box_reach() const { return std::sqrt(k_.kernel.support2()) + T(drift_); }
 
   // Whether every moving body's markers are still within the drift of the cells of their last sort:
   // a marker at l in its body moves by at most |dc| + |dR|_F |l|.
@@ -416,8 +418,8 @@ class SphEngineImpl final : public SphEngine {
   // Sets the flag (after the wrench) when a particle has left the reach of its cell (SoilDriftCheck).
   void check_drift() {
     if (n_ == 0) return;
-    const SoilDriftCheck<T> c{grid_, A_.a.pos, A_.a.vel, soil_begin_, room_lo_, room_hi_, T(drift_),
-                              wrench_ + 6 * bodies_};
+    const SoilDriftCheck<T> c{grid_,  A_.a.pos,     A_.a.vel, soil_begin_,          room_lo_,
+                              room_hi_, T(drift_), boxes_,   active_boxes_, wrench_ + 6 * bodies_};
     if constexpr (B::kCompactsActive) {
       if (active_boxes_ > 0) return B::parallel_for_listed(soil_list_, list_counts_, long(n_), c, 1);
     }

@@ -240,8 +240,10 @@ struct MarkActive {
 // of `reach` cells around a particle's cell covers its support even where a neighbour has moved up to
 // drift = 2 h skin out of the cell it was sorted into (per axis); the soil is sorted again only once
 // some particle has moved further. This check sets *flag for a particle that has: outside the room
-// (the sort marks it lost), or no longer within `drift` of a cell whose sorted range holds it. begin:
-// the cell ranges of the last sort; the lost particles are in the last one (SoilCellKey).
+// (the sort marks it lost), or no longer within `drift` of a cell whose sorted range holds it, or (an
+// active domain's boxes: box_count > 0) active but further than `drift` from every box, so that the
+// markers listed within the support plus the drift of a box are all that active particles reach.
+// begin: the cell ranges of the last sort; the lost particles are in the last one (SoilCellKey).
 template <typename T>
 struct SoilDriftCheck {
   GridGeometry<T> grid;
@@ -250,14 +252,21 @@ struct SoilDriftCheck {
   const int* begin;
   Vec3<T> room_lo, room_hi;
   T drift;
+  const ActiveBox<T>* boxes;
+  int box_count;
   double* flag;
   TERRACAL_HD void operator()(long i) const {
     const int cells = grid.cells();
-    if (vel[i].w == T(kParticleLost)) {
+    const T status = vel[i].w;
+    if (status == T(kParticleLost)) {
       if (i < begin[cells]) *flag = 1;
       return;
     }
     const Vec3<T> x = pos[i].xyz();
+    if (box_count > 0 && status == T(kParticleActive) && !near_active(boxes, box_count, x, drift)) {
+      *flag = 1;
+      return;
+    }
     const bool in_room = x.x >= room_lo.x && x.y >= room_lo.y && x.z >= room_lo.z && x.x <= room_hi.x &&
                          x.y <= room_hi.y && x.z <= room_hi.z;
     int ix, iy, iz;
