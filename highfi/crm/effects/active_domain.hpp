@@ -1,8 +1,10 @@
 #pragma once
 // CRM effect `active_domain`: only the soil within a box around each moving body (its bounding
 // radius plus a margin) is integrated; the rest is frozen at rest, left out of the sums of the
-// stage's arithmetic, though still sorted and gathered. Wall markers beyond the kernel's support
-// of every box are skipped too (only frozen soil sees them), so the walls' wrench counts only the
+// stage's arithmetic (on the GPU, out of the stages' launches: they run over a list of the active
+// particles). With a sort skin the boxes follow the bodies in steps of at most the drift
+// (docs/decisions.md, "Sort skin"). Wall markers beyond the kernel's support (and that drift) of
+// every box are skipped too (only frozen soil sees them), so the walls' wrench counts only the
 // markers near the boxes. It pays where the bodies stir a small part of a large bed (a wheel
 // crossing a long bin: bench/RESULTS.md); the bodies' forces stay within 1 % of the full domain's
 // at the default margin (tests/highfi/crm/test_crm_active_domain.cpp).
