@@ -4,16 +4,15 @@
 // CPU, and on the GPU with TERRACAL_TEST_DEVICE=cuda (crm_test_scenes.hpp).
 #include <catch2/catch.hpp>
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <tuple>
 #include <utility>
-#include <vector>
 
 #include "highfi/crm/crm_solver.hpp"
 #include "tests/highfi/crm/crm_test_scenes.hpp"
+#include "tests/highfi/crm/soil_compare.hpp"
 #include "tests/skip.hpp"
 
 using namespace terracal;
@@ -85,16 +84,7 @@ TEST_CASE("CRM: an active domain that covers the whole bed reproduces the full d
   };
   const auto [full, full_force] = run(false);
   const auto [focused, focused_force] = run(true);
-  REQUIRE(full.size() == focused.size());
-  std::vector<long> at(full.size(), -1);  // by particle id: the sorted order may differ by round-off
-  for (std::size_t i = 0; i < focused.size(); ++i) at[std::size_t(focused.ids[i])] = long(i);
-  double worst = 0;
-  for (std::size_t i = 0; i < full.size(); ++i) {
-    const long q = at[std::size_t(full.ids[i])];
-    REQUIRE(q >= 0);
-    const Vec4<double> a = full.pos[i], b = focused.pos[std::size_t(q)];
-    worst = std::max({worst, std::abs(a.x - b.x), std::abs(a.y - b.y), std::abs(a.z - b.z)});
-  }
+  const double worst = test::largest_position_difference(full, focused);
   std::printf("whole-bed active domain: largest position difference %.3g m; wheel Fz %.6f against %.6f N\n", worst,
               focused_force.z, full_force.z);
   CHECK(worst <= 1e-6);  // 1e-4 spacings: round-off, not a missed neighbour or a lost sum

@@ -6,13 +6,12 @@
 // TERRACAL_TEST_DEVICE=cuda (float32, with and without the active domain's lists).
 #include <catch2/catch.hpp>
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <vector>
 
 #include "highfi/crm/crm_solver.hpp"
 #include "tests/highfi/crm/crm_test_scenes.hpp"
+#include "tests/highfi/crm/soil_compare.hpp"
 
 using namespace terracal;
 
@@ -58,21 +57,6 @@ Run drive(double skin, bool active) {
   return r;
 }
 
-// The largest difference of a particle's position between two runs, matched by particle id.
-double largest_position_difference(const HostSoil& a, const HostSoil& b) {
-  REQUIRE(a.size() == b.size());
-  std::vector<long> at(a.size(), -1);
-  for (std::size_t i = 0; i < b.size(); ++i) at[std::size_t(b.ids[i])] = long(i);
-  double worst = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    const long q = at[std::size_t(a.ids[i])];
-    REQUIRE(q >= 0);
-    const Vec4<double> x = a.pos[i], y = b.pos[std::size_t(q)];
-    worst = std::max({worst, std::abs(x.x - y.x), std::abs(x.y - y.y), std::abs(x.z - y.z)});
-  }
-  return worst;
-}
-
 }  // namespace
 
 TEST_CASE("CRM: sorting with a skin sums the same neighbours as sorting at every step", "[highfi][crm]") {
@@ -89,7 +73,7 @@ TEST_CASE("CRM: sorting with a skin sums the same neighbours as sorting at every
     const Run every = drive(0.0, active);
     for (double skin : {0.05, 0.2}) {
       const Run skinned = drive(skin, active);
-      const double worst = largest_position_difference(every.soil, skinned.soil);
+      const double worst = test::largest_position_difference(every.soil, skinned.soil);
       std::printf(
           "sort skin %.2f (active domain %d): soil sorted at %ld of %ld steps (%ld with skin 0), markers kept their "
           "cells at %ld poses; largest position difference %.3g m; wheel Fz %.6f against %.6f N\n",
