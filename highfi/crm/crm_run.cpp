@@ -229,6 +229,8 @@ void fill_summary(const CrmSolver& solver, long first_step, double wall_seconds,
   if (sum.lost > 0) spdlog::warn("{} particles left the domain and were removed from the simulation", sum.lost);
   if (const std::string note = density_cap_note(st, sum.particles); !note.empty())
     spdlog::info("at the end {} (docs/decisions.md, \"Density cap\")", note);
+  spdlog::info("the soil was sorted by cell at {} of these {} steps (resolution.sort_skin {})",
+               solver.engine().sort_counts().soil, sum.steps, solver.scene().numerics.sort_skin);
 }
 
 void write_summary_json(const fs::path& path, const CrmRunSummary& sum, std::size_t device_bytes) {
