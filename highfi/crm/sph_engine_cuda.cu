@@ -97,7 +97,7 @@ double* reduction_scratch(std::size_t count) {
 }
 
 // Pinned host slots for upload_async, used in turn; a slot is reused once the copy queued from it has
-// run (its event), which in a step is long done: every stage waits for its wrench.
+// run (its event), which is long done: every step waits for its last stage's wrench.
 struct PinnedStaging {
   static constexpr int kSlots = 8;
   static constexpr std::size_t kSlotBytes = 4096;
