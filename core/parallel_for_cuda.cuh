@@ -63,15 +63,20 @@ bool spread_fits_one_wave(long n) {
 
 // For register-heavy functors: __launch_bounds__ asks the compiler to fit `MinBlocks` blocks of 256
 // threads per SM (more warps in flight to hide memory latency, at the price of fewer registers).
+// The launches use blocks of kBoundedBlockThreads with the same registers per thread: an SM takes a
+// new block only once every warp of one has finished, and the items' work differs (a particle's
+// neighbours), so small blocks keep more warps busy (docs/decisions.md, "CUDA launch bounds").
+constexpr int kBoundedBlockThreads = 64;
 template <int MinBlocks, typename F>
-__global__ void __launch_bounds__(256, MinBlocks) bounded_parallel_for_kernel(long n, F f) {
+__global__ void __launch_bounds__(kBoundedBlockThreads, MinBlocks * 256 / kBoundedBlockThreads)
+    bounded_parallel_for_kernel(long n, F f) {
   for (long i = blockIdx.x * long(blockDim.x) + threadIdx.x; i < n; i += long(blockDim.x) * gridDim.x) f(i);
 }
 
 template <int MinBlocks, typename F>
 void parallel_for_cuda_bounded(long n, const F& f, cudaStream_t stream = nullptr) {
   if (n <= 0) return;
-  constexpr int kThreads = 256;
+  constexpr int kThreads = kBoundedBlockThreads;
   const long blocks = std::min<long>((n + kThreads - 1) / kThreads, 65535L * 8);
   bounded_parallel_for_kernel<MinBlocks><<<static_cast<unsigned>(blocks), kThreads, 0, stream>>>(n, f);
   TERRACAL_CUDA_CHECK(cudaGetLastError());
