@@ -91,21 +91,20 @@ struct SoilStage {
   }
 
 #if defined(__CUDA_ARCH__)
-  // GPU: a thread (or its share of a lane group's rows) walks the particle's neighbour rows, testing
-  // them before summing their hits; the soil's rows in opposite pairs, summed together.
+  // GPU: a thread (or its share of a lane group's rows) walks the particle's neighbour rows, testing a
+  // row before summing its hits.
   template <class G>
   __device__ void add_neighbours_gpu(long i, const SoilSelf<T>& me, SoilSums<T>& sum, EffectSums<T, Fx>& own,
                                      const G& g) const {
     const T support2 = k.kernel.support2();
-    auto soil_hit = [&](int j) {
-      const Vec4<T> pj = load(eval.pos + j), vj = load(eval.vel + j);
-      const SoilSums<T> c = neighbour_share<T, Fx, true>(k, ec, me, pj, vj, load(eval.s0 + j), load(eval.s1 + j));
-      sum += c;
-      add_listed<T, Fx>(
-          k, ec, me.x, pj, vj, c.support, [&](int slot) { return load(eval.record[slot] + j); }, own);
-    };
-    grid.for_each_neighbour_row_pair(me.x, soil_begin, g, [&](int a, int a_end, int b, int b_end) {
-      for_each_hit_pair(eval.pos, a, a_end, b, b_end, int(i), me.x, support2, soil_hit);
+    grid.for_each_neighbour_range(me.x, soil_begin, g, [&](int first, int last) {
+      for_each_hit(eval.pos, first, last, int(i), me.x, support2, [&](int j) {
+        const Vec4<T> pj = load(eval.pos + j), vj = load(eval.vel + j);
+        const SoilSums<T> c = neighbour_share<T, Fx, true>(k, ec, me, pj, vj, load(eval.s0 + j), load(eval.s1 + j));
+        sum += c;
+        add_listed<T, Fx>(
+            k, ec, me.x, pj, vj, c.support, [&](int slot) { return load(eval.record[slot] + j); }, own);
+      });
     });
     grid.for_each_neighbour_range(me.x, marker_begin, g, [&](int first, int last) {
       for_each_hit(mk.pos, first, last, -1, me.x, support2, [&](int j) {

@@ -95,33 +95,6 @@ struct GridGeometry {
       }
     }
   }
-  // The rows in pairs opposite each other about the cell of p, for the GPU soil loop (for_each_hit_pair,
-  // sph_neighbours.hpp): f(a, a_end, b, b_end) for rows k and n - 1 - k of the n = (2 reach + 1)^2 rows
-  // (z major), k < n / 2, then the middle row with an empty b; a row outside the grid is an empty
-  // range. A particle near the top of its cell has more neighbours in the rows above and fewer in
-  // those below, so the lanes of a warp differ less in a pair's hits than in one row's. Lane g.lane of
-  // a group takes pairs g.lane, g.lane + g.lanes, ...
-  template <typename F, class G>
-  TERRACAL_HD void for_each_neighbour_row_pair(const Vec3<T>& p, const int* begin, const G& g, F&& f) const {
-    int ix, iy, iz;
-    if (!cell_coords(p, ix, iy, iz)) return;
-    const int x0 = ix - reach > 0 ? ix - reach : 0, x1 = ix + reach < nx ? ix + reach : nx - 1;
-    const int side = 2 * reach + 1, rows = side * side;
-    auto range = [&](int r, int& first, int& last) {
-      const int z = iz - reach + r / side, y = iy - reach + r % side;
-      first = last = 0;
-      if (z < 0 || z >= nz || y < 0 || y >= ny) return;
-      const int row = nx * (y + ny * z);
-      first = begin[row + x0];
-      last = begin[row + x1 + 1];
-    };
-    for (int k = g.lane; k <= rows / 2; k += g.lanes) {
-      int a, a_end, b = 0, b_end = 0;
-      range(k, a, a_end);
-      if (k < rows - 1 - k) range(rows - 1 - k, b, b_end);
-      f(a, a_end, b, b_end);
-    }
-  }
   // The same for lane g.lane of a group: rows g.lane, g.lane + g.lanes, ... of the (2 reach + 1)^2
   // block (z major), so that the group's lanes take their k-th rows in the same iteration and run
   // side by side instead of one after another.

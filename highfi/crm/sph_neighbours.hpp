@@ -116,32 +116,6 @@ __device__ inline void for_each_hit(const Vec4<T>* pos, int first, int last, int
     }
   }
 }
-
-// The same over two rows at once (GridGeometry::for_each_neighbour_row_pair): both rows' candidates
-// are tested, then the hits of both are summed in one loop, row a's in order, then row b's. The
-// lanes of a warp have different hits in each row; one loop over a pair runs the pair arithmetic
-// max(h_a + h_b) times instead of max(h_a) + max(h_b).
-template <typename T, typename F>
-__device__ inline void for_each_hit_pair(const Vec4<T>* pos, int a, int a_end, int b, int b_end, int self,
-                                         const Vec3<T>& x, T support2, F&& f) {
-  for (; a < a_end || b < b_end; a += 32, b += 32) {
-    unsigned long long hits = 0;
-    const int a_stop = a_end - a < 32 ? a_end : a + 32, b_stop = b_end - b < 32 ? b_end : b + 32;
-    for (int j = a; j < a_stop; ++j) {
-      const Vec3<T> r = x - load(pos + j).xyz();
-      hits |= (unsigned long long)(dot(r, r) < support2 && j != self) << (j - a);
-    }
-    for (int j = b; j < b_stop; ++j) {
-      const Vec3<T> r = x - load(pos + j).xyz();
-      hits |= (unsigned long long)(dot(r, r) < support2 && j != self) << (32 + j - b);
-    }
-    while (hits) {
-      const int bit = __ffsll((long long)hits) - 1;
-      hits &= hits - 1;
-      f(bit < 32 ? a + bit : b + bit - 32);
-    }
-  }
-}
 #endif
 
 }  // namespace terracal
