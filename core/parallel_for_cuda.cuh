@@ -3,7 +3,6 @@
 #include <algorithm>
 
 #include "core/cuda_check.hpp"
-#include "core/cuda_launch_shape.hpp"
 #include "core/lane_group.hpp"
 
 namespace terracal {
@@ -67,7 +66,7 @@ bool spread_fits_one_wave(long n) {
 // The launches use blocks of kBoundedBlockThreads with the same registers per thread: an SM takes a
 // new block only once every warp of one has finished, and the items' work differs (a particle's
 // neighbours), so small blocks keep more warps busy (docs/decisions.md, "CUDA launch bounds").
-// kBoundedBlockThreads: core/cuda_launch_shape.hpp.
+constexpr int kBoundedBlockThreads = 64;
 template <int MinBlocks, typename F>
 __global__ void __launch_bounds__(kBoundedBlockThreads, MinBlocks * 256 / kBoundedBlockThreads)
     bounded_parallel_for_kernel(long n, F f) {

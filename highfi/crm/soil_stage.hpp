@@ -8,8 +8,6 @@
 // A stage evaluates the rates at the `eval` state and writes out = base + dt * rate. The midpoint
 // step is stage(A -> B, dt/2) followed by stage(B -> A, dt): the second stage reads B and updates
 // A in place, which is safe because a particle reads only its own record of A.
-#include <type_traits>
-
 #include "highfi/crm/soil_arrays.hpp"
 #include "highfi/crm/sph_neighbours.hpp"
 
@@ -21,10 +19,6 @@ struct SoilStage {
   // core sums; effects with sums of their own (hourglass_stiffness) then spill, and 3 (80 registers)
   // runs the rigs' configuration 1.28x faster (docs/decisions.md, "CUDA launch bounds").
   static constexpr int kCudaMinBlocks = AnyListed<Fx>::value ? 3 : 4;
-#ifndef TERRACAL_SOIL_PHASE_ROWS
-#define TERRACAL_SOIL_PHASE_ROWS 8
-#endif
-  static constexpr int kPhaseRows = TERRACAL_SOIL_PHASE_ROWS;
   SphConstants<T> k;
   CrmEffectConstants<T> ec;
   GridGeometry<T> grid;
@@ -103,20 +97,15 @@ struct SoilStage {
   __device__ void add_neighbours_gpu(long i, const SoilSelf<T>& me, SoilSums<T>& sum, EffectSums<T, Fx>& own,
                                      const G& g) const {
     const T support2 = k.kernel.support2();
-    auto soil_hit = [&](int j) {
-      const Vec4<T> pj = load(eval.pos + j), vj = load(eval.vel + j);
-      const SoilSums<T> c = neighbour_share<T, Fx, true>(k, ec, me, pj, vj, load(eval.s0 + j), load(eval.s1 + j));
-      sum += c;
-      add_listed<T, Fx>(
-          k, ec, me.x, pj, vj, c.support, [&](int slot) { return load(eval.record[slot] + j); }, own);
-    };
-    if constexpr (std::is_same_v<G, SingleLane> && kPhaseRows > 0) {
-      for_each_hit_in_phases<kPhaseRows>(grid, soil_begin, eval.pos, int(i), me.x, support2, soil_hit);
-    } else {
-      grid.for_each_neighbour_range(me.x, soil_begin, g, [&](int first, int last) {
-        for_each_hit(eval.pos, first, last, int(i), me.x, support2, soil_hit);
+    grid.for_each_neighbour_range(me.x, soil_begin, g, [&](int first, int last) {
+      for_each_hit(eval.pos, first, last, int(i), me.x, support2, [&](int j) {
+        const Vec4<T> pj = load(eval.pos + j), vj = load(eval.vel + j);
+        const SoilSums<T> c = neighbour_share<T, Fx, true>(k, ec, me, pj, vj, load(eval.s0 + j), load(eval.s1 + j));
+        sum += c;
+        add_listed<T, Fx>(
+            k, ec, me.x, pj, vj, c.support, [&](int slot) { return load(eval.record[slot] + j); }, own);
       });
-    }
+    });
     grid.for_each_neighbour_range(me.x, marker_begin, g, [&](int first, int last) {
       for_each_hit(mk.pos, first, last, -1, me.x, support2, [&](int j) {
         const Vec4<T> pj = load(mk.pos + j), vj = load(mk.vel + j);

@@ -95,26 +95,6 @@ struct GridGeometry {
       }
     }
   }
-  // The rows of neighbour cells of the (2 reach + 1)^2 block as (dy, dz) offsets from the particle's
-  // cell, in pairs opposite each other about it: (dy, dz), then (-dy, -dz), z-major up to the middle,
-  // then the middle (0, 0) last; f(dy, dz, k) with k the row's place in this order. The GPU soil loop
-  // sums the hits of several rows at once (for_each_hit_in_phases, sph_neighbours.hpp): a particle
-  // high in its cell has more neighbours in the rows above and fewer in those below, so the lanes of
-  // a warp differ less in a pair's hits than in one row's.
-  template <typename F>
-  TERRACAL_HD void for_each_row_in_opposite_pairs(F&& f) const {
-    const int pairs = (2 * reach + 1) * (2 * reach + 1) / 2;
-    int dy = -reach, dz = -reach;
-    for (int p = 0; p < pairs; ++p) {
-      f(dy, dz, 2 * p);
-      f(-dy, -dz, 2 * p + 1);
-      if (++dy > reach) {
-        dy = -reach;
-        ++dz;
-      }
-    }
-    f(0, 0, 2 * pairs);
-  }
   // The same for lane g.lane of a group: rows g.lane, g.lane + g.lanes, ... of the (2 reach + 1)^2
   // block (z major), so that the group's lanes take their k-th rows in the same iteration and run
   // side by side instead of one after another.

@@ -6,7 +6,6 @@
 // - CPU: a particle's neighbours are listed by an AVX2 filter (neighbour_filter_cpu.hpp), copied into
 //   structure-of-arrays form and summed 8 at a time under `omp simd` (add_neighbours_simd).
 // Both also call the named effects' own pair sums (add_listed).
-#include "core/cuda_launch_shape.hpp"
 #include "highfi/crm/effects/crm_effects.hpp"
 #include "highfi/crm/sph_pair.hpp"
 #if !defined(__CUDA_ARCH__)
@@ -116,72 +115,6 @@ __device__ inline void for_each_hit(const Vec4<T>* pos, int first, int last, int
       f(j);
     }
   }
-}
-#endif
-
-#if defined(__CUDA_ARCH__)
-// The soil loop of one GPU thread per particle, with the hits of several rows summed in one loop.
-// A warp runs a loop over hits as often as its lane with the most hits: row by row (for_each_hit)
-// that is the sum over rows of the busiest lane's hits, about 1.9 times a lane's mean (a particle
-// high in its cell has more hits in the rows above, fewer below; bench/warp_hit_balance.py). Here
-// the rows are taken in pairs opposite each other about the particle's cell, PhaseRows rows a phase:
-// a phase first tests its rows' candidates and keeps each 32 candidates' hits as a bit mask in this
-// thread's slots of shared memory, then runs one loop over all the phase's hits. The hits are summed
-// in the phase's row order, each row's in index order: the same order on every run. A thread whose
-// slots fill early (rows longer than 32 candidates) sums them then and goes on.
-// Launched only in blocks of kBoundedBlockThreads (a thread's slots are its column).
-template <int PhaseRows, typename T, typename F>
-__device__ inline void for_each_hit_in_phases(const GridGeometry<T>& grid, const int* begin, const Vec4<T>* pos,
-                                              int self, const Vec3<T>& x, T support2, F&& f) {
-  constexpr int kSlots = PhaseRows + 4;
-  __shared__ unsigned slot_hits[kSlots][kBoundedBlockThreads];
-  __shared__ int slot_first[kSlots][kBoundedBlockThreads];
-  const int t = int(threadIdx.x);
-  int ix, iy, iz;
-  if (!grid.cell_coords(x, ix, iy, iz)) return;
-  const int reach = grid.reach;
-  const int x0 = ix - reach > 0 ? ix - reach : 0, x1 = ix + reach < grid.nx ? ix + reach : grid.nx - 1;
-  int used = 0;
-  auto sum_hits = [&] {
-    int q = 0, first = 0;
-    unsigned hits = 0;
-    for (;;) {
-      while (hits == 0 && q < used) {
-        hits = slot_hits[q][t];
-        first = slot_first[q][t];
-        ++q;
-      }
-      if (hits == 0) break;
-      const int j = first + __ffs(int(hits)) - 1;
-      hits &= hits - 1;
-      f(j);
-    }
-    used = 0;
-  };
-  auto test_row = [&](int dy, int dz) {
-    const int y = iy + dy, z = iz + dz;
-    if (z < 0 || z >= grid.nz || y < 0 || y >= grid.ny) return;
-    const int row = grid.nx * (y + grid.ny * z);
-    const int last = begin[row + x1 + 1];
-    for (int first = begin[row + x0]; first < last; first += 32) {
-      const int end = last - first < 32 ? last : first + 32;
-      unsigned hits = 0;
-      for (int j = first; j < end; ++j) {
-        const Vec3<T> r = x - load(pos + j).xyz();
-        hits |= unsigned(dot(r, r) < support2 && j != self) << (j - first);
-      }
-      if (!hits) continue;
-      if (used == kSlots) sum_hits();
-      slot_hits[used][t] = hits;
-      slot_first[used][t] = first;
-      ++used;
-    }
-  };
-  grid.for_each_row_in_opposite_pairs([&](int dy, int dz, int k) {
-    test_row(dy, dz);
-    if ((k + 1) % PhaseRows == 0) sum_hits();
-  });
-  sum_hits();
 }
 #endif
 
