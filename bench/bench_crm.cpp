@@ -11,7 +11,8 @@
 //   leaves out the bed lines; BENCH_WHEEL=off or on times that wheel alone (for profiles).
 //   TERRACAL_CRM_SORT_ALL=1 sorts every marker at every pose (the order the long way), for comparisons;
 //   BENCH_SORT_SKIN=s sets resolution.sort_skin (0: the soil sorted at every step). `sorted %`: the
-//   timed steps that sorted the soil.
+//   timed steps that sorted the soil; `plate_fz_N`: the plate's mean vertical force over the timed steps
+//   (a check that builds compared for speed agree).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -103,8 +104,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   const double d0 = 0.01;
-  std::printf("%-6s %-12s %-12s %-10s %-16s %-14s %-8s %s\n", "config", "particles", "markers", "bytes/p",
-              "particle-steps/s", "ms/step", "sorted%", "device");
+  std::printf("%-6s %-12s %-12s %-10s %-16s %-14s %-8s %-12s %s\n", "config", "particles", "markers", "bytes/p",
+              "particle-steps/s", "ms/step", "sorted%", "plate_fz_N", "device");
   for (double n : sizes)
     for (bool rigs : {true, false}) {
       if (!(n > 0)) continue;  // particles 0: the wheel alone
@@ -129,9 +130,9 @@ int main(int argc, char** argv) {
       // BENCH_GRID_REACH=1 times the plain 2h grid instead of the default cells of h.
       if (const char* reach = std::getenv("BENCH_GRID_REACH")) j["resolution"]["grid_reach"] = std::atoi(reach);
       const Timing t = time_scene(j, device, steps, repeats);
-      std::printf("%-6s %-12zu %-12zu %-10.1f %-16.4g %-14.3f %-8.0f %s\n", rigs ? "rigs" : "bare", t.particles,
-                  t.markers, double(t.bytes) / t.particles, t.rate, 1e3 * t.particles / t.rate, 100 * t.sorted,
-                  t.device.c_str());
+      std::printf("%-6s %-12zu %-12zu %-10.1f %-16.4g %-14.3f %-8.0f %-12.6g %s\n", rigs ? "rigs" : "bare",
+                  t.particles, t.markers, double(t.bytes) / t.particles, t.rate, 1e3 * t.particles / t.rate,
+                  100 * t.sorted, t.force.z, t.device.c_str());
       std::fflush(stdout);
     }
   if (wheel) {
