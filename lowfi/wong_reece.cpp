@@ -58,62 +58,76 @@ struct Contact {
   const SlipSinkage* local_stretch = nullptr;
   double theta1 = 0, theta_m = 0, theta_r = 0;  // theta_r: where the rear lets go (0: no rear)
   double patch_b = 0;                           // with a patch width: its Bekker width at theta1
+  // Worked out once per entry angle (set_entry_angle) or per wheel, not at every quadrature point:
+  // the integrands are nearly all of the calibrator's time.
+  double cos_theta1 = 1, sin_theta1 = 0, sin_2theta1 = 0;
+  double bekker_bottom = 0;  // bekker(0): the stress at the bottom, where the elastic rear starts
+  double stretch_slip = 1;   // with local_stretch: the stretch at the wheel's slip (the law's rn)
 
-  // Bekker stress at the equivalent front angle te; the difference of cosines can round slightly
-  // below zero at te = θ1, and pow of a negative base is NaN.
-  double bekker(double te) const { return k_bekker * std::pow(std::max(0.0, std::cos(te) - std::cos(theta1)), n); }
-  double sigma(double theta) const {
-    if (theta < 0) return std::max(0.0, bekker(0.0) - ke * r * (1.0 - std::cos(theta)));  // rear rebound
+  // Bekker stress at the equivalent front angle te, from cos(te); the difference of cosines can
+  // round slightly below zero at te = θ1, and pow of a negative base is NaN.
+  double bekker_at_cos(double cos_te) const { return k_bekker * std::pow(std::max(0.0, cos_te - cos_theta1), n); }
+  double bekker(double te) const { return bekker_at_cos(std::cos(te)); }
+  // σ at θ, given sin θ and cos θ.
+  double sigma(double theta, double sin_t, double cos_t) const {
+    if (theta < 0) return std::max(0.0, bekker_bottom - ke * r * (1.0 - cos_t));  // rear rebound
     if (theta >= theta_m) {
-      double front = bekker(theta);
+      double front = bekker_at_cos(cos_t);
       if (local_stretch && theta > 0)  // k (z / f(theta))^n over k (z / f(0))^n: rn holds f(0)
-        front *= std::pow(pressure_sinkage_stretch(*local_stretch, slip, n) /
-                              pressure_sinkage_stretch(*local_stretch, 1 - (1 - slip) * std::cos(theta), n),
-                          n);
-      return front + damping_v * std::sin(theta);
+        front *= std::pow(stretch_slip / pressure_sinkage_stretch(*local_stretch, 1 - (1 - slip) * cos_t, n), n);
+      return front + damping_v * sin_t;
     }
     // Rear: [0, θm] is mapped linearly onto [θ1, θm] of the front law, so that σ(0) = 0 and σ is
     // continuous at θm. Only reached when θm > 0 (the rear piece is empty otherwise).
     return bekker(theta1 - theta / theta_m * (theta1 - theta_m));
   }
-  // The shear displacement (WongReeceOptions::shear_displacement); slip < 1 is validated.
-  double displacement_at(double theta) const {
-    const double chord = std::sin(theta1) - std::sin(theta);
+  // The shear displacement (WongReeceOptions::shear_displacement) at θ, given sin θ; slip < 1 is
+  // validated.
+  double displacement_at(double theta, double sin_t) const {
+    const double chord = sin_theta1 - sin_t;
     if (displacement == ShearDisplacement::rim) return r * ((theta1 - theta) - (1.0 - slip) * chord);
-    const double cos2_integral = 0.5 * (theta1 - theta) + 0.25 * (std::sin(2 * theta1) - std::sin(2 * theta));
+    const double cos2_integral = 0.5 * (theta1 - theta) + 0.25 * (sin_2theta1 - std::sin(2 * theta));
     return r / (1.0 - slip) * (chord - (1.0 - slip) * cos2_integral);
   }
-  double tau(double theta) const {
-    const double j = displacement_at(theta);
+  // τ at θ, given sin θ and σ(θ).
+  double tau(double theta, double sin_t, double sigma_t) const {
+    const double j = displacement_at(theta, sin_t);
     // Janosi-Hanamoto with the sign of j: in skid (s < 0) the soil shears the rim backward.
     const double developed = -std::expm1(-std::abs(j) / janosi_k);
-    return std::copysign((cohesion + sigma(theta) * tan_phi) * developed, j);
+    return std::copysign((cohesion + sigma_t * tan_phi) * developed, j);
   }
   // An upper bound of |σ| + |τ|, the scale for absolute quadrature tolerances (DBP can be ~0).
   double stress_scale() const {
-    const double sigma_max = bekker(0.0) + damping_v;
+    const double sigma_max = bekker_bottom + damping_v;
     return sigma_max + cohesion + sigma_max * tan_phi;
   }
 };
 
 enum class Quantity { Vertical, Drawbar, Torque };
 
+// One piece of the contact, integrated over v in [0, 1] with theta = end + toward v^2: the piece's
+// stress (cos θ − cos θ1)^n behaves like a power n < 1 of the distance from `end` (the entry angle,
+// or the rear's zero), and the Janosi shear develops over a short arc there; in v that becomes a
+// power 2n + 1 and an arc √ times wider, which QAGS resolves with about a third of the points.
 struct Integrand {
   const Contact* contact;
   Quantity q;
+  double end, toward;  // θ(v) = end + toward v², dθ = 2 |toward| v dv
 };
 
-double integrand(double theta, void* p) {
+double integrand(double v, void* p) {
   const auto* in = static_cast<const Integrand*>(p);
   const Contact& c = *in->contact;
-  const double s = c.sigma(theta), t = c.tau(theta);
+  const double theta = in->end + in->toward * v * v, jacobian = 2 * std::abs(in->toward) * v;
+  const double sin_t = std::sin(theta), cos_t = std::cos(theta);
+  const double s = c.sigma(theta, sin_t, cos_t), t = c.tau(theta, sin_t, s);
   switch (in->q) {
     case Quantity::Vertical:
-      return s * std::cos(theta) + t * std::sin(theta);
+      return jacobian * (s * cos_t + t * sin_t);
     case Quantity::Drawbar:
-      return t * std::cos(theta) - s * std::sin(theta);
+      return jacobian * (t * cos_t - s * sin_t);
     case Quantity::Torque:
-      return t;
+      return jacobian * t;
   }
   return 0.0;
 }
@@ -125,19 +139,21 @@ using Workspace = std::unique_ptr<gsl_integration_workspace, WorkspaceFree>;
 constexpr size_t kWorkspaceIntervals = 1000;
 
 // ∫_-θr^θ1 of the quantity's integrand (without the r b or r² b factor), the elastic rear [-θr, 0],
-// the rear [0, θm] and the front [θm, θ1] separately because σ has kinks at 0 and θm. QAGS copes with
-// the algebraic end-point behaviour of (cos θ − cos θ1)^n for n < 1.
+// the rear [0, θm] and the front [θm, θ1] separately because σ has kinks at 0 and θm. Each piece is
+// taken in v (Integrand) from the end where σ has its algebraic end-point behaviour (cos θ − cos θ1)^n:
+// θ1 for the front, 0 for the rear (it maps onto the front law from θ1), and the bottom for the elastic
+// rear (smooth, where the rebound starts). QAGS copes with what is left.
 double integrate(const Contact& c, Quantity q, double rel_tol, gsl_integration_workspace* w) {
-  Integrand in{&c, q};
-  gsl_function f{&integrand, &in};
   const double eps_abs = 0.1 * rel_tol * c.stress_scale() * c.theta1;
   double total = 0.0;
   const double bounds[4] = {-c.theta_r, 0.0, c.theta_m, c.theta1};
   for (int piece = 0; piece < 3; ++piece) {
     const double a = bounds[piece], b = bounds[piece + 1];
     if (!(b > a)) continue;  // θm = 0 or θm = θ1: one piece is empty
+    Integrand in = piece == 1 ? Integrand{&c, q, a, b - a} : Integrand{&c, q, b, a - b};
+    gsl_function f{&integrand, &in};
     double result = 0, abserr = 0;
-    const int status = gsl_integration_qags(&f, a, b, eps_abs, rel_tol, kWorkspaceIntervals, w, &result, &abserr);
+    const int status = gsl_integration_qags(&f, 0.0, 1.0, eps_abs, rel_tol, kWorkspaceIntervals, w, &result, &abserr);
     // A GSL warning with a still-small error estimate (round-off at a very tight rel_tol) is accepted.
     if (status != GSL_SUCCESS && !(abserr <= 1e-6 * std::max(std::abs(result), c.stress_scale() * (b - a))))
       throw RunError(
@@ -151,6 +167,9 @@ double integrate(const Contact& c, Quantity q, double rel_tol, gsl_integration_w
 
 void set_entry_angle(Contact& c, double theta1, const WongReeceOptions& o) {
   c.theta1 = theta1;
+  c.cos_theta1 = std::cos(theta1);
+  c.sin_theta1 = std::sin(theta1);
+  c.sin_2theta1 = std::sin(2 * theta1);
   // c1 + c2 s can leave [0, 1] (e.g. c1 + c2 s < 0 in deep skid): then the whole contact is front or rear.
   c.theta_m = std::clamp((o.c1 + o.c2 * c.slip) * theta1, 0.0, theta1);
   // The elastic rear lets go where the rebound has taken back the bottom's pressure; with a patch
@@ -167,7 +186,8 @@ void set_entry_angle(Contact& c, double theta1, const WongReeceOptions& o) {
       c.patch_b = bw;
       c.k_bekker = std::max(0.0, (c.kc / bw + c.kphi) * c.rn);
     }
-    c.theta_r = c.ke > 0 ? std::acos(std::max(-1.0, 1.0 - c.bekker(0.0) / (c.ke * c.r))) : 0.0;
+    c.bekker_bottom = c.bekker(0.0);
+    c.theta_r = c.ke > 0 ? std::acos(std::max(-1.0, 1.0 - c.bekker_bottom / (c.ke * c.r))) : 0.0;
   }
 }
 
@@ -307,6 +327,7 @@ WongReeceResult wong_reece(const ScmSoil& soil, const WongReeceWheel& wheel, dou
             soil.Kphi,
             std::pow(r / stretch, soil.n),
             options.slip_sinkage && options.local_slip_sinkage ? &soil.slip_sinkage : nullptr};
+  c.stretch_slip = stretch;
   Equilibrium eq{&c, &options, w.get(), load, nullptr};
   const double theta1 = solve_entry_angle(eq, options.rel_tol);
 
