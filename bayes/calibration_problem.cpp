@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 
 #include <omp.h>
 
@@ -23,6 +24,14 @@ namespace {
 // with 16 threads give each 4; with 2 the slips run in order on the chain's own thread. Inside the
 // chains' parallel region omp_get_max_threads() is still the whole budget (it is inherited).
 int slip_threads() { return std::max(1, omp_get_max_threads() / std::max(1, omp_get_num_threads())); }
+// The calling thread's workers for those slips: a slip takes tens of microseconds, about what
+// starting a thread costs, so the threads stay between predictions.
+WorkerPool& slip_pool() {
+  thread_local std::unique_ptr<WorkerPool> pool;
+  const int width = slip_threads();
+  if (!pool || pool->width() != width) pool = std::make_unique<WorkerPool>(width);
+  return *pool;
+}
 constexpr double kNegInf = -std::numeric_limits<double>::infinity();
 // Defaults for parameters the data cannot identify (Chrono's "soft" SCM preset values).
 constexpr double kDefaultCohesion = 0.0, kDefaultFriction = 30.0, kDefaultJanosi = 0.01;
@@ -231,7 +240,7 @@ const WheelPrediction& CalibrationProblem::predict_wheel(const ParamVector& p) c
   // The slips are independent of each other: they run at once on the cores the chains leave idle
   // (the predictions do not depend on how many).
   try {
-    run_concurrently(n, slip_threads(), [&](std::size_t i) {
+    slip_pool().run(n, [&](std::size_t i) {
       const lowfi::WongReeceResult r = lowfi::scm_steady_wheel(soil, rim, d.points[i].load, d.points[i].slip, opt);
       out.dbp[i] = r.dbp;
       out.torque[i] = r.torque;
